@@ -1,0 +1,68 @@
+// `atssim run SCENE`: simulate and write HDF5.
+#include <csignal>
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "app/commands.hpp"
+#include "app/simulation.hpp"
+
+namespace atssim::app {
+
+namespace {
+
+struct RunArgs {
+  std::string scene;
+  std::string output;
+  int frames = 0;
+  std::string devices;
+  std::vector<std::string> sets;
+  bool quiet = false;
+  std::string svm;
+};
+
+void on_signal(int) { request_stop(); }
+
+void print_progress(const RunProgress& p) {
+  const double eta_s = p.mean_ms * (p.frames - p.frame) / 1000.0;
+  fmt::print(stderr, "\rframe {}/{}  {:.1f} ms/frame  ETA {:.0f} s   ", p.frame, p.frames, p.frame_ms, eta_s);
+  if (p.frame == p.frames) fmt::print(stderr, "\n");
+}
+
+}  // namespace
+
+Action add_run_command(CLI::App& cli, const std::string& command_line) {
+  auto args = std::make_shared<RunArgs>();
+  CLI::App* cmd = cli.add_subcommand("run", "Simulate a scene and write the frames to HDF5");
+  cmd->add_option("scene", args->scene, "Scene file (YAML, see docs/scene-format.md)")->required();
+  cmd->add_option("-o,--output", args->output, "Output HDF5 file (default: the scene's output.path)");
+  cmd->add_option("--frames", args->frames, "Number of frames to simulate")->check(CLI::PositiveNumber);
+  cmd->add_option("--devices", args->devices, "Device spec: default, cpu, gpu, N, cpu/2 (see atssim devices)");
+  cmd->add_option("--set", args->sets, "Override a scene key, e.g. --set simulation.substeps=32 (repeatable)");
+  cmd->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
+  cmd->add_option("--svm", args->svm, "Shared virtual memory: auto (fine grain when offered) or coarse")
+      ->check(CLI::IsMember({"auto", "coarse", "fine"}));
+  return [args, command_line]() {
+    RunOptions options;
+    options.scene_path = args->scene;
+    options.command_line = command_line;
+    options.svm_mode = args->svm;
+    options.overrides = args->sets;
+    if (!args->output.empty()) options.overrides.push_back("output.path=" + args->output);
+    if (args->frames > 0) options.overrides.push_back("simulation.frames=" + std::to_string(args->frames));
+    if (!args->devices.empty()) options.overrides.push_back("devices=" + args->devices);
+
+    std::signal(SIGINT, on_signal);
+    std::signal(SIGTERM, on_signal);
+    const bool show_progress = !args->quiet && isatty(STDERR_FILENO);
+    const RunResult r = run_simulation(options, show_progress ? print_progress : std::function<void(const RunProgress&)>{});
+    if (!args->quiet) {
+      fmt::print("wrote {}: {} frames ({} simulated), {} particles, {:.2f} ms/frame on {}\n", r.output_path,
+                 r.frames_written, r.frames_simulated, r.particles, r.mean_frame_ms, r.device);
+    }
+    return 0;
+  };
+}
+
+}  // namespace atssim::app

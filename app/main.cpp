@@ -1,0 +1,48 @@
+// atssim: the command-line front. Parses, runs one subcommand, and turns
+// every atssim::Error into one line on stderr and its exit code.
+#include <cstdio>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "app/commands.hpp"
+#include "util/error.hpp"
+
+int main(int argc, char** argv) {
+  std::string command_line;
+  for (int i = 0; i < argc; ++i) command_line += (i ? " " : "") + std::string(argv[i]);
+
+  CLI::App cli{"atssim — cloth and deformable-body simulation scheduled across OpenCL devices"};
+  cli.require_subcommand(1);
+  cli.set_version_flag("--version", std::string(ATSSIM_VERSION));
+  const atssim::app::Action run = atssim::app::add_run_command(cli, command_line);
+  const atssim::app::Action devices = atssim::app::add_devices_command(cli);
+
+  try {
+    cli.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return cli.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return cli.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return cli.exit(e);
+  } catch (const CLI::ParseError& e) {
+    fmt::print(stderr, "atssim: {}; see atssim --help\n", e.what());
+    return 2;
+  }
+
+  try {
+    for (CLI::App* sub : cli.get_subcommands()) {
+      if (sub->get_name() == "run") return run();
+      if (sub->get_name() == "devices") return devices();
+    }
+  } catch (const atssim::Error& e) {
+    fmt::print(stderr, "atssim: {}\n", e.what());
+    return e.exit_code();
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "atssim: internal error: {}\n", e.what());
+    return 1;
+  }
+  return 2;
+}

@@ -1,0 +1,97 @@
+#include "app/simulation.hpp"
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "device/device_set.hpp"
+#include "device/plan_executor.hpp"
+#include "io/result_writer.hpp"
+#include "model/cloth_builder.hpp"
+#include "scene/scene_loader.hpp"
+#include "solver/xpbd/xpbd_plan.hpp"
+#include "util/error.hpp"
+
+namespace atssim::app {
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+
+// The first particle whose position is not finite or flew implausibly far.
+int find_blow_up(const std::vector<float>& xyz) {
+  for (std::size_t i = 0; i < xyz.size(); ++i) {
+    if (!std::isfinite(xyz[i]) || std::abs(xyz[i]) > 1e6f) return static_cast<int>(i / 3);
+  }
+  return -1;
+}
+
+device::SvmMode svm_mode(const std::string& text) {
+  if (text == "coarse") return device::SvmMode::coarse;
+  if (text == "fine") return device::SvmMode::fine;
+  return device::SvmMode::automatic;
+}
+
+}  // namespace
+
+void request_stop() { g_stop = true; }
+
+RunResult run_simulation(const RunOptions& options, const std::function<void(const RunProgress&)>& progress) {
+  g_stop = false;
+  const scene::SceneDesc scene = scene::load_scene_file(options.scene_path, options.overrides);
+  const model::Model model = model::build_model(scene);
+  const auto& sim = scene.simulation;
+  const solver::xpbd::XpbdSettings settings{sim.frame_dt / sim.substeps, sim.iterations};
+  const solver::SubstepPlan plan = solver::xpbd::make_xpbd_plan(solver::xpbd::make_xpbd_layout(model), settings);
+
+  const device::DeviceSet devices = device::DeviceSet::open(scene.devices);
+  device::PlanExecutor executor(devices, plan, {svm_mode(options.svm_mode)});
+
+  io::RunInfo info{options.command_line, scene.yaml_text, scene.resolved_yaml, devices.infos()};
+  io::ResultWriter writer(scene.output.path, info, model);
+
+  RunResult result;
+  result.output_path = scene.output.path;
+  result.particles = model.particles.size();
+  result.device = devices.info(0).name;
+  std::vector<float> xyz;
+  executor.read_positions(xyz);
+  writer.append_frame(0.0, xyz, 0.0);
+
+  double total_ms = 0.0;
+  try {
+    for (int frame = 1; frame <= sim.frames; ++frame) {
+      if (g_stop) throw runtime_error(fmt::format("interrupted before frame {}", frame));
+      const auto start = std::chrono::steady_clock::now();
+      executor.enqueue_substeps(sim.substeps);
+      executor.read_positions(xyz);
+      const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      if (const int p = find_blow_up(xyz); p >= 0) {
+        throw runtime_error(fmt::format("frame {}: the simulation blew up (particle {} is at a non-finite or "
+                                        "implausible position); use more substeps or iterations, or softer "
+                                        "materials",
+                                        frame, p));
+      }
+      total_ms += ms;
+      result.frames_simulated = frame;
+      if (frame % scene.output.stride == 0) writer.append_frame(frame * sim.frame_dt, xyz, ms);
+      if (progress) progress({frame, sim.frames, ms, total_ms / frame});
+    }
+  } catch (const Error& e) {
+    const int kept = writer.frames_written();
+    writer.fail(e.what());
+    throw runtime_error(fmt::format("{} ({} frames kept in {})", e.what(), kept, writer.path()));
+  } catch (const std::exception& e) {
+    const int kept = writer.frames_written();
+    writer.fail(e.what());
+    throw runtime_error(fmt::format("{} ({} frames kept in {})", e.what(), kept, writer.path()));
+  }
+  writer.finish();
+  result.frames_written = writer.frames_written();
+  result.mean_frame_ms = result.frames_simulated > 0 ? total_ms / result.frames_simulated : 0.0;
+  return result;
+}
+
+}  // namespace atssim::app

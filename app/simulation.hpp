@@ -1,0 +1,42 @@
+#pragma once
+// Wires the pipeline for `atssim run`: scene -> model -> XPBD plan ->
+// devices -> frames -> HDF5.
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace atssim::app {
+
+struct RunOptions {
+  std::string scene_path;
+  std::vector<std::string> overrides;  // --set key=value, plus -o/--frames/--devices turned into overrides
+  std::string command_line;
+  // Forced coarse-grain SVM (tests exercise both paths); empty = automatic.
+  std::string svm_mode;
+};
+
+struct RunProgress {
+  int frame = 0;        // frames simulated so far
+  int frames = 0;       // frames asked for
+  double frame_ms = 0;  // wall time of the last frame
+  double mean_ms = 0;   // mean so far
+};
+
+struct RunResult {
+  std::string output_path;
+  int frames_simulated = 0;
+  int frames_written = 0;   // including the initial state
+  double mean_frame_ms = 0;
+  std::size_t particles = 0;
+  std::string device;
+};
+
+// Throws atssim::Error: input errors before anything is written; runtime
+// errors after the output file exists carry "N frames kept in FILE".
+RunResult run_simulation(const RunOptions& options, const std::function<void(const RunProgress&)>& progress = {});
+
+// Set from a signal handler: the run stops after the current frame, keeps
+// what it wrote and fails with "interrupted".
+void request_stop();
+
+}  // namespace atssim::app

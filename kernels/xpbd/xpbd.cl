@@ -1,0 +1,72 @@
+/* XPBD substep kernels (Macklin et al. 2016, small steps: lambdas restart
+ * every substep). Positions are float4 with w = inverse mass (0 = pinned).
+ * Each constraint kernel works on one color block, elements
+ * [first, first + count) of its array, that share no movable particle. */
+#include "common/ats_math.h"
+#include "common/xpbd_types.h"
+#include "common/xpbd_distance.h"
+#include "common/xpbd_bending.h"
+
+static inline ats_vec3 xyz(float4 p) { return ats_v3(p.x, p.y, p.z); }
+static inline float4 add_xyz(float4 p, ats_vec3 d) { return (float4)(p.x + d.x, p.y + d.y, p.z + d.z, p.w); }
+
+__kernel void xpbd_predict(__global float4* x, __global float4* v, __global float4* x_prev, float dt,
+                           float gx, float gy, float gz, int n) {
+  const int i = get_global_id(0);
+  if (i >= n) return;
+  const float4 p = x[i];
+  x_prev[i] = p;
+  if (p.w == 0.0f) {
+    v[i] = (float4)(0.0f);
+    return;
+  }
+  float4 vel = v[i];
+  vel.x += dt * gx;
+  vel.y += dt * gy;
+  vel.z += dt * gz;
+  v[i] = vel;
+  x[i] = (float4)(p.x + dt * vel.x, p.y + dt * vel.y, p.z + dt * vel.z, p.w);
+}
+
+__kernel void xpbd_stretch(__global float4* x, __global const ats_distance_c* c, __global float* lambda, int first,
+                           int count, float dt, int reset) {
+  const int k = get_global_id(0);
+  if (k >= count) return;
+  const int i = first + k;
+  const ats_distance_c con = c[i];
+  const float l = reset ? 0.0f : lambda[i];
+  const float4 pa = x[con.a];
+  const float4 pb = x[con.b];
+  const ats_distance_step s = ats_xpbd_distance(xyz(pa), pa.w, xyz(pb), pb.w, con.rest, con.compliance, l, dt);
+  lambda[i] = l + s.dlambda;
+  x[con.a] = add_xyz(pa, s.dxa);
+  x[con.b] = add_xyz(pb, s.dxb);
+}
+
+__kernel void xpbd_bend(__global float4* x, __global const ats_bend_c* c, __global float4* lambda, int first,
+                        int count, float dt, int reset) {
+  const int k = get_global_id(0);
+  if (k >= count) return;
+  const int i = first + k;
+  const ats_bend_c con = c[i];
+  ats_vec3 p[4];
+  float w[4];
+  float4 q[4];
+  for (int j = 0; j < 4; ++j) {
+    q[j] = x[con.v[j]];
+    p[j] = xyz(q[j]);
+    w[j] = q[j].w;
+  }
+  const float4 l4 = reset ? (float4)(0.0f) : lambda[i];
+  const ats_bend_step s = ats_xpbd_bend(p, w, con.K, con.scale, con.compliance, xyz(l4), dt);
+  lambda[i] = (float4)(l4.x + s.dlambda.x, l4.y + s.dlambda.y, l4.z + s.dlambda.z, 0.0f);
+  for (int j = 0; j < 4; ++j) x[con.v[j]] = add_xyz(q[j], s.dx[j]);
+}
+
+__kernel void xpbd_update_velocity(__global const float4* x, __global float4* v, __global const float4* x_prev,
+                                   float inv_dt, int n) {
+  const int i = get_global_id(0);
+  if (i >= n) return;
+  const float4 d = x[i] - x_prev[i];
+  v[i] = (float4)(d.x * inv_dt, d.y * inv_dt, d.z * inv_dt, 0.0f);
+}

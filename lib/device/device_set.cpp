@@ -1,0 +1,151 @@
+#include "device/device_set.hpp"
+
+#include <algorithm>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "device/device_query.hpp"
+#include "device/device_set_impl.hpp"
+#include "util/error.hpp"
+
+namespace atssim::device {
+
+namespace {
+
+std::string available(const std::vector<DeviceHandle>& all) {
+  std::string s;
+  for (const auto& h : all) {
+    s += fmt::format("{}{}: {} ({}, {} CUs{})", s.empty() ? "" : "; ", h.info.index, h.info.name, h.info.type,
+                     h.info.compute_units,
+                     h.info.max_sub_devices >= 2 ? fmt::format(", /{} ok", h.info.max_sub_devices) : "");
+  }
+  return s;
+}
+
+[[noreturn]] void bad_spec(const std::string& spec, const std::string& why, const std::vector<DeviceHandle>& all) {
+  throw input_error(fmt::format("--devices '{}': {}; available: {} (e.g. --devices cpu, --devices 0, "
+                                "--devices cpu/2)",
+                                spec, why, available(all)));
+}
+
+std::vector<const DeviceHandle*> pick(const std::string& selector, const std::string& spec,
+                                      const std::vector<DeviceHandle>& all) {
+  auto first_of = [&](const char* type) -> const DeviceHandle* {
+    const DeviceHandle* best = nullptr;
+    for (const auto& h : all) {
+      if (h.info.type == type && (best == nullptr || h.info.compute_units > best->info.compute_units)) best = &h;
+    }
+    return best;
+  };
+  if (selector == "default") {
+    const DeviceHandle* gpu = first_of("gpu");
+    if (gpu == nullptr) {
+      const DeviceHandle* cpu = first_of("cpu");
+      return {cpu != nullptr ? cpu : &all.front()};
+    }
+    for (const auto& h : all) {
+      if (h.info.type == "cpu" && h.info.platform_index == gpu->info.platform_index) return {gpu, &h};
+    }
+    return {gpu};
+  }
+  if (selector == "cpu" || selector == "gpu") {
+    const DeviceHandle* h = first_of(selector.c_str());
+    if (h == nullptr) bad_spec(spec, fmt::format("no {} device", selector), all);
+    return {h};
+  }
+  if (!selector.empty() && std::all_of(selector.begin(), selector.end(), ::isdigit)) {
+    const std::size_t index = std::stoul(selector);
+    if (index >= all.size()) bad_spec(spec, fmt::format("there is no device {}", index), all);
+    return {&all[index]};
+  }
+  bad_spec(spec, fmt::format("'{}' is not a device", selector), all);
+}
+
+}  // namespace
+
+DeviceSet::DeviceSet(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+DeviceSet::DeviceSet(DeviceSet&&) noexcept = default;
+DeviceSet& DeviceSet::operator=(DeviceSet&&) noexcept = default;
+DeviceSet::~DeviceSet() = default;
+
+std::size_t DeviceSet::size() const { return impl_->devices.size(); }
+const DeviceInfo& DeviceSet::info(std::size_t i) const { return impl_->infos.at(i); }
+const std::vector<DeviceInfo>& DeviceSet::infos() const { return impl_->infos; }
+bool DeviceSet::fine_grain_svm() const {
+  return std::all_of(impl_->infos.begin(), impl_->infos.end(), [](const DeviceInfo& d) { return d.svm.fine_buffer; });
+}
+
+DeviceSet DeviceSet::open(const std::string& spec_in) {
+  const std::vector<DeviceHandle> all = all_device_handles();
+  if (all.empty()) {
+    throw runtime_error("no OpenCL device found: install an OpenCL driver (on Debian: pocl-opencl-icd, "
+                        "scripts/setup.sh installs it) and check `atssim devices`");
+  }
+  const std::string spec = spec_in.empty() ? "default" : spec_in;
+  auto impl = std::make_unique<Impl>();
+  std::stringstream items(spec);
+  for (std::string item; std::getline(items, item, ',');) {
+    std::string selector = item;
+    int split = 0;
+    if (const auto slash = item.find('/'); slash != std::string::npos) {
+      selector = item.substr(0, slash);
+      const std::string count = item.substr(slash + 1);
+      if (count.empty() || !std::all_of(count.begin(), count.end(), ::isdigit) || std::stoi(count) < 2) {
+        bad_spec(spec, fmt::format("'{}' must be followed by a sub-device count ≥ 2, as in cpu/2", selector), all);
+      }
+      split = std::stoi(count);
+    }
+    for (const DeviceHandle* h : pick(selector, spec, all)) {
+      if (split == 0) {
+        impl->devices.push_back(h->device);
+        impl->infos.push_back(h->info);
+        continue;
+      }
+      if (h->info.max_sub_devices < split || h->info.compute_units < split) {
+        bad_spec(spec, fmt::format("device {} ({} compute units) cannot be split into {}", h->info.index,
+                                   h->info.compute_units, split), all);
+      }
+      const cl_device_partition_property props[] = {
+          CL_DEVICE_PARTITION_EQUALLY, static_cast<cl_device_partition_property>(h->info.compute_units / split), 0};
+      std::vector<cl::Device> subs;
+      try {
+        cl::Device parent = h->device;
+        parent.createSubDevices(props, &subs);
+      } catch (const cl::Error& e) {
+        throw runtime_error(fmt::format("splitting device {} into {}: {}", h->info.index, split,
+                                        cl_error_name(e.err())));
+      }
+      for (int s = 0; s < split && s < static_cast<int>(subs.size()); ++s) {
+        DeviceInfo info = query_info(subs[s], h->info.index, h->info.platform_index, h->info.platform);
+        info.sub_device = s;
+        info.sub_device_count = split;
+        impl->devices.push_back(subs[s]);
+        impl->infos.push_back(info);
+      }
+    }
+  }
+  if (impl->devices.empty()) bad_spec(spec, "it selects no device", all);
+  for (const DeviceInfo& d : impl->infos) {
+    if (d.platform_index != impl->infos.front().platform_index) {
+      bad_spec(spec, fmt::format("devices of different platforms ('{}' and '{}') cannot share SVM memory",
+                                 impl->infos.front().platform, d.platform), all);
+    }
+    if (!d.svm.coarse_buffer && !d.svm.fine_buffer) {
+      throw runtime_error(fmt::format("device {} ({}) has no shared virtual memory (SVM); atssim needs OpenCL 2.0+ "
+                                      "SVM — pick another device with --devices (see `atssim devices`)",
+                                      d.index, d.name));
+    }
+  }
+  try {
+    impl->context = cl::Context(impl->devices);
+    for (const cl::Device& d : impl->devices) {
+      impl->queues.emplace_back(impl->context, d, CL_QUEUE_PROFILING_ENABLE);
+    }
+  } catch (const cl::Error& e) {
+    throw runtime_error(fmt::format("creating the OpenCL context: {} in {}", cl_error_name(e.err()), e.what()));
+  }
+  return DeviceSet(std::move(impl));
+}
+
+}  // namespace atssim::device

@@ -1,0 +1,42 @@
+#pragma once
+// The devices a run uses: one OpenCL context over them, one in-order
+// profiling queue each, all sharing SVM. Chosen by a spec string:
+//   default      best GPU + a CPU of the same platform; only a CPU: that one
+//   cpu | gpu    first device of that type
+//   N            device N of `atssim devices`
+//   SEL/K        the selected device split into K equal sub-devices ("cpu/2")
+//   A,B          several selections
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "device/device_info.hpp"
+
+namespace atssim::device {
+
+class DeviceSet {
+ public:
+  // Throws atssim::Error: input (exit 2) when the spec is malformed or
+  // matches nothing, listing the devices; runtime (exit 1) when there is no
+  // OpenCL device at all or a device lacks SVM.
+  static DeviceSet open(const std::string& spec);
+
+  DeviceSet(DeviceSet&&) noexcept;
+  DeviceSet& operator=(DeviceSet&&) noexcept;
+  ~DeviceSet();
+
+  std::size_t size() const;
+  const DeviceInfo& info(std::size_t i) const;
+  const std::vector<DeviceInfo>& infos() const;
+  // Fine-grain buffer SVM on every device of the set.
+  bool fine_grain_svm() const;
+
+  struct Impl;
+  Impl& impl() const { return *impl_; }
+
+ private:
+  explicit DeviceSet(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace atssim::device

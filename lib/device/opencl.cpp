@@ -1,0 +1,56 @@
+#include "device/opencl.hpp"
+
+#include <fmt/format.h>
+
+#include "util/error.hpp"
+
+namespace atssim::device {
+
+std::string cl_error_name(int code) {
+  switch (code) {
+#define ATS_CASE(x) \
+  case x:           \
+    return fmt::format("{} ({})", #x, code);
+    ATS_CASE(CL_DEVICE_NOT_FOUND)
+    ATS_CASE(CL_DEVICE_NOT_AVAILABLE)
+    ATS_CASE(CL_COMPILER_NOT_AVAILABLE)
+    ATS_CASE(CL_MEM_OBJECT_ALLOCATION_FAILURE)
+    ATS_CASE(CL_OUT_OF_RESOURCES)
+    ATS_CASE(CL_OUT_OF_HOST_MEMORY)
+    ATS_CASE(CL_BUILD_PROGRAM_FAILURE)
+    ATS_CASE(CL_INVALID_VALUE)
+    ATS_CASE(CL_INVALID_DEVICE)
+    ATS_CASE(CL_INVALID_CONTEXT)
+    ATS_CASE(CL_INVALID_COMMAND_QUEUE)
+    ATS_CASE(CL_INVALID_MEM_OBJECT)
+    ATS_CASE(CL_INVALID_PROGRAM)
+    ATS_CASE(CL_INVALID_PROGRAM_EXECUTABLE)
+    ATS_CASE(CL_INVALID_KERNEL_NAME)
+    ATS_CASE(CL_INVALID_KERNEL)
+    ATS_CASE(CL_INVALID_ARG_INDEX)
+    ATS_CASE(CL_INVALID_ARG_VALUE)
+    ATS_CASE(CL_INVALID_ARG_SIZE)
+    ATS_CASE(CL_INVALID_KERNEL_ARGS)
+    ATS_CASE(CL_INVALID_WORK_DIMENSION)
+    ATS_CASE(CL_INVALID_WORK_GROUP_SIZE)
+    ATS_CASE(CL_INVALID_WORK_ITEM_SIZE)
+    ATS_CASE(CL_INVALID_GLOBAL_OFFSET)
+    ATS_CASE(CL_INVALID_EVENT_WAIT_LIST)
+    ATS_CASE(CL_INVALID_OPERATION)
+    ATS_CASE(CL_INVALID_BUFFER_SIZE)
+    ATS_CASE(CL_INVALID_GLOBAL_WORK_SIZE)
+    ATS_CASE(CL_INVALID_PROPERTY)
+    ATS_CASE(CL_DEVICE_PARTITION_FAILED)
+    ATS_CASE(CL_INVALID_DEVICE_PARTITION_COUNT)
+    ATS_CASE(CL_PLATFORM_NOT_FOUND_KHR)
+#undef ATS_CASE
+    default:
+      return fmt::format("OpenCL error {}", code);
+  }
+}
+
+void check_cl(int code, const char* what) {
+  if (code != CL_SUCCESS) throw runtime_error(fmt::format("{}: {}", what, cl_error_name(code)));
+}
+
+}  // namespace atssim::device

@@ -1,0 +1,191 @@
+#include "model/cloth_builder.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+
+#include <Eigen/Geometry>
+#include <fmt/format.h>
+
+#include "util/error.hpp"
+
+namespace atssim::model {
+
+scene::TriangleMesh make_grid_mesh(const scene::GridDesc& grid) {
+  const int nx = grid.resolution[0];
+  const int nz = grid.resolution[1];
+  scene::TriangleMesh mesh;
+  mesh.vertices.reserve(static_cast<std::size_t>(nx) * nz);
+  for (int k = 0; k < nz; ++k) {
+    for (int i = 0; i < nx; ++i) {
+      const double x = grid.size[0] * (static_cast<double>(i) / (nx - 1) - 0.5);
+      const double z = grid.size[1] * (static_cast<double>(k) / (nz - 1) - 0.5);
+      mesh.vertices.push_back({x, 0.0, z});
+    }
+  }
+  for (int k = 0; k + 1 < nz; ++k) {
+    for (int i = 0; i + 1 < nx; ++i) {
+      const int a = k * nx + i, b = a + 1, c = a + nx, d = c + 1;
+      mesh.triangles.push_back({a, c, b});
+      mesh.triangles.push_back({b, c, d});
+    }
+  }
+  return mesh;
+}
+
+std::vector<std::array<int, 2>> unique_edges(const std::vector<std::array<int, 3>>& triangles) {
+  std::vector<std::array<int, 2>> edges;
+  edges.reserve(triangles.size() * 3);
+  for (const auto& t : triangles) {
+    for (int e = 0; e < 3; ++e) {
+      const int a = t[e], b = t[(e + 1) % 3];
+      edges.push_back({std::min(a, b), std::max(a, b)});
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  return edges;
+}
+
+std::vector<std::array<int, 4>> bending_stencils(const std::vector<std::array<int, 3>>& triangles) {
+  // Edge -> opposite vertices of the triangles that share it.
+  std::map<std::array<int, 2>, std::vector<int>> opposite;
+  for (const auto& t : triangles) {
+    for (int e = 0; e < 3; ++e) {
+      const int a = t[e], b = t[(e + 1) % 3], c = t[(e + 2) % 3];
+      opposite[{std::min(a, b), std::max(a, b)}].push_back(c);
+    }
+  }
+  std::vector<std::array<int, 4>> stencils;
+  for (const auto& [edge, opp] : opposite) {
+    // Boundary edges (1 triangle) bend nothing; non-manifold edges (> 2) are skipped.
+    if (opp.size() == 2 && opp[0] != opp[1]) stencils.push_back({edge[0], edge[1], opp[0], opp[1]});
+  }
+  return stencils;
+}
+
+namespace {
+
+Eigen::Matrix3d rotation_xyz_deg(const scene::Vec3& deg) {
+  const double k = std::numbers::pi / 180.0;
+  return (Eigen::AngleAxisd(deg[2] * k, Vec3::UnitZ()) * Eigen::AngleAxisd(deg[1] * k, Vec3::UnitY()) *
+          Eigen::AngleAxisd(deg[0] * k, Vec3::UnitX()))
+      .toRotationMatrix();
+}
+
+double cot_between(const Vec3& a, const Vec3& b) {
+  return a.dot(b) / a.cross(b).norm();
+}
+
+// Cotangent weights of the isometric bending model (Bergou et al. 2006, as
+// in Bender's PositionBasedDynamics). Returns false for a degenerate stencil.
+bool isometric_weights(const std::array<Vec3, 4>& x, std::array<double, 4>& K, double& scale) {
+  const Vec3 e0 = x[1] - x[0], e1 = x[2] - x[0], e2 = x[3] - x[0], e3 = x[2] - x[1], e4 = x[3] - x[1];
+  const double a0 = 0.5 * e0.cross(e1).norm();
+  const double a1 = 0.5 * e0.cross(e2).norm();
+  const double tiny = 1e-12 * std::max(1.0, e0.squaredNorm());
+  if (a0 <= tiny || a1 <= tiny || e3.cross(e0).norm() <= tiny || e4.cross(e0).norm() <= tiny) return false;
+  const double c01 = cot_between(e0, e1), c02 = cot_between(e0, e2);
+  const double c03 = cot_between(-e0, e3), c04 = cot_between(-e0, e4);
+  K = {c03 + c04, c01 + c02, -c01 - c03, -c02 - c04};
+  scale = 3.0 / (a0 + a1);
+  return true;
+}
+
+void add_object(Model& model, const scene::ObjectDesc& obj, const scene::TriangleMesh& mesh,
+                const std::string& scene_file) {
+  const int offset = static_cast<int>(model.particles.size());
+  const int n = static_cast<int>(mesh.vertices.size());
+  const Eigen::Matrix3d R = rotation_xyz_deg(obj.transform.rotate_deg);
+  const Vec3 scale(obj.transform.scale[0], obj.transform.scale[1], obj.transform.scale[2]);
+  const Vec3 translate(obj.transform.translate[0], obj.transform.translate[1], obj.transform.translate[2]);
+
+  ObjectRange range;
+  range.name = obj.name;
+  range.vertex_offset = offset;
+  range.vertex_count = n;
+  range.triangles = mesh.triangles;
+  for (const auto& v : mesh.vertices) {
+    range.rest_position.push_back(R * Vec3(v[0], v[1], v[2]).cwiseProduct(scale) + translate);
+  }
+
+  std::vector<double> mass(n, 0.0);
+  for (const auto& t : mesh.triangles) {
+    const Vec3& a = range.rest_position[t[0]];
+    const double area = 0.5 * (range.rest_position[t[1]] - a).cross(range.rest_position[t[2]] - a).norm();
+    for (int v : t) mass[v] += obj.material.density * area / 3.0;
+  }
+
+  std::vector<char> pinned(n, 0);
+  for (int v : obj.pins.vertices) {
+    if (v >= n) {
+      throw input_error(fmt::format("{}:{}: pinned vertex {} is out of range: object '{}' has {} vertices "
+                                    "(0 to {}); fix the index",
+                                    scene_file, obj.source_line, v, obj.name, n, n - 1));
+    }
+    pinned[v] = 1;
+  }
+  for (const auto& box : obj.pins.boxes) {
+    int hits = 0;
+    for (int v = 0; v < n; ++v) {
+      const Vec3& p = range.rest_position[v];
+      bool inside = true;
+      for (int k = 0; k < 3; ++k) inside = inside && p[k] >= box.min[k] && p[k] <= box.max[k];
+      if (inside) {
+        pinned[v] = 1;
+        ++hits;
+      }
+    }
+    if (hits == 0) {
+      throw input_error(fmt::format("{}:{}: a pin box of object '{}' contains no vertex; boxes are in world "
+                                    "coordinates after the transform — enlarge or move it",
+                                    scene_file, obj.source_line, obj.name));
+    }
+  }
+
+  for (int v = 0; v < n; ++v) {
+    model.particles.position.push_back(range.rest_position[v]);
+    model.particles.velocity.push_back(Vec3::Zero());
+    model.particles.mass.push_back(mass[v]);
+    const bool fixed = pinned[v] != 0 || mass[v] <= 0.0;
+    model.particles.inv_mass.push_back(fixed ? 0.0 : 1.0 / mass[v]);
+    if (pinned[v] != 0) range.pinned.push_back(v);
+  }
+
+  if (obj.material.has_stretch) {
+    for (const auto& e : unique_edges(mesh.triangles)) {
+      model.stretch.edges.push_back({e[0] + offset, e[1] + offset});
+      model.stretch.rest_length.push_back((range.rest_position[e[0]] - range.rest_position[e[1]]).norm());
+      model.stretch.compliance.push_back(obj.material.stretch_compliance);
+    }
+  }
+  if (obj.material.has_bending) {
+    for (const auto& s : bending_stencils(mesh.triangles)) {
+      std::array<Vec3, 4> x;
+      for (int i = 0; i < 4; ++i) x[i] = range.rest_position[s[i]];
+      std::array<double, 4> K{};
+      double scale_k = 0.0;
+      if (!isometric_weights(x, K, scale_k)) continue;
+      model.bend.stencils.push_back({s[0] + offset, s[1] + offset, s[2] + offset, s[3] + offset});
+      model.bend.weights.push_back(K);
+      model.bend.scale.push_back(scale_k);
+      model.bend.compliance.push_back(obj.material.bend_compliance);
+    }
+  }
+  model.objects.push_back(std::move(range));
+}
+
+}  // namespace
+
+Model build_model(const scene::SceneDesc& scene) {
+  Model model;
+  model.gravity = Vec3(scene.simulation.gravity[0], scene.simulation.gravity[1], scene.simulation.gravity[2]);
+  for (const auto& obj : scene.objects) {
+    const scene::TriangleMesh mesh = obj.grid ? make_grid_mesh(*obj.grid) : obj.mesh;
+    add_object(model, obj, mesh, scene.source_path);
+  }
+  return model;
+}
+
+}  // namespace atssim::model

@@ -1,0 +1,60 @@
+#pragma once
+// Particles plus only the element sets the scene asks for (DESIGN.md "Model:
+// only what the scene requires"). Plain data in double precision; solvers
+// convert it to their device layouts.
+#include <array>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace atssim::model {
+
+using Vec3 = Eigen::Vector3d;
+
+struct Particles {
+  std::vector<Vec3> position;
+  std::vector<Vec3> velocity;
+  std::vector<double> mass;      // lumped; pinned particles keep their mass here
+  std::vector<double> inv_mass;  // 0 = pinned
+  std::size_t size() const { return position.size(); }
+};
+
+// Distance constraints along mesh edges (stretch).
+struct EdgeSet {
+  std::vector<std::array<int, 2>> edges;
+  std::vector<double> rest_length;
+  std::vector<double> compliance;  // m/N
+  std::size_t size() const { return edges.size(); }
+};
+
+// Isometric bending stencils (Bergou et al. 2006): an interior edge (v0, v1)
+// and the opposite vertices v2, v3 of its two triangles. Energy
+// ½ k · scale · |Σ K_i x_i|², zero for a flat rest shape.
+struct BendSet {
+  std::vector<std::array<int, 4>> stencils;
+  std::vector<std::array<double, 4>> weights;  // K_i (cotangent weights, sum 0)
+  std::vector<double> scale;                   // 3 / (A0 + A1)
+  std::vector<double> compliance;              // 1/(N·m)
+  std::size_t size() const { return stencils.size(); }
+};
+
+// One scene object's slice of the particle arrays, for output.
+struct ObjectRange {
+  std::string name;
+  int vertex_offset = 0;
+  int vertex_count = 0;
+  std::vector<std::array<int, 3>> triangles;  // object-local vertex indices
+  std::vector<Vec3> rest_position;
+  std::vector<int> pinned;                    // object-local indices
+};
+
+struct Model {
+  Particles particles;
+  EdgeSet stretch;   // empty when the scene models no stretch
+  BendSet bend;      // empty when the scene models no bending
+  std::vector<ObjectRange> objects;
+  Vec3 gravity{0.0, -9.81, 0.0};
+};
+
+}  // namespace atssim::model

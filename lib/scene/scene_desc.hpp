@@ -1,0 +1,87 @@
+#pragma once
+// What the user asked for, validated (DESIGN.md pipeline stage 1). Plain
+// data; every value is in SI units and already range-checked.
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace atssim::scene {
+
+using Vec3 = std::array<double, 3>;
+
+struct SimulationDesc {
+  double frame_dt = 1.0 / 60.0;  // seconds per frame (from fps or dt)
+  int substeps = 16;
+  int iterations = 8;
+  int frames = 60;
+  Vec3 gravity{0.0, -9.81, 0.0};
+};
+
+struct GridDesc {
+  std::array<double, 2> size{1.0, 1.0};  // metres along local x and z
+  std::array<int, 2> resolution{32, 32}; // vertices along x and z (≥ 2 each)
+};
+
+struct TransformDesc {
+  Vec3 translate{0.0, 0.0, 0.0};
+  Vec3 rotate_deg{0.0, 0.0, 0.0};  // applied about x, then y, then z
+  Vec3 scale{1.0, 1.0, 1.0};
+};
+
+struct MaterialDesc {
+  double density = 0.2;            // kg/m² for cloth
+  double stretch_compliance = 0.0; // m/N (inverse stiffness); used when has_stretch
+  bool has_stretch = false;
+  double bend_compliance = 0.0;    // 1/(N·m); used when has_bending
+  bool has_bending = false;
+};
+
+struct BoxDesc {
+  Vec3 min{0.0, 0.0, 0.0};
+  Vec3 max{0.0, 0.0, 0.0};
+};
+
+struct PinDesc {
+  std::vector<int> vertices;  // indices into the object's vertices
+  std::vector<BoxDesc> boxes; // world-space boxes: every vertex inside is pinned
+};
+
+// A triangle mesh as read from a file: vertices welded by position.
+struct TriangleMesh {
+  std::vector<std::array<double, 3>> vertices;
+  std::vector<std::array<int, 3>> triangles;
+};
+
+struct ObjectDesc {
+  std::string name;
+  std::optional<GridDesc> grid;      // exactly one of grid / mesh_path
+  std::string mesh_path;             // absolute, resolved against the scene's folder
+  TriangleMesh mesh;                 // loaded when mesh_path is set
+  TransformDesc transform;
+  MaterialDesc material;
+  PinDesc pins;
+  int source_line = 0;               // 1-based line of the object in the scene file
+};
+
+struct SolverDesc {
+  std::string method = "xpbd";
+};
+
+struct OutputDesc {
+  std::string path = "out.h5";       // resolved against the working directory
+  int stride = 1;                    // write every stride-th frame
+};
+
+struct SceneDesc {
+  std::string source_path;           // the scene file ("" for text scenes)
+  std::string yaml_text;             // as given
+  std::string resolved_yaml;         // after defaults and --set overrides
+  SimulationDesc simulation;
+  std::vector<ObjectDesc> objects;
+  SolverDesc solver;
+  OutputDesc output;
+  std::string devices = "default";   // device spec, see `atssim devices`
+};
+
+}  // namespace atssim::scene

@@ -1,0 +1,315 @@
+#include "scene/scene_loader.hpp"
+
+#include <array>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+
+#include "scene/mesh_loader.hpp"
+#include "scene/yaml_reader.hpp"
+#include "util/error.hpp"
+
+namespace atssim::scene {
+
+namespace {
+
+namespace fs = std::filesystem;
+using Keys = std::span<const std::string_view>;
+
+constexpr std::array<std::string_view, 5> kRootKeys{"simulation", "objects", "solver", "output", "devices"};
+constexpr std::array<std::string_view, 6> kSimulationKeys{"fps", "dt", "substeps", "iterations", "frames",
+                                                          "gravity"};
+constexpr std::array<std::string_view, 7> kObjectKeys{"name", "type", "grid", "mesh", "transform", "material",
+                                                      "pins"};
+constexpr std::array<std::string_view, 2> kGridKeys{"size", "resolution"};
+constexpr std::array<std::string_view, 3> kTransformKeys{"translate", "rotate", "scale"};
+constexpr std::array<std::string_view, 5> kMaterialKeys{"density", "stretch_stiffness", "stretch_compliance",
+                                                        "bend_stiffness", "bend_compliance"};
+constexpr std::array<std::string_view, 2> kPinKeys{"vertices", "boxes"};
+constexpr std::array<std::string_view, 2> kBoxKeys{"min", "max"};
+constexpr std::array<std::string_view, 1> kSolverKeys{"method"};
+constexpr std::array<std::string_view, 2> kOutputKeys{"path", "stride"};
+constexpr std::array<std::string_view, 1> kMethods{"xpbd"};
+
+constexpr double kHuge = 1e30;
+
+// Applies "a.b.0.c=value": walks (creating maps as needed) and replaces the
+// leaf with the value parsed as YAML.
+void apply_override(YAML::Node& root, const std::string& assignment, const std::string& source,
+                    std::map<std::string, std::string>& applied) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0) {
+    throw input_error(fmt::format("--set {}: expected key=value, e.g. --set simulation.substeps=32", assignment));
+  }
+  const std::string path = assignment.substr(0, eq);
+  YAML::Node value;
+  try {
+    value = YAML::Load(assignment.substr(eq + 1));
+  } catch (const YAML::Exception& e) {
+    throw input_error(fmt::format("--set {}: value is not valid YAML ({}); quote text values", assignment, e.msg));
+  }
+  std::vector<std::string> keys;
+  std::stringstream ss(path);
+  for (std::string k; std::getline(ss, k, '.');) {
+    if (k.empty()) throw input_error(fmt::format("--set {}: empty key in '{}'", assignment, path));
+    keys.push_back(k);
+  }
+  // yaml-cpp nodes are handles: walk with reset() copies, assign at the leaf.
+  std::vector<YAML::Node> chain{root};
+  for (std::size_t i = 0; i + 1 < keys.size(); ++i) {
+    YAML::Node parent = chain.back();
+    YAML::Node next;
+    if (parent.IsSequence()) {
+      std::size_t index = 0;
+      try {
+        index = std::stoul(keys[i]);
+      } catch (...) {
+        index = parent.size();
+      }
+      if (index >= parent.size()) {
+        throw input_error(fmt::format("--set {}: '{}' is a list of {} items; use an index from 0 to {}",
+                                      assignment, keys[i - (i > 0 ? 1 : 0)], parent.size(),
+                                      parent.size() == 0 ? 0 : parent.size() - 1));
+      }
+      next = parent[index];
+    } else {
+      next = parent[keys[i]];
+      if (!next || next.IsNull() || next.IsScalar()) {
+        parent[keys[i]] = YAML::Node(YAML::NodeType::Map);
+        next = parent[keys[i]];
+      }
+    }
+    chain.push_back(next);
+  }
+  YAML::Node leaf_parent = chain.back();
+  if (leaf_parent.IsSequence()) {
+    std::size_t index = 0;
+    try {
+      index = std::stoul(keys.back());
+    } catch (...) {
+      throw input_error(fmt::format("--set {}: '{}' is not a list index", assignment, keys.back()));
+    }
+    if (index >= leaf_parent.size()) {
+      throw input_error(fmt::format("--set {}: index {} is past the end of the list", assignment, index));
+    }
+    leaf_parent[index] = value;
+  } else {
+    leaf_parent[keys.back()] = value;
+  }
+  applied[path] = assignment;
+  (void)source;
+}
+
+SimulationDesc read_simulation(const YamlReader& r) {
+  SimulationDesc sim;
+  if (r.is_null()) return sim;
+  r.expect_map(kSimulationKeys);
+  if (r.has("fps") && r.has("dt")) {
+    r.child("dt").fail("both 'fps' and 'dt' are given", "keep one of them (dt = 1/fps)");
+  }
+  if (r.has("fps")) sim.frame_dt = 1.0 / r.child("fps").number_in(0.0, 1e6, true, "frames per second > 0");
+  if (r.has("dt")) sim.frame_dt = r.child("dt").number_in(0.0, 10.0, true, "a frame time in seconds, 0 < dt ≤ 10");
+  if (r.has("substeps")) sim.substeps = r.child("substeps").integer_in(1, 10000);
+  if (r.has("iterations")) sim.iterations = r.child("iterations").integer_in(1, 100000);
+  if (r.has("frames")) sim.frames = r.child("frames").integer_in(1, 10000000);
+  if (r.has("gravity")) {
+    sim.gravity = r.child("gravity").vec3();
+    for (double g : sim.gravity) {
+      if (std::abs(g) > 1e6) r.child("gravity").fail("gravity is implausibly large", "use m/s², e.g. [0, -9.81, 0]");
+    }
+  }
+  return sim;
+}
+
+GridDesc read_grid(const YamlReader& r) {
+  r.expect_map(kGridKeys);
+  GridDesc grid;
+  if (r.has("size")) {
+    grid.size = r.child("size").vec2();
+    for (double s : grid.size) {
+      if (s <= 0.0) r.child("size").fail("grid size must be positive", "give the side lengths in metres, e.g. [1, 1]");
+    }
+  }
+  if (r.has("resolution")) {
+    const auto res = r.child("resolution").sequence();
+    if (res.size() != 2) r.child("resolution").fail("resolution needs two entries", "write [nx, nz]");
+    grid.resolution = {res[0].integer_in(2, 8192), res[1].integer_in(2, 8192)};
+  }
+  return grid;
+}
+
+TransformDesc read_transform(const YamlReader& r) {
+  TransformDesc t;
+  r.expect_map(kTransformKeys);
+  if (r.has("translate")) t.translate = r.child("translate").vec3();
+  if (r.has("rotate")) t.rotate_deg = r.child("rotate").vec3();
+  if (r.has("scale")) {
+    const YamlReader s = r.child("scale");
+    if (s.node().IsScalar()) {
+      const double k = s.number_in(0.0, kHuge, true, "a scale factor > 0");
+      t.scale = {k, k, k};
+    } else {
+      t.scale = s.vec3();
+      for (double k : t.scale) {
+        if (k <= 0.0) s.fail("scale factors must be positive", "use e.g. [1, 1, 1]");
+      }
+    }
+  }
+  return t;
+}
+
+// stiffness k > 0 -> compliance 1/k; stiffness 0 -> term not modelled;
+// compliance c ≥ 0 -> modelled (0 = inextensible / perfectly stiff).
+void read_stiffness_pair(const YamlReader& r, const char* stiffness_key, const char* compliance_key,
+                         double& compliance, bool& modelled) {
+  if (r.has(stiffness_key) && r.has(compliance_key)) {
+    r.child(compliance_key).fail(fmt::format("both '{}' and '{}' are given", stiffness_key, compliance_key),
+                                 "keep one of them (compliance = 1/stiffness)");
+  }
+  if (r.has(stiffness_key)) {
+    const double k = r.child(stiffness_key).number_in(0.0, kHuge, false, "a stiffness ≥ 0 (0 turns the term off)");
+    modelled = k > 0.0;
+    compliance = modelled ? 1.0 / k : 0.0;
+  } else if (r.has(compliance_key)) {
+    compliance = r.child(compliance_key).number_in(0.0, kHuge, false, "a compliance ≥ 0 (0 = perfectly stiff)");
+    modelled = true;
+  }
+}
+
+MaterialDesc read_material(const YamlReader& r) {
+  MaterialDesc m;
+  if (r.is_null()) return m;
+  r.expect_map(kMaterialKeys);
+  if (r.has("density")) m.density = r.child("density").number_in(0.0, kHuge, true, "a density > 0 (kg/m² for cloth)");
+  read_stiffness_pair(r, "stretch_stiffness", "stretch_compliance", m.stretch_compliance, m.has_stretch);
+  read_stiffness_pair(r, "bend_stiffness", "bend_compliance", m.bend_compliance, m.has_bending);
+  return m;
+}
+
+PinDesc read_pins(const YamlReader& r) {
+  PinDesc pins;
+  r.expect_map(kPinKeys);
+  if (r.has("vertices")) {
+    pins.vertices = r.child("vertices").int_list();
+    for (int v : pins.vertices) {
+      if (v < 0) r.child("vertices").fail(fmt::format("vertex index {} is negative", v), "use indices ≥ 0");
+    }
+  }
+  if (r.has("boxes")) {
+    for (const YamlReader& b : r.child("boxes").sequence()) {
+      b.expect_map(kBoxKeys);
+      if (!b.has("min") || !b.has("max")) b.fail("a pin box needs 'min' and 'max'", "write {min: [x,y,z], max: [x,y,z]}");
+      BoxDesc box{b.child("min").vec3(), b.child("max").vec3()};
+      for (int k = 0; k < 3; ++k) {
+        if (box.min[k] > box.max[k]) b.fail("pin box has min > max", "swap the corners");
+      }
+      pins.boxes.push_back(box);
+    }
+  }
+  return pins;
+}
+
+ObjectDesc read_object(const YamlReader& r, int index, const fs::path& base_dir) {
+  r.expect_map(kObjectKeys);
+  ObjectDesc obj;
+  obj.source_line = r.line();
+  obj.name = r.has("name") ? r.child("name").string() : fmt::format("object{}", index);
+  if (r.has("type") && r.child("type").string() != "cloth") {
+    r.child("type").fail(fmt::format("unknown object type '{}'", r.child("type").string()),
+                         "this version simulates 'cloth'");
+  }
+  const bool has_grid = r.has("grid");
+  const bool has_mesh = r.has("mesh");
+  if (has_grid == has_mesh) {
+    r.fail(fmt::format("object '{}' needs exactly one of 'grid' or 'mesh'", obj.name),
+           "give grid: {size: [1, 1], resolution: [32, 32]} or mesh: cloth.obj");
+  }
+  if (has_grid) obj.grid = read_grid(r.child("grid"));
+  if (has_mesh) {
+    const YamlReader m = r.child("mesh");
+    fs::path p(m.string());
+    if (p.is_relative()) p = base_dir / p;
+    obj.mesh_path = p.lexically_normal().string();
+    obj.mesh = load_triangle_mesh(obj.mesh_path, m.where());
+  }
+  if (r.has("transform")) obj.transform = read_transform(r.child("transform"));
+  obj.material = read_material(r.child("material"));
+  if (r.has("pins")) obj.pins = read_pins(r.child("pins"));
+  return obj;
+}
+
+}  // namespace
+
+SceneDesc parse_scene(const std::string& yaml_text, const std::string& source_name, const std::string& base_dir,
+                      std::span<const std::string> overrides) {
+  YamlSource source{source_name, {}};
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::ParserException& e) {
+    throw input_error(fmt::format("{}:{}: YAML syntax error: {}; fix the indentation or quoting there", source_name,
+                                  e.mark.line + 1, e.msg));
+  }
+  if (!root || root.IsNull()) root = YAML::Node(YAML::NodeType::Map);
+  for (const std::string& assignment : overrides) apply_override(root, assignment, source_name, source.overrides);
+
+  const YamlReader top(root, "", &source);
+  top.expect_map(kRootKeys);
+
+  SceneDesc scene;
+  scene.source_path = source_name;
+  scene.yaml_text = yaml_text;
+  scene.simulation = read_simulation(top.child("simulation"));
+
+  if (!top.has("objects")) {
+    top.fail("the scene has no 'objects'", "add an objects: list with at least one cloth");
+  }
+  const auto objects = top.child("objects").sequence();
+  if (objects.empty()) top.child("objects").fail("'objects' is empty", "add at least one object");
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    scene.objects.push_back(read_object(objects[i], static_cast<int>(i), fs::path(base_dir)));
+  }
+
+  const YamlReader solver = top.child("solver");
+  if (!solver.is_null()) {
+    solver.expect_map(kSolverKeys);
+    if (solver.has("method")) {
+      const YamlReader m = solver.child("method");
+      scene.solver.method = m.string();
+      bool known = false;
+      for (auto k : kMethods) known = known || scene.solver.method == k;
+      if (!known) m.fail(fmt::format("unknown solver method '{}'", scene.solver.method), "available: xpbd");
+    }
+  }
+  const YamlReader output = top.child("output");
+  if (!output.is_null()) {
+    output.expect_map(kOutputKeys);
+    if (output.has("path")) scene.output.path = output.child("path").string();
+    if (output.has("stride")) scene.output.stride = output.child("stride").integer_in(1, 1000000);
+  }
+  if (top.has("devices")) scene.devices = top.child("devices").string();
+
+  YAML::Emitter out;
+  out << root;
+  scene.resolved_yaml = out.c_str();
+  return scene;
+}
+
+SceneDesc load_scene_file(const std::string& path, std::span<const std::string> overrides) {
+  std::ifstream in(path);
+  if (!fs::exists(path)) {
+    throw input_error(fmt::format("{}: scene file does not exist; check the path", path));
+  }
+  if (!in || fs::is_directory(path)) {
+    throw input_error(fmt::format("{}: scene file cannot be read; check its permissions", path));
+  }
+  std::stringstream text;
+  text << in.rdbuf();
+  const fs::path base = fs::absolute(fs::path(path)).parent_path();
+  return parse_scene(text.str(), path, base.string(), overrides);
+}
+
+}  // namespace atssim::scene

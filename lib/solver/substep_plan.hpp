@@ -1,0 +1,55 @@
+#pragma once
+// What a solver hands the device layer: the buffers it needs, the task graph
+// of one substep, and for every task the kernel launches that perform it.
+// The device layer runs this without knowing any physics (DESIGN.md).
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "sched/task_graph.hpp"
+
+namespace atssim::solver {
+
+using BufferId = int;
+
+struct BufferSpec {
+  std::string name;                // "x", "v", "stretch", … (for messages and output)
+  std::vector<std::byte> initial;  // initial contents; its size is the buffer's size
+};
+
+struct KernelArg {
+  enum class Kind { buffer, i32, f32 };
+  Kind kind = Kind::i32;
+  BufferId buffer = -1;
+  std::int32_t i32 = 0;
+  float f32 = 0.0f;
+
+  static KernelArg of_buffer(BufferId id) { return {Kind::buffer, id, 0, 0.0f}; }
+  static KernelArg of_int(std::int32_t v) { return {Kind::i32, -1, v, 0.0f}; }
+  static KernelArg of_float(float v) { return {Kind::f32, -1, 0, v}; }
+};
+
+struct KernelLaunch {
+  std::string kernel;              // kernel name in the plan's program
+  std::size_t global_size = 0;     // work-items; 0 = nothing to do
+  std::vector<KernelArg> args;
+};
+
+struct SubstepPlan {
+  std::string program;             // embedded program name, e.g. "xpbd"
+  std::vector<BufferSpec> buffers;
+  sched::TaskGraph graph;
+  std::vector<std::vector<KernelLaunch>> launches;  // indexed by task id
+  BufferId positions = -1;         // float4 per particle (xyz used): what output reads
+  int particle_count = 0;
+
+  // Appends a task with its launches; returns its id.
+  sched::TaskId add_task(sched::Task task, std::vector<KernelLaunch> task_launches) {
+    const sched::TaskId id = graph.add_task(std::move(task));
+    launches.push_back(std::move(task_launches));
+    return id;
+  }
+};
+
+}  // namespace atssim::solver

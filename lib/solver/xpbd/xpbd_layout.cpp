@@ -1,0 +1,55 @@
+#include "solver/xpbd/xpbd_layout.hpp"
+
+namespace atssim::solver::xpbd {
+
+namespace {
+
+template <int Arity, typename Element>
+graph::ColorBlocks color(const std::vector<Element>& elements, const std::vector<char>& movable) {
+  std::vector<int> flat;
+  flat.reserve(elements.size() * Arity);
+  for (const auto& e : elements) flat.insert(flat.end(), e.begin(), e.end());
+  return graph::color_elements(flat, Arity, movable);
+}
+
+}  // namespace
+
+XpbdLayout make_xpbd_layout(const model::Model& model) {
+  const auto& p = model.particles;
+  XpbdLayout out;
+  out.x.resize(p.size());
+  out.v.resize(p.size());
+  std::vector<char> movable(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    out.x[i] = {float(p.position[i].x()), float(p.position[i].y()), float(p.position[i].z()), float(p.inv_mass[i])};
+    out.v[i] = {float(p.velocity[i].x()), float(p.velocity[i].y()), float(p.velocity[i].z()), 0.0f};
+    movable[i] = p.inv_mass[i] > 0.0;
+  }
+  out.gravity = {float(model.gravity.x()), float(model.gravity.y()), float(model.gravity.z()), 0.0f};
+
+  if (model.stretch.size() > 0) {
+    const graph::ColorBlocks blocks = color<2>(model.stretch.edges, movable);
+    out.stretch_blocks = blocks.offsets;
+    for (int e : blocks.order) {
+      const auto& ed = model.stretch.edges[e];
+      out.stretch.push_back({ed[0], ed[1], float(model.stretch.rest_length[e]), float(model.stretch.compliance[e])});
+    }
+  }
+  if (model.bend.size() > 0) {
+    const graph::ColorBlocks blocks = color<4>(model.bend.stencils, movable);
+    out.bend_blocks = blocks.offsets;
+    for (int e : blocks.order) {
+      ats_bend_c c{};
+      for (int k = 0; k < 4; ++k) {
+        c.v[k] = model.bend.stencils[e][k];
+        c.K[k] = float(model.bend.weights[e][k]);
+      }
+      c.scale = float(model.bend.scale[e]);
+      c.compliance = float(model.bend.compliance[e]);
+      out.bend.push_back(c);
+    }
+  }
+  return out;
+}
+
+}  // namespace atssim::solver::xpbd

@@ -1,0 +1,29 @@
+#pragma once
+// The XPBD device layout of a Model: float4 particle arrays (w = inverse
+// mass) and constraint arrays ordered by color block. Shared by the OpenCL
+// plan and the host reference, so both sweep the same order.
+#include <vector>
+
+#include "common/xpbd_types.h"
+#include "graph/color_blocks.hpp"
+#include "model/model.hpp"
+
+namespace atssim::solver::xpbd {
+
+struct alignas(16) Float4 {
+  float x = 0.0f, y = 0.0f, z = 0.0f, w = 0.0f;
+};
+
+struct XpbdLayout {
+  std::vector<Float4> x;                   // positions, w = inverse mass
+  std::vector<Float4> v;                   // velocities, w unused
+  std::vector<ats_distance_c> stretch;     // grouped by color
+  std::vector<int> stretch_blocks;         // offsets, blocks + 1 entries (empty = none)
+  std::vector<ats_bend_c> bend;
+  std::vector<int> bend_blocks;
+  Float4 gravity;
+};
+
+XpbdLayout make_xpbd_layout(const model::Model& model);
+
+}  // namespace atssim::solver::xpbd

@@ -1,0 +1,91 @@
+#include "solver/xpbd/xpbd_plan.hpp"
+
+#include <cstring>
+
+#include <fmt/format.h>
+
+namespace atssim::solver::xpbd {
+
+namespace {
+
+template <typename T>
+std::vector<std::byte> bytes_of(const std::vector<T>& values) {
+  std::vector<std::byte> out(values.size() * sizeof(T));
+  if (!out.empty()) std::memcpy(out.data(), values.data(), out.size());
+  return out;
+}
+
+BufferId add_buffer(SubstepPlan& plan, std::string name, std::vector<std::byte> initial) {
+  plan.buffers.push_back({std::move(name), std::move(initial)});
+  return static_cast<BufferId>(plan.buffers.size() - 1);
+}
+
+using Arg = KernelArg;
+
+// Adds one task per color block of one element set, chained after `last`.
+sched::TaskId add_blocks(SubstepPlan& plan, sched::TaskId last, const std::vector<int>& blocks,
+                         const std::string& kind, const std::string& kernel, BufferId x, BufferId elements,
+                         BufferId lambda, float dt, int iteration) {
+  for (int b = 0; b + 1 < static_cast<int>(blocks.size()); ++b) {
+    const int first = blocks[b];
+    const int count = blocks[b + 1] - blocks[b];
+    KernelLaunch launch{kernel, static_cast<std::size_t>(count),
+                        {Arg::of_buffer(x), Arg::of_buffer(elements), Arg::of_buffer(lambda), Arg::of_int(first),
+                         Arg::of_int(count), Arg::of_float(dt), Arg::of_int(iteration == 0 ? 1 : 0)}};
+    const sched::TaskId id =
+        plan.add_task({fmt::format("it{}/{}/c{}", iteration + 1, kind, b), kind, iteration, b}, {launch});
+    plan.graph.add_edge(last, id);
+    last = id;
+  }
+  return last;
+}
+
+}  // namespace
+
+SubstepPlan make_xpbd_plan(const XpbdLayout& layout, const XpbdSettings& settings, XpbdBuffers* ids) {
+  SubstepPlan plan;
+  plan.program = "xpbd";
+  plan.particle_count = static_cast<int>(layout.x.size());
+  XpbdBuffers b;
+  b.x = add_buffer(plan, "x", bytes_of(layout.x));
+  b.v = add_buffer(plan, "v", bytes_of(layout.v));
+  b.x_prev = add_buffer(plan, "x_prev", bytes_of(layout.x));
+  if (!layout.stretch.empty()) {
+    b.stretch = add_buffer(plan, "stretch", bytes_of(layout.stretch));
+    b.stretch_lambda = add_buffer(plan, "stretch_lambda", std::vector<std::byte>(layout.stretch.size() * sizeof(float)));
+  }
+  if (!layout.bend.empty()) {
+    b.bend = add_buffer(plan, "bend", bytes_of(layout.bend));
+    b.bend_lambda = add_buffer(plan, "bend_lambda", std::vector<std::byte>(layout.bend.size() * 4 * sizeof(float)));
+  }
+  plan.positions = b.x;
+
+  const float dt = static_cast<float>(settings.substep_dt);
+  const int n = plan.particle_count;
+  const std::size_t global = static_cast<std::size_t>(n);
+  sched::TaskId last = plan.add_task(
+      {"predict", "predict", -1, -1},
+      {{"xpbd_predict", global,
+        {Arg::of_buffer(b.x), Arg::of_buffer(b.v), Arg::of_buffer(b.x_prev), Arg::of_float(dt),
+         Arg::of_float(layout.gravity.x), Arg::of_float(layout.gravity.y), Arg::of_float(layout.gravity.z),
+         Arg::of_int(n)}}});
+  for (int it = 0; it < settings.iterations; ++it) {
+    if (b.stretch >= 0) {
+      last = add_blocks(plan, last, layout.stretch_blocks, "stretch", "xpbd_stretch", b.x, b.stretch,
+                        b.stretch_lambda, dt, it);
+    }
+    if (b.bend >= 0) {
+      last = add_blocks(plan, last, layout.bend_blocks, "bend", "xpbd_bend", b.x, b.bend, b.bend_lambda, dt, it);
+    }
+  }
+  const sched::TaskId update = plan.add_task(
+      {"update_velocity", "update_velocity", -1, -1},
+      {{"xpbd_update_velocity", global,
+        {Arg::of_buffer(b.x), Arg::of_buffer(b.v), Arg::of_buffer(b.x_prev), Arg::of_float(1.0f / dt),
+         Arg::of_int(n)}}});
+  plan.graph.add_edge(last, update);
+  if (ids != nullptr) *ids = b;
+  return plan;
+}
+
+}  // namespace atssim::solver::xpbd

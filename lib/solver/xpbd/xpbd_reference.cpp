@@ -1,0 +1,125 @@
+#include "solver/xpbd/xpbd_reference.hpp"
+
+#include <cmath>
+
+#include "common/xpbd_bending.h"
+#include "common/xpbd_distance.h"
+
+namespace atssim::solver::xpbd {
+
+namespace {
+ats_vec3 xyz(const Float4& p) { return ats_v3(p.x, p.y, p.z); }
+void add_xyz(Float4& p, ats_vec3 d) {
+  p.x += d.x;
+  p.y += d.y;
+  p.z += d.z;
+}
+}  // namespace
+
+XpbdReference::XpbdReference(XpbdLayout layout, XpbdSettings settings)
+    : layout_(std::move(layout)),
+      settings_(settings),
+      x_prev_(layout_.x),
+      stretch_lambda_(layout_.stretch.size(), 0.0f),
+      bend_lambda_(layout_.bend.size() * 3, 0.0f) {}
+
+void XpbdReference::substep() {
+  predict();
+  for (int it = 0; it < settings_.iterations; ++it) {
+    solve_stretch(it == 0);
+    solve_bend(it == 0);
+  }
+  update_velocity();
+}
+
+void XpbdReference::predict() {
+  const float dt = static_cast<float>(settings_.substep_dt);
+  const Float4 g = layout_.gravity;
+  for (std::size_t i = 0; i < layout_.x.size(); ++i) {
+    Float4& p = layout_.x[i];
+    Float4& v = layout_.v[i];
+    x_prev_[i] = p;
+    if (p.w == 0.0f) {
+      v = {};
+      continue;
+    }
+    v.x += dt * g.x;
+    v.y += dt * g.y;
+    v.z += dt * g.z;
+    p.x += dt * v.x;
+    p.y += dt * v.y;
+    p.z += dt * v.z;
+  }
+}
+
+// Blocks in order; inside a block no two constraints share a movable
+// particle, so the sequential order here equals the parallel kernel's.
+void XpbdReference::solve_stretch(bool reset) {
+  const float dt = static_cast<float>(settings_.substep_dt);
+  for (std::size_t i = 0; i < layout_.stretch.size(); ++i) {
+    const ats_distance_c& c = layout_.stretch[i];
+    Float4& pa = layout_.x[c.a];
+    Float4& pb = layout_.x[c.b];
+    const float l = reset ? 0.0f : stretch_lambda_[i];
+    const ats_distance_step s = ats_xpbd_distance(xyz(pa), pa.w, xyz(pb), pb.w, c.rest, c.compliance, l, dt);
+    stretch_lambda_[i] = l + s.dlambda;
+    add_xyz(pa, s.dxa);
+    add_xyz(pb, s.dxb);
+  }
+}
+
+void XpbdReference::solve_bend(bool reset) {
+  const float dt = static_cast<float>(settings_.substep_dt);
+  for (std::size_t i = 0; i < layout_.bend.size(); ++i) {
+    const ats_bend_c& c = layout_.bend[i];
+    ats_vec3 p[4];
+    float w[4];
+    for (int j = 0; j < 4; ++j) {
+      p[j] = xyz(layout_.x[c.v[j]]);
+      w[j] = layout_.x[c.v[j]].w;
+    }
+    float* lam = &bend_lambda_[3 * i];
+    const ats_vec3 l = reset ? ats_v3(0, 0, 0) : ats_v3(lam[0], lam[1], lam[2]);
+    const ats_bend_step s = ats_xpbd_bend(p, w, c.K, c.scale, c.compliance, l, dt);
+    lam[0] = l.x + s.dlambda.x;
+    lam[1] = l.y + s.dlambda.y;
+    lam[2] = l.z + s.dlambda.z;
+    for (int j = 0; j < 4; ++j) add_xyz(layout_.x[c.v[j]], s.dx[j]);
+  }
+}
+
+void XpbdReference::update_velocity() {
+  const float inv_dt = 1.0f / static_cast<float>(settings_.substep_dt);
+  for (std::size_t i = 0; i < layout_.x.size(); ++i) {
+    const Float4& p = layout_.x[i];
+    const Float4& q = x_prev_[i];
+    layout_.v[i] = {(p.x - q.x) * inv_dt, (p.y - q.y) * inv_dt, (p.z - q.z) * inv_dt, 0.0f};
+  }
+}
+
+double XpbdReference::residual_rms() const {
+  const float dt = static_cast<float>(settings_.substep_dt);
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < layout_.stretch.size(); ++i) {
+    const ats_distance_c& c = layout_.stretch[i];
+    const double r = ats_xpbd_distance_residual(xyz(layout_.x[c.a]), xyz(layout_.x[c.b]), c.rest, c.compliance,
+                                                stretch_lambda_[i], dt);
+    sum += r * r;
+    ++count;
+  }
+  for (std::size_t i = 0; i < layout_.bend.size(); ++i) {
+    const ats_bend_c& c = layout_.bend[i];
+    ats_vec3 p[4];
+    for (int j = 0; j < 4; ++j) p[j] = xyz(layout_.x[c.v[j]]);
+    const ats_vec3 cur = ats_bend_curvature(p, c.K, c.scale);
+    const float alpha = c.compliance / (dt * dt);
+    const double r[3] = {cur.x + alpha * bend_lambda_[3 * i], cur.y + alpha * bend_lambda_[3 * i + 1],
+                         cur.z + alpha * bend_lambda_[3 * i + 2]};
+    for (double v : r) sum += v * v;
+    count += 3;
+  }
+  return count == 0 ? 0.0 : std::sqrt(sum / static_cast<double>(count));
+}
+
+}  // namespace atssim::solver::xpbd
