@@ -1,0 +1,161 @@
+#include <catch2/catch.hpp>
+
+#include <sys/wait.h>
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "io/result_reader.hpp"
+#include "support/scenes.hpp"
+#include "support/temp_dir.hpp"
+
+using namespace atssim;
+
+namespace {
+
+struct Outcome {
+  int code = -1;
+  std::string out, err;
+};
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Runs atssim with `args` (a shell fragment), capturing stdout and stderr.
+Outcome run_atssim(const test::TempDir& dir, const std::string& args) {
+  const std::string cmd = std::string(ATSSIM_BINARY) + " " + args + " >" + dir.file("stdout") + " 2>" +
+                          dir.file("stderr") + " </dev/null";
+  const int status = std::system(cmd.c_str());
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir.file("stdout")), slurp(dir.file("stderr"))};
+}
+
+int lines(const std::string& text) {
+  int n = 0;
+  for (char c : text) n += c == '\n';
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("atssim run writes a complete HDF5 file with every frame") {
+  test::TempDir dir;
+  const std::string scene = dir.write("cloth.yaml", test::hanging_cloth_yaml(12));
+  const auto r = run_atssim(dir, "run " + scene + " -o " + dir.file("out.h5") + " --frames 3 --devices cpu");
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(r.err.empty());  // no progress line when stderr is not a terminal
+  CHECK(r.out.find("wrote") != std::string::npos);
+  const auto s = io::read_summary(dir.file("out.h5"));
+  CHECK(s.complete);
+  CHECK(s.frames == 4);  // the initial state + 3 frames
+  CHECK(s.particles == 144);
+  CHECK(std::filesystem::exists(dir.file("out.xdmf")));
+}
+
+TEST_CASE("the bundled scenes run") {
+  const char* scene = GENERATE("hanging_cloth.yaml", "mesh_cloth.yaml");
+  test::TempDir dir;
+  const auto r = run_atssim(dir, std::string("run ") + ATSSIM_SOURCE_DIR + "/scenes/" + scene + " -o " +
+                                 dir.file("out.h5") + " --frames 2 --quiet");
+  INFO(r.err);
+  CHECK(r.code == 0);
+  CHECK(r.out.empty());
+  CHECK(io::read_summary(dir.file("out.h5")).complete);
+}
+
+TEST_CASE("a bad scene gives one line naming file and line, exit code 2, and no output file") {
+  test::TempDir dir;
+  const std::string scene = dir.write("bad.yaml", "objects:\n  - grid: {size: [1, 1], resolution: [4, 4]}\n"
+                                                  "    materal: {density: 1}\n");
+  const auto r = run_atssim(dir, "run " + scene + " -o " + dir.file("out.h5"));
+  CHECK(r.code == 2);
+  CHECK(lines(r.err) == 1);
+  CHECK(r.err.find(scene + ":3:") != std::string::npos);
+  CHECK(r.err.find("did you mean 'material'?") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(dir.file("out.h5")));
+}
+
+TEST_CASE("bad usage gives one line and exit code 2") {
+  test::TempDir dir;
+  const std::string scene = dir.write("cloth.yaml", test::hanging_cloth_yaml(4));
+  for (const std::string& args : {"run " + dir.file("missing.yaml"), "run " + scene + " --devices gpu9",
+                                 "run " + scene + " --frobnicate", "run " + scene + " --set nokey",
+                                 std::string("fly")}) {
+    const auto r = run_atssim(dir, args);
+    INFO(args << ": " << r.err);
+    CHECK(r.code == 2);
+    CHECK(lines(r.err) == 1);
+  }
+}
+
+TEST_CASE("help works for every subcommand") {
+  test::TempDir dir;
+  for (const char* args : {"--help", "run --help", "devices --help"}) {
+    const auto r = run_atssim(dir, args);
+    CHECK(r.code == 0);
+    CHECK(r.out.find("Usage") != std::string::npos);
+  }
+}
+
+TEST_CASE("atssim devices lists the pocl CPU device with its SVM capabilities") {
+  test::TempDir dir;
+  const auto r = run_atssim(dir, "devices");
+  CHECK(r.code == 0);
+  CHECK(r.out.find("cpu") != std::string::npos);
+  CHECK(r.out.find("SVM coarse") != std::string::npos);
+}
+
+TEST_CASE("a run that blows up exits 1 naming the frame and keeps the frames before it") {
+  test::TempDir dir;
+  // 10 s frames under 1e5 m/s² gravity leave the 1e6 m sanity box on frame 1.
+  std::string cloth = test::hanging_cloth_yaml(6);
+  cloth = cloth.substr(cloth.find("objects:"));
+  const std::string scene =
+      dir.write("wild.yaml", "simulation: {dt: 10, substeps: 1, frames: 5, gravity: [0, -100000, 0]}\n" + cloth);
+  const auto r = run_atssim(dir, "run " + scene + " -o " + dir.file("out.h5"));
+  CHECK(r.code == 1);
+  CHECK(lines(r.err) == 1);
+  CHECK(r.err.find("frame 1") != std::string::npos);
+  CHECK(r.err.find("1 frames kept") != std::string::npos);
+  const auto s = io::read_summary(dir.file("out.h5"));
+  CHECK_FALSE(s.complete);
+  CHECK(s.frames == 1);
+  CHECK(s.error.find("blew up") != std::string::npos);
+}
+
+TEST_CASE("a run killed mid-way leaves a readable file with the frames flushed before the kill") {
+  test::TempDir dir;
+  const std::string scene = dir.write("cloth.yaml", test::hanging_cloth_yaml(24));
+  const std::string out = dir.file("out.h5");
+  const std::string cmd = std::string(ATSSIM_BINARY) + " run " + scene + " -o " + out +
+                          " --frames 100000 --quiet >/dev/null 2>&1 & echo $! > " + dir.file("pid");
+  REQUIRE(std::system(cmd.c_str()) == 0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  const int pid = std::stoi(slurp(dir.file("pid")));
+  // Wait until a few frames are on disk, then kill without warning.
+  std::size_t frames = 0;
+  for (int i = 0; i < 200 && frames < 3; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    try {
+      frames = io::read_summary(out).frames;
+    } catch (...) {
+    }
+  }
+  ::kill(pid, SIGKILL);
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  REQUIRE(frames >= 3);
+  const auto s = io::read_summary(out);
+  CHECK_FALSE(s.complete);
+  CHECK(s.frames >= frames);
+  const auto last = io::read_frame_positions(out, s.frames - 1);
+  CHECK(last.size() == 24 * 24 * 3);
+}

@@ -1,0 +1,143 @@
+#include <catch2/catch.hpp>
+
+#include <string>
+
+#include "scene/scene_loader.hpp"
+#include "support/temp_dir.hpp"
+#include "util/error.hpp"
+
+using namespace atssim;
+
+namespace {
+
+// The message of the input error that parsing `yaml` raises ("" if none).
+std::string error_of(const std::string& yaml, std::vector<std::string> overrides = {}) {
+  try {
+    scene::parse_scene(yaml, "scene.yaml", ".", overrides);
+  } catch (const Error& e) {
+    CHECK(e.exit_code() == 2);
+    return e.what();
+  }
+  return "";
+}
+
+const std::string kGood =
+    "simulation:\n"
+    "  fps: 50\n"
+    "  substeps: 10\n"
+    "objects:\n"
+    "  - name: sheet\n"
+    "    grid: {size: [2, 1], resolution: [5, 4]}\n"
+    "    material:\n"
+    "      density: 0.3\n"
+    "      stretch_stiffness: 100\n";
+
+}  // namespace
+
+TEST_CASE("a valid scene is read with its values and defaults") {
+  const auto s = scene::parse_scene(kGood, "scene.yaml", ".");
+  CHECK(s.simulation.frame_dt == Approx(0.02));
+  CHECK(s.simulation.substeps == 10);
+  CHECK(s.simulation.iterations == 8);
+  REQUIRE(s.objects.size() == 1);
+  CHECK(s.objects[0].name == "sheet");
+  CHECK(s.objects[0].grid->resolution[0] == 5);
+  CHECK(s.objects[0].material.has_stretch);
+  CHECK(s.objects[0].material.stretch_compliance == Approx(0.01));
+  CHECK_FALSE(s.objects[0].material.has_bending);
+}
+
+TEST_CASE("an unknown key names its line and suggests the right key") {
+  const std::string yaml =
+      "simulation:\n"
+      "  fps: 60\n"
+      "objects:\n"
+      "  - grid: {size: [1, 1], resolution: [3, 3]}\n"
+      "    material:\n"
+      "      densty: 0.2\n";
+  const std::string msg = error_of(yaml);
+  CHECK(msg.find("scene.yaml:6:") == 0);
+  CHECK(msg.find("unknown key 'densty'") != std::string::npos);
+  CHECK(msg.find("did you mean 'density'?") != std::string::npos);
+  CHECK(msg.find('\n') == std::string::npos);
+}
+
+TEST_CASE("a value of the wrong type names its line and the expected type") {
+  const std::string yaml =
+      "simulation:\n"
+      "  substeps: lots\n"
+      "objects:\n"
+      "  - grid: {size: [1, 1], resolution: [3, 3]}\n";
+  const std::string msg = error_of(yaml);
+  CHECK(msg.find("scene.yaml:2:") == 0);
+  CHECK(msg.find("whole number") != std::string::npos);
+}
+
+TEST_CASE("a negative density names its line and the valid range") {
+  const std::string yaml =
+      "objects:\n"
+      "  - grid: {size: [1, 1], resolution: [3, 3]}\n"
+      "    material:\n"
+      "      density: -1\n";
+  const std::string msg = error_of(yaml);
+  CHECK(msg.find("scene.yaml:4:") == 0);
+  CHECK(msg.find("density") != std::string::npos);
+  CHECK(msg.find("> 0") != std::string::npos);
+}
+
+TEST_CASE("a missing mesh file names its line and the path") {
+  test::TempDir dir;
+  const std::string path = dir.write("scene.yaml",
+                                     "objects:\n"
+                                     "  - name: shirt\n"
+                                     "    mesh: no_such_mesh.obj\n");
+  try {
+    scene::load_scene_file(path);
+    FAIL("expected an error");
+  } catch (const Error& e) {
+    const std::string msg = e.what();
+    CHECK(e.exit_code() == 2);
+    CHECK(msg.find(path + ":3:") == 0);
+    CHECK(msg.find("no_such_mesh.obj") != std::string::npos);
+    CHECK(msg.find("does not exist") != std::string::npos);
+  }
+}
+
+TEST_CASE("YAML syntax errors name their line") {
+  const std::string msg = error_of("objects:\n  - grid: {size: [1, 1]\n    bad\n");
+  CHECK(msg.find("scene.yaml:") == 0);
+  CHECK(msg.find("YAML syntax error") != std::string::npos);
+}
+
+TEST_CASE("set overrides (--set) replace any key before validation") {
+  const std::vector<std::string> sets{"simulation.substeps=32", "objects.0.material.density=0.5",
+                                      "objects.0.material.bend_stiffness=0.01"};
+  const auto s = scene::parse_scene(kGood, "scene.yaml", ".", sets);
+  CHECK(s.simulation.substeps == 32);
+  CHECK(s.objects[0].material.density == Approx(0.5));
+  CHECK(s.objects[0].material.has_bending);
+  CHECK(s.resolved_yaml.find("substeps: 32") != std::string::npos);
+}
+
+TEST_CASE("an invalid override value is reported against its --set") {
+  const std::string msg = error_of(kGood, {"simulation.substeps=-3"});
+  CHECK(msg.find("--set simulation.substeps=-3") != std::string::npos);
+  CHECK(msg.find("out of range") != std::string::npos);
+  CHECK(error_of(kGood, {"simulation.substepz=3"}).find("did you mean 'substeps'?") != std::string::npos);
+  CHECK(error_of(kGood, {"novalue"}).find("key=value") != std::string::npos);
+}
+
+TEST_CASE("stiffness zero means the term is not modelled") {
+  const auto s = scene::parse_scene(kGood, "scene.yaml", ".", std::vector<std::string>{
+                                                                  "objects.0.material.stretch_stiffness=0"});
+  CHECK_FALSE(s.objects[0].material.has_stretch);
+}
+
+TEST_CASE("conflicting or missing settings are rejected", "[scene]") {
+  CHECK(error_of("simulation: {fps: 60, dt: 0.01}\nobjects:\n  - grid: {}\n").find("both 'fps' and 'dt'") !=
+        std::string::npos);
+  CHECK(error_of("simulation: {fps: 60}\n").find("no 'objects'") != std::string::npos);
+  CHECK(error_of("objects:\n  - name: a\n").find("exactly one of 'grid' or 'mesh'") != std::string::npos);
+  CHECK(error_of("objects:\n  - grid: {}\nsolver: {method: fem}\n").find("unknown solver method 'fem'") !=
+        std::string::npos);
+}
