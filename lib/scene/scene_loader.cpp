@@ -9,6 +9,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "scene/mesh_loader.hpp"
+#include "scene/scene_yaml.hpp"
 #include "scene/yaml_reader.hpp"
 #include "util/error.hpp"
 
@@ -292,9 +293,7 @@ SceneDesc parse_scene(const std::string& yaml_text, const std::string& source_na
   }
   if (top.has("devices")) scene.devices = top.child("devices").string();
 
-  YAML::Emitter out;
-  out << root;
-  scene.resolved_yaml = out.c_str();
+  scene.resolved_yaml = to_resolved_yaml(scene);
   return scene;
 }
 

@@ -119,6 +119,17 @@ TEST_CASE("set overrides (--set) replace any key before validation") {
   CHECK(s.resolved_yaml.find("substeps: 32") != std::string::npos);
 }
 
+TEST_CASE("the resolved scene reads back to the same description") {
+  const auto s = scene::parse_scene(kGood, "scene.yaml", ".", std::vector<std::string>{"simulation.iterations=5"});
+  const auto again = scene::parse_scene(s.resolved_yaml, "resolved.yaml", ".");
+  CHECK(again.simulation.frame_dt == s.simulation.frame_dt);
+  CHECK(again.simulation.iterations == 5);
+  CHECK(again.simulation.frames == s.simulation.frames);  // the default, written out
+  CHECK(again.objects[0].material.stretch_compliance == s.objects[0].material.stretch_compliance);
+  CHECK(again.objects[0].grid->resolution == s.objects[0].grid->resolution);
+  CHECK(again.output.path == s.output.path);
+}
+
 TEST_CASE("an invalid override value is reported against its --set") {
   const std::string msg = error_of(kGood, {"simulation.substeps=-3"});
   CHECK(msg.find("--set simulation.substeps=-3") != std::string::npos);

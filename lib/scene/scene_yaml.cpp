@@ -1,0 +1,92 @@
+#include "scene/scene_yaml.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+namespace atssim::scene {
+
+namespace {
+
+template <typename Array>
+void flow_seq(YAML::Emitter& out, const Array& values) {
+  out << YAML::Flow << YAML::BeginSeq;
+  for (const auto& v : values) out << v;
+  out << YAML::EndSeq;
+}
+
+void emit_object(YAML::Emitter& out, const ObjectDesc& obj) {
+  out << YAML::BeginMap << YAML::Key << "name" << YAML::Value << obj.name;
+  out << YAML::Key << "type" << YAML::Value << "cloth";
+  if (obj.grid) {
+    out << YAML::Key << "grid" << YAML::Value << YAML::BeginMap;
+    out << YAML::Key << "size" << YAML::Value;
+    flow_seq(out, obj.grid->size);
+    out << YAML::Key << "resolution" << YAML::Value;
+    flow_seq(out, obj.grid->resolution);
+    out << YAML::EndMap;
+  } else {
+    out << YAML::Key << "mesh" << YAML::Value << obj.mesh_path;
+  }
+  out << YAML::Key << "transform" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "translate" << YAML::Value;
+  flow_seq(out, obj.transform.translate);
+  out << YAML::Key << "rotate" << YAML::Value;
+  flow_seq(out, obj.transform.rotate_deg);
+  out << YAML::Key << "scale" << YAML::Value;
+  flow_seq(out, obj.transform.scale);
+  out << YAML::EndMap;
+  const MaterialDesc& m = obj.material;
+  out << YAML::Key << "material" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "density" << YAML::Value << m.density;
+  if (m.has_stretch) out << YAML::Key << "stretch_compliance" << YAML::Value << m.stretch_compliance;
+  if (m.has_bending) out << YAML::Key << "bend_compliance" << YAML::Value << m.bend_compliance;
+  out << YAML::EndMap;
+  if (!obj.pins.vertices.empty() || !obj.pins.boxes.empty()) {
+    out << YAML::Key << "pins" << YAML::Value << YAML::BeginMap;
+    if (!obj.pins.vertices.empty()) {
+      out << YAML::Key << "vertices" << YAML::Value;
+      flow_seq(out, obj.pins.vertices);
+    }
+    if (!obj.pins.boxes.empty()) {
+      out << YAML::Key << "boxes" << YAML::Value << YAML::BeginSeq;
+      for (const BoxDesc& b : obj.pins.boxes) {
+        out << YAML::Flow << YAML::BeginMap << YAML::Key << "min" << YAML::Value;
+        flow_seq(out, b.min);
+        out << YAML::Key << "max" << YAML::Value;
+        flow_seq(out, b.max);
+        out << YAML::EndMap;
+      }
+      out << YAML::EndSeq;
+    }
+    out << YAML::EndMap;
+  }
+  out << YAML::EndMap;
+}
+
+}  // namespace
+
+std::string to_resolved_yaml(const SceneDesc& scene) {
+  YAML::Emitter out;
+  out.SetDoublePrecision(17);
+  out << YAML::BeginMap;
+  const SimulationDesc& s = scene.simulation;
+  out << YAML::Key << "simulation" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "dt" << YAML::Value << s.frame_dt;
+  out << YAML::Key << "substeps" << YAML::Value << s.substeps;
+  out << YAML::Key << "iterations" << YAML::Value << s.iterations;
+  out << YAML::Key << "frames" << YAML::Value << s.frames;
+  out << YAML::Key << "gravity" << YAML::Value;
+  flow_seq(out, s.gravity);
+  out << YAML::EndMap;
+  out << YAML::Key << "objects" << YAML::Value << YAML::BeginSeq;
+  for (const ObjectDesc& obj : scene.objects) emit_object(out, obj);
+  out << YAML::EndSeq;
+  out << YAML::Key << "solver" << YAML::Value << YAML::BeginMap << YAML::Key << "method" << YAML::Value
+      << scene.solver.method << YAML::EndMap;
+  out << YAML::Key << "output" << YAML::Value << YAML::BeginMap << YAML::Key << "path" << YAML::Value
+      << scene.output.path << YAML::Key << "stride" << YAML::Value << scene.output.stride << YAML::EndMap;
+  out << YAML::Key << "devices" << YAML::Value << scene.devices;
+  out << YAML::EndMap;
+  return std::string(out.c_str()) + "\n";
+}
+
+}  // namespace atssim::scene

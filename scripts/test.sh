@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# Quick start (2): install what is missing, build, run the whole test suite
+# (everything but the `slow` label; benchmarks live in scripts/bench_*.sh).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$HOME/.cache/atssim/pocl}"
+cmake --preset release >/dev/null
+cmake --build --preset release -j "$(nproc)"
+ctest --preset release
