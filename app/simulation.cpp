@@ -34,6 +34,11 @@ device::SvmMode svm_mode(const std::string& text) {
   return device::SvmMode::automatic;
 }
 
+// Keeps only what output needs (object topology and rest shape).
+void release_simulation_state(model::Model& model) {
+  model = model::Model{{}, {}, {}, std::move(model.objects), model.gravity};
+}
+
 }  // namespace
 
 void request_stop() { g_stop = true; }
@@ -41,20 +46,27 @@ void request_stop() { g_stop = true; }
 RunResult run_simulation(const RunOptions& options, const std::function<void(const RunProgress&)>& progress) {
   g_stop = false;
   const scene::SceneDesc scene = scene::load_scene_file(options.scene_path, options.overrides);
-  const model::Model model = model::build_model(scene);
+  const device::DeviceSet devices = device::DeviceSet::open(scene.devices);
   const auto& sim = scene.simulation;
   const solver::xpbd::XpbdSettings settings{sim.frame_dt / sim.substeps, sim.iterations};
-  const solver::SubstepPlan plan = solver::xpbd::make_xpbd_plan(solver::xpbd::make_xpbd_layout(model), settings);
 
-  const device::DeviceSet devices = device::DeviceSet::open(scene.devices);
+  // Each stage's data is released once the next holds it, so the peak memory
+  // is one stage's worth, not the sum (docs/benchmarks.md: bytes per vertex).
+  model::Model model = model::build_model(scene);
+  const std::size_t particles = model.particles.size();
+  solver::xpbd::XpbdLayout layout = solver::xpbd::make_xpbd_layout(model);
+  release_simulation_state(model);
+  solver::SubstepPlan plan = solver::xpbd::make_xpbd_plan(layout, settings);
+  layout = {};
   device::PlanExecutor executor(devices, plan, {svm_mode(options.svm_mode)});
+  for (auto& buffer : plan.buffers) std::vector<std::byte>().swap(buffer.initial);
 
   io::RunInfo info{options.command_line, scene.yaml_text, scene.resolved_yaml, devices.infos()};
   io::ResultWriter writer(scene.output.path, info, model);
 
   RunResult result;
   result.output_path = scene.output.path;
-  result.particles = model.particles.size();
+  result.particles = particles;
   result.device = devices.info(0).name;
   std::vector<float> xyz;
   executor.read_positions(xyz);

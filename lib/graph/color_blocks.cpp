@@ -3,28 +3,33 @@
 #include <algorithm>
 #include <numeric>
 
+#include "graph/adjacency.hpp"
+
 namespace atssim::graph {
 
 ColorBlocks color_elements(std::span<const int> element_vertices, int arity, std::span<const char> movable) {
   const int elements = static_cast<int>(element_vertices.size()) / arity;
-  std::vector<std::vector<int>> used(movable.size());  // colors taken at each particle
-  std::vector<int> color(elements, 0);
-  std::vector<char> taken;
+  // Neighbours through the CSR adjacency: no per-particle lists, 4 bytes per
+  // element slot.
+  const Adjacency adj = build_adjacency(element_vertices, arity, static_cast<int>(movable.size()));
+  std::vector<int> color(elements, -1);
+  std::vector<int> taken_by;  // taken_by[c] == e: color c is used next to element e
   int color_count = 0;
   for (int e = 0; e < elements; ++e) {
-    taken.assign(color_count + 1, 0);
     for (int k = 0; k < arity; ++k) {
       const int v = element_vertices[e * arity + k];
       if (!movable[v]) continue;
-      for (int c : used[v]) taken[c] = 1;
+      for (int f : adj.of(v)) {
+        if (color[f] >= 0) taken_by[color[f]] = e;
+      }
     }
-    const int c = static_cast<int>(std::find(taken.begin(), taken.end(), 0) - taken.begin());
+    int c = 0;
+    while (c < color_count && taken_by[c] == e) ++c;
+    if (c == color_count) {
+      ++color_count;
+      taken_by.push_back(-1);
+    }
     color[e] = c;
-    color_count = std::max(color_count, c + 1);
-    for (int k = 0; k < arity; ++k) {
-      const int v = element_vertices[e * arity + k];
-      if (movable[v]) used[v].push_back(c);
-    }
   }
 
   auto min_vertex = [&](int e) {

@@ -1,5 +1,6 @@
 #include "io/result_writer.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 
@@ -80,7 +81,8 @@ void write_mesh(hid_t file, const model::Model& model) {
 }  // namespace
 
 ResultWriter::ResultWriter(const std::string& path, const RunInfo& info, const model::Model& model)
-    : path_(path), objects_(model.objects), particles_(model.particles.size()) {
+    : path_(path), objects_(model.objects) {
+  for (const auto& obj : objects_) particles_ = std::max<std::size_t>(particles_, obj.vertex_offset + obj.vertex_count);
   // SWMR needs the latest file format; readers are h5py/HDF5 ≥ 1.10.
   H5Handle fapl = h5_check(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "file access properties");
   h5_check(H5Pset_libver_bounds(fapl, H5F_LIBVER_LATEST, H5F_LIBVER_LATEST), "file format bounds");

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <numbers>
 
 #include <Eigen/Geometry>
@@ -49,18 +48,27 @@ std::vector<std::array<int, 2>> unique_edges(const std::vector<std::array<int, 3
 }
 
 std::vector<std::array<int, 4>> bending_stencils(const std::vector<std::array<int, 3>>& triangles) {
-  // Edge -> opposite vertices of the triangles that share it.
-  std::map<std::array<int, 2>, std::vector<int>> opposite;
+  // Half-edges (min, max, opposite) sorted by edge: the two triangles of an
+  // interior edge end up next to each other. A sort, not a map, keeps the
+  // peak memory at 12 bytes per half-edge.
+  std::vector<std::array<int, 3>> half;
+  half.reserve(triangles.size() * 3);
   for (const auto& t : triangles) {
     for (int e = 0; e < 3; ++e) {
       const int a = t[e], b = t[(e + 1) % 3], c = t[(e + 2) % 3];
-      opposite[{std::min(a, b), std::max(a, b)}].push_back(c);
+      half.push_back({std::min(a, b), std::max(a, b), c});
     }
   }
+  std::sort(half.begin(), half.end());
   std::vector<std::array<int, 4>> stencils;
-  for (const auto& [edge, opp] : opposite) {
+  for (std::size_t i = 0; i < half.size();) {
+    std::size_t j = i;
+    while (j < half.size() && half[j][0] == half[i][0] && half[j][1] == half[i][1]) ++j;
     // Boundary edges (1 triangle) bend nothing; non-manifold edges (> 2) are skipped.
-    if (opp.size() == 2 && opp[0] != opp[1]) stencils.push_back({edge[0], edge[1], opp[0], opp[1]});
+    if (j - i == 2 && half[i][2] != half[i + 1][2]) {
+      stencils.push_back({half[i][0], half[i][1], half[i][2], half[i + 1][2]});
+    }
+    i = j;
   }
   return stencils;
 }

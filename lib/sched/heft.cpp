@@ -11,10 +11,10 @@ namespace atssim::sched {
 Schedule schedule_heft(const TaskGraph& graph, const CostTable& costs, const DeviceLinks& links,
                        const HeftOptions& options) {
   check_scheduling_inputs(graph, costs, links, options.device_ready_ms);
-  const auto topo = graph.topological_order();
+  const CompactGraph compact(graph);
   std::vector<double> rank;
   if (options.priority.empty()) {
-    rank = upward_rank(graph, costs, links, topo);
+    rank = upward_rank(compact, costs, links);
   } else if (options.priority.size() != graph.size()) {
     throw Error(fmt::format("HEFT: {} priorities given for {} tasks", options.priority.size(),
                             graph.size()));
@@ -22,8 +22,8 @@ Schedule schedule_heft(const TaskGraph& graph, const CostTable& costs, const Dev
   const std::span<const double> priority =
       options.priority.empty() ? std::span<const double>(rank) : options.priority;
 
-  ScheduleBuilder builder(graph, costs, links, options);
-  ReadyList ready(graph, priority, topo);
+  ScheduleBuilder builder(graph, compact, costs, links, options);
+  ReadyList ready(compact, priority);
   std::vector<SlotChoice> choices;
   while (!ready.empty()) {
     const TaskId task = ready.pop();

@@ -3,9 +3,10 @@
 // paper §3.3). Tasks in decreasing rank_u; each goes to the device where it
 // finishes earliest, allowing insertion into idle gaps.
 //
-// Tie-breaking (deterministic): equal ranks → the task earlier in
-// TaskGraph::topological_order() (Kahn, smallest id first); equal finish
-// times → the lowest device id.
+// Tasks are taken from a ready list (all predecessors placed), so any
+// priority gives a valid schedule; with rank_u this is exactly the classic
+// decreasing-rank order. Tie-breaking (deterministic): ranks equal to 1e-9 ms
+// → the smaller task id; equal finish times → the lower device id.
 #include <vector>
 
 #include "sched/list_scheduling.hpp"

@@ -21,9 +21,11 @@ double tie_rounded(double priority) { return std::round(priority * 1e9); }
 
 }  // namespace
 
-ScheduleBuilder::ScheduleBuilder(const TaskGraph& graph, const CostTable& costs,
-                                 const DeviceLinks& links, const ListOptions& options)
+ScheduleBuilder::ScheduleBuilder(const TaskGraph& graph, const CompactGraph& compact,
+                                 const CostTable& costs, const DeviceLinks& links,
+                                 const ListOptions& options)
     : graph_(graph),
+      compact_(compact),
       costs_(costs),
       links_(links),
       insertion_(options.insertion),
@@ -42,8 +44,8 @@ ScheduleBuilder::ScheduleBuilder(const TaskGraph& graph, const CostTable& costs,
 
 double ScheduleBuilder::data_ready(TaskId task, DeviceId device) const {
   double ready = 0.0;
-  for (const Edge& e : graph_.predecessors(task)) {
-    ready = std::max(ready, finish_[e.from] + links_.comm_ms(e.comm, device_[e.from], device));
+  for (const CompactEdge& e : compact_.predecessors(task)) {
+    ready = std::max(ready, finish_[e.task] + links_.comm_ms(e.comm, device_[e.task], device));
   }
   return ready;
 }
@@ -59,11 +61,11 @@ SlotChoice ScheduleBuilder::earliest_finish(TaskId task, DeviceId device) const 
 void ScheduleBuilder::earliest_finish_all(TaskId task, std::vector<SlotChoice>& out) const {
   const std::size_t nd = costs_.devices;
   std::fill(scratch_ready_.begin(), scratch_ready_.end(), 0.0);
-  for (const Edge& e : graph_.predecessors(task)) {
-    const DeviceId p = device_[e.from];
+  for (const CompactEdge& e : compact_.predecessors(task)) {
+    const DeviceId p = device_[e.task];
     for (DeviceId d = 0; d < nd; ++d) {
       scratch_ready_[d] =
-          std::max(scratch_ready_[d], finish_[e.from] + links_.comm_ms(e.comm, p, d));
+          std::max(scratch_ready_[d], finish_[e.task] + links_.comm_ms(e.comm, p, d));
     }
   }
   out.resize(nd);
@@ -96,14 +98,13 @@ Schedule ScheduleBuilder::finish() && {
   return s;
 }
 
-ReadyList::ReadyList(const TaskGraph& graph, std::span<const double> priority,
-                     std::span<const TaskId> topo_order)
-    : graph_(graph), priority_(priority), position_(graph.size()), waiting_(graph.size()) {
-  for (std::uint32_t i = 0; i < topo_order.size(); ++i) position_[topo_order[i]] = i;
+ReadyList::ReadyList(const CompactGraph& graph, std::span<const double> priority)
+    : graph_(graph), rounded_(graph.size()), waiting_(graph.size()) {
   std::vector<Entry> initial;
   for (TaskId t = 0; t < graph.size(); ++t) {
+    rounded_[t] = tie_rounded(priority[t]);
     waiting_[t] = static_cast<std::uint32_t>(graph.predecessors(t).size());
-    if (waiting_[t] == 0) initial.push_back({tie_rounded(priority_[t]), position_[t], t});
+    if (waiting_[t] == 0) initial.push_back({rounded_[t], t});
   }
   heap_ = decltype(heap_)(Worse{}, std::move(initial));
 }
@@ -111,8 +112,8 @@ ReadyList::ReadyList(const TaskGraph& graph, std::span<const double> priority,
 TaskId ReadyList::pop() {
   const TaskId t = heap_.top().task;
   heap_.pop();
-  for (const Edge& e : graph_.successors(t)) {
-    if (--waiting_[e.to] == 0) heap_.push({tie_rounded(priority_[e.to]), position_[e.to], e.to});
+  for (const CompactEdge& e : graph_.successors(t)) {
+    if (--waiting_[e.task] == 0) heap_.push({rounded_[e.task], e.task});
   }
   return t;
 }

@@ -7,6 +7,7 @@
 #include <span>
 #include <vector>
 
+#include "sched/compact_graph.hpp"
 #include "sched/cost_table.hpp"
 #include "sched/device_links.hpp"
 #include "sched/device_timeline.hpp"
@@ -33,8 +34,8 @@ struct SlotChoice {
 
 class ScheduleBuilder {
  public:
-  ScheduleBuilder(const TaskGraph& graph, const CostTable& costs, const DeviceLinks& links,
-                  const ListOptions& options);
+  ScheduleBuilder(const TaskGraph& graph, const CompactGraph& compact, const CostTable& costs,
+                  const DeviceLinks& links, const ListOptions& options);
 
   // Earliest start/finish of `task` on `device`, given the tasks placed so
   // far; all its predecessors must be placed. finish = inf where it cannot run.
@@ -51,6 +52,7 @@ class ScheduleBuilder {
   double data_ready(TaskId task, DeviceId device) const;
 
   const TaskGraph& graph_;
+  const CompactGraph& compact_;
   const CostTable& costs_;
   const DeviceLinks& links_;
   bool insertion_;
@@ -64,31 +66,28 @@ class ScheduleBuilder {
 };
 
 // The tasks whose predecessors are all placed, highest priority first; ties
-// go to the task earlier in `topo_order` (deterministic). Priorities are
+// go to the smaller task id (deterministic). Priorities are
 // compared after rounding to 1e-9 ms, so ranks that are equal on paper but
 // differ by floating-point rounding (80 = 14.333… + 23 + 42.666…) still tie.
 // Call pop(), then place the task, before the next pop().
 class ReadyList {
  public:
-  ReadyList(const TaskGraph& graph, std::span<const double> priority,
-            std::span<const TaskId> topo_order);
+  ReadyList(const CompactGraph& graph, std::span<const double> priority);
   bool empty() const { return heap_.empty(); }
   TaskId pop();  // removes the best ready task and releases its successors
 
  private:
   struct Entry {
     double priority;
-    std::uint32_t position;
     TaskId task;
   };
   struct Worse {
     bool operator()(const Entry& a, const Entry& b) const {
-      return a.priority < b.priority || (a.priority == b.priority && a.position > b.position);
+      return a.priority < b.priority || (a.priority == b.priority && a.task > b.task);
     }
   };
-  const TaskGraph& graph_;
-  std::span<const double> priority_;
-  std::vector<std::uint32_t> position_;
+  const CompactGraph& graph_;
+  std::vector<double> rounded_;
   std::vector<std::uint32_t> waiting_;
   std::priority_queue<Entry, std::vector<Entry>, Worse> heap_;
 };

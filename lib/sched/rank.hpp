@@ -6,9 +6,9 @@
 // communication cost over ordered device pairs p ≠ q that can run the two
 // ends. Unlike the paper's public code (every edge ranked at 1: makespan 91
 // on the classic graph), c̄ uses the real edge weights (makespan 80).
-#include <span>
 #include <vector>
 
+#include "sched/compact_graph.hpp"
 #include "sched/cost_table.hpp"
 #include "sched/device_links.hpp"
 #include "sched/task_graph.hpp"
@@ -19,15 +19,29 @@ namespace atssim::sched {
 // 0 when the two ends can only run on one and the same device.
 double mean_comm_ms(const Edge& edge, const CostTable& costs, const DeviceLinks& links);
 
+// c̄ for many edges: the mean latency and ms-per-weight over all device
+// pairs are computed once and used whenever both ends run everywhere.
+class MeanComm {
+ public:
+  MeanComm(const CostTable& costs, const DeviceLinks& links);
+  double operator()(TaskId from, TaskId to, double weight) const;
+
+ private:
+  const CostTable& costs_;
+  const DeviceLinks& links_;
+  std::vector<bool> runs_everywhere_;
+  double latency_ = 0.0;
+  double per_weight_ = 0.0;
+};
+
 std::vector<double> upward_rank(const TaskGraph& graph, const CostTable& costs,
                                 const DeviceLinks& links);
-// Same, reusing a topological order the caller already has.
-std::vector<double> upward_rank(const TaskGraph& graph, const CostTable& costs,
-                                const DeviceLinks& links, std::span<const TaskId> topo_order);
+std::vector<double> upward_rank(const CompactGraph& graph, const CostTable& costs,
+                                const DeviceLinks& links);
 
 std::vector<double> downward_rank(const TaskGraph& graph, const CostTable& costs,
                                   const DeviceLinks& links);
-std::vector<double> downward_rank(const TaskGraph& graph, const CostTable& costs,
-                                  const DeviceLinks& links, std::span<const TaskId> topo_order);
+std::vector<double> downward_rank(const CompactGraph& graph, const CostTable& costs,
+                                  const DeviceLinks& links);
 
 }  // namespace atssim::sched
