@@ -10,19 +10,18 @@ namespace atssim::sched {
 
 namespace {
 
-std::vector<double> cpop_priority(const TaskGraph& graph, const CostTable& costs,
-                                  const DeviceLinks& links, std::span<const TaskId> topo) {
-  auto priority = upward_rank(graph, costs, links, topo);
-  const auto down = downward_rank(graph, costs, links, topo);
+std::vector<double> cpop_priority(const CompactGraph& graph, const CostTable& costs,
+                                  const DeviceLinks& links) {
+  auto priority = upward_rank(graph, costs, links);
+  const auto down = downward_rank(graph, costs, links);
   for (std::size_t i = 0; i < priority.size(); ++i) priority[i] += down[i];
   return priority;
 }
 
-std::vector<TaskId> critical_path(const TaskGraph& graph, std::span<const double> priority,
-                                  std::span<const TaskId> topo) {
-  if (graph.empty()) return {};
-  TaskId current = topo.front();
-  for (TaskId t : topo) {
+std::vector<TaskId> critical_path(const CompactGraph& graph, std::span<const double> priority) {
+  if (graph.size() == 0) return {};
+  TaskId current = graph.topological_order().front();  // a source
+  for (TaskId t = 0; t < graph.size(); ++t) {
     if (graph.predecessors(t).empty() && priority[t] > priority[current]) current = t;
   }
   const double length = priority[current];
@@ -30,11 +29,11 @@ std::vector<TaskId> critical_path(const TaskGraph& graph, std::span<const double
   std::vector<TaskId> path{current};
   for (;;) {
     const auto succ = graph.successors(current);
-    auto next = std::find_if(succ.begin(), succ.end(), [&](const Edge& e) {
-      return std::abs(priority[e.to] - length) <= tol;
+    auto next = std::find_if(succ.begin(), succ.end(), [&](const CompactEdge& e) {
+      return std::abs(priority[e.task] - length) <= tol;
     });
     if (next == succ.end()) break;
-    current = next->to;
+    current = next->task;
     path.push_back(current);
   }
   return path;
@@ -60,23 +59,22 @@ DeviceId critical_path_device(const CostTable& costs, std::span<const TaskId> pa
 std::vector<TaskId> cpop_critical_path(const TaskGraph& graph, const CostTable& costs,
                                        const DeviceLinks& links) {
   check_scheduling_inputs(graph, costs, links);
-  const auto topo = graph.topological_order();
-  const auto priority = cpop_priority(graph, costs, links, topo);
-  return critical_path(graph, priority, topo);
+  const CompactGraph compact(graph);
+  return critical_path(compact, cpop_priority(compact, costs, links));
 }
 
 Schedule schedule_cpop(const TaskGraph& graph, const CostTable& costs, const DeviceLinks& links,
                        const ListOptions& options) {
   check_scheduling_inputs(graph, costs, links, options.device_ready_ms);
-  const auto topo = graph.topological_order();
-  const auto priority = cpop_priority(graph, costs, links, topo);
-  const auto path = critical_path(graph, priority, topo);
+  const CompactGraph compact(graph);
+  const auto priority = cpop_priority(compact, costs, links);
+  const auto path = critical_path(compact, priority);
   const DeviceId cp_device = critical_path_device(costs, path);
   std::vector<bool> on_path(graph.size(), false);
   for (TaskId t : path) on_path[t] = true;
 
-  ScheduleBuilder builder(graph, costs, links, options);
-  ReadyList ready(graph, priority, topo);
+  ScheduleBuilder builder(graph, compact, costs, links, options);
+  ReadyList ready(compact, priority);
   std::vector<SlotChoice> choices;
   while (!ready.empty()) {
     const TaskId task = ready.pop();

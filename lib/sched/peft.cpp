@@ -8,20 +8,20 @@ namespace atssim::sched {
 
 namespace {
 
-CostTable build_oct(const TaskGraph& graph, const CostTable& costs, const DeviceLinks& links,
-                    std::span<const TaskId> topo) {
+CostTable build_oct(const CompactGraph& graph, const CostTable& costs, const DeviceLinks& links) {
   const std::size_t nd = costs.devices;
   CostTable oct(graph.size(), nd, 0.0);
+  const auto topo = graph.topological_order();
   for (auto it = topo.rbegin(); it != topo.rend(); ++it) {
     const TaskId i = *it;
     for (DeviceId p = 0; p < nd; ++p) {
       double worst = 0.0;
-      for (const Edge& e : graph.successors(i)) {
+      for (const CompactEdge& e : graph.successors(i)) {
         double best = kCannotRun;
         for (DeviceId w = 0; w < nd; ++w) {
-          const double c = costs.at(e.to, w);
+          const double c = costs.at(e.task, w);
           if (!(c < kCannotRun)) continue;
-          best = std::min(best, oct.at(e.to, w) + c + links.comm_ms(e.comm, p, w));
+          best = std::min(best, oct.at(e.task, w) + c + links.comm_ms(e.comm, p, w));
         }
         worst = std::max(worst, best);
       }
@@ -51,19 +51,18 @@ std::vector<double> oct_rank(const CostTable& oct, const CostTable& costs) {
 CostTable optimistic_cost_table(const TaskGraph& graph, const CostTable& costs,
                                 const DeviceLinks& links) {
   check_scheduling_inputs(graph, costs, links);
-  const auto topo = graph.topological_order();
-  return build_oct(graph, costs, links, topo);
+  return build_oct(CompactGraph(graph), costs, links);
 }
 
 Schedule schedule_peft(const TaskGraph& graph, const CostTable& costs, const DeviceLinks& links,
                        const ListOptions& options) {
   check_scheduling_inputs(graph, costs, links, options.device_ready_ms);
-  const auto topo = graph.topological_order();
-  const CostTable oct = build_oct(graph, costs, links, topo);
+  const CompactGraph compact(graph);
+  const CostTable oct = build_oct(compact, costs, links);
   const auto rank = oct_rank(oct, costs);
 
-  ScheduleBuilder builder(graph, costs, links, options);
-  ReadyList ready(graph, rank, topo);
+  ScheduleBuilder builder(graph, compact, costs, links, options);
+  ReadyList ready(compact, rank);
   std::vector<SlotChoice> choices;
   while (!ready.empty()) {
     const TaskId task = ready.pop();
