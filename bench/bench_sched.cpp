@@ -31,8 +31,7 @@ double median_ms(F&& call, double budget_s) {
   const auto begin = Clock::now();
   double makespan_sink = 0.0;
   while (samples.size() < 5 ||
-         (std::chrono::duration<double>(Clock::now() - begin).count() < budget_s &&
-          samples.size() < 100000)) {
+         (std::chrono::duration<double>(Clock::now() - begin).count() < budget_s && samples.size() < 100000)) {
     const auto t0 = Clock::now();
     makespan_sink += call().makespan_ms;
     samples.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
@@ -78,17 +77,14 @@ int main(int argc, char** argv) {
     o.seed = 42;
     const RandomDag dag = random_layered_dag(o);
     const auto links = DeviceLinks::unified_memory(2, 0.2);
-    const double heft = median_ms([&] { return schedule_heft(dag.graph, dag.costs, links); },
-                                  seconds);
-    const double cpop = median_ms([&] { return schedule_cpop(dag.graph, dag.costs, links); },
-                                  seconds);
-    const double peft = median_ms([&] { return schedule_peft(dag.graph, dag.costs, links); },
-                                  seconds);
+    const double heft = median_ms([&] { return schedule_heft(dag.graph, dag.costs, links); }, seconds);
+    const double cpop = median_ms([&] { return schedule_cpop(dag.graph, dag.costs, links); }, seconds);
+    const double peft = median_ms([&] { return schedule_peft(dag.graph, dag.costs, links); }, seconds);
     const Schedule s = schedule_heft(dag.graph, dag.costs, links);
     double work = 0.0;
     for (TaskId t = 0; t < n; ++t) work += min_cost(dag.costs, t);
-    std::printf("| %zu | %zu | %.4f | %.4f | %.4f | %.3f |\n", n, dag.graph.edge_count(), heft,
-                cpop, peft, s.makespan_ms / (work / 2.0));
+    std::printf("| %zu | %zu | %.4f | %.4f | %.4f | %.3f |\n", n, dag.graph.edge_count(), heft, cpop, peft,
+                s.makespan_ms / (work / 2.0));
     std::fflush(stdout);
   }
   return 0;

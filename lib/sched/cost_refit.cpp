@@ -10,11 +10,9 @@
 
 namespace atssim::sched {
 
-void refit_costs(CostTable& costs, std::span<const Measurement> measurements,
-                 const RefitOptions& options) {
+void refit_costs(CostTable& costs, std::span<const Measurement> measurements, const RefitOptions& options) {
   if (!(options.weight > 0.0 && options.weight <= 1.0)) {
-    throw Error(fmt::format("cost refit: smoothing weight must be in (0, 1], got {}",
-                            options.weight));
+    throw Error(fmt::format("cost refit: smoothing weight must be in (0, 1], got {}", options.weight));
   }
   for (const Measurement& m : measurements) {
     if (m.task >= costs.tasks || m.device >= costs.devices) {
@@ -24,8 +22,7 @@ void refit_costs(CostTable& costs, std::span<const Measurement> measurements,
                   ErrorKind::runtime);
     }
     if (!std::isfinite(m.ms) || m.ms < 0.0) {
-      throw Error(fmt::format("cost refit: task {} on device {} measured {} ms", m.task,
-                              m.device, m.ms),
+      throw Error(fmt::format("cost refit: task {} on device {} measured {} ms", m.task, m.device, m.ms),
                   ErrorKind::runtime);
     }
     double& cost = costs.at(m.task, m.device);

@@ -30,8 +30,7 @@ struct RefitOptions {
 // Applies the measurements in order. Throws atssim::Error for a measurement
 // of a task or device outside the table, a negative or non-finite time, or
 // a device the table says cannot run the task.
-void refit_costs(CostTable& costs, std::span<const Measurement> measurements,
-                 const RefitOptions& options = {});
+void refit_costs(CostTable& costs, std::span<const Measurement> measurements, const RefitOptions& options = {});
 
 // Largest relative change |now − planned| / planned over the finite entries
 // (an entry going from 0 to non-zero counts as 1). Tables of different shape

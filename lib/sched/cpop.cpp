@@ -10,8 +10,7 @@ namespace atssim::sched {
 
 namespace {
 
-std::vector<double> cpop_priority(const CompactGraph& graph, const CostTable& costs,
-                                  const DeviceLinks& links) {
+std::vector<double> cpop_priority(const CompactGraph& graph, const CostTable& costs, const DeviceLinks& links) {
   auto priority = upward_rank(graph, costs, links);
   const auto down = downward_rank(graph, costs, links);
   for (std::size_t i = 0; i < priority.size(); ++i) priority[i] += down[i];
@@ -29,9 +28,8 @@ std::vector<TaskId> critical_path(const CompactGraph& graph, std::span<const dou
   std::vector<TaskId> path{current};
   for (;;) {
     const auto succ = graph.successors(current);
-    auto next = std::find_if(succ.begin(), succ.end(), [&](const CompactEdge& e) {
-      return std::abs(priority[e.task] - length) <= tol;
-    });
+    auto next = std::find_if(succ.begin(), succ.end(),
+                             [&](const CompactEdge& e) { return std::abs(priority[e.task] - length) <= tol; });
     if (next == succ.end()) break;
     current = next->task;
     path.push_back(current);
@@ -56,8 +54,7 @@ DeviceId critical_path_device(const CostTable& costs, std::span<const TaskId> pa
 
 }  // namespace
 
-std::vector<TaskId> cpop_critical_path(const TaskGraph& graph, const CostTable& costs,
-                                       const DeviceLinks& links) {
+std::vector<TaskId> cpop_critical_path(const TaskGraph& graph, const CostTable& costs, const DeviceLinks& links) {
   check_scheduling_inputs(graph, costs, links);
   const CompactGraph compact(graph);
   return critical_path(compact, cpop_priority(compact, costs, links));

@@ -13,8 +13,7 @@
 
 namespace atssim::sched {
 
-std::vector<TaskId> cpop_critical_path(const TaskGraph& graph, const CostTable& costs,
-                                       const DeviceLinks& links);
+std::vector<TaskId> cpop_critical_path(const TaskGraph& graph, const CostTable& costs, const DeviceLinks& links);
 
 Schedule schedule_cpop(const TaskGraph& graph, const CostTable& costs, const DeviceLinks& links,
                        const ListOptions& options = {});

@@ -46,9 +46,10 @@ std::vector<TaskId> execution_order(const Schedule& s, const TaskGraph& graph) {
     }
   }
   if (order.size() != n) {
-    throw Error("schedule: queue order contradicts the task graph (a task runs before its input "
-                "on the same device); validate() the schedule first",
-                ErrorKind::runtime);
+    throw Error(
+        "schedule: queue order contradicts the task graph (a task runs before its input "
+        "on the same device); validate() the schedule first",
+        ErrorKind::runtime);
   }
   return order;
 }
@@ -59,13 +60,11 @@ std::vector<Wait> Schedule::cross_device_waits(const TaskGraph& graph) const {
   const std::size_t n = graph.size();
   const std::size_t nd = devices.size();
   if (placement.size() != n) {
-    throw Error(fmt::format("schedule: covers {} tasks, the graph has {}", placement.size(), n),
-                ErrorKind::runtime);
+    throw Error(fmt::format("schedule: covers {} tasks, the graph has {}", placement.size(), n), ErrorKind::runtime);
   }
   for (TaskId t = 0; t < n; ++t) {
     if (placement[t].device >= nd) {
-      throw Error(fmt::format("schedule: task '{}' is not scheduled", graph.task(t).name),
-                  ErrorKind::runtime);
+      throw Error(fmt::format("schedule: task '{}' is not scheduled", graph.task(t).name), ErrorKind::runtime);
     }
   }
   // after[t * nd + d]: highest position on d known complete once t completes.
@@ -93,8 +92,7 @@ std::vector<Wait> Schedule::cross_device_waits(const TaskGraph& graph) const {
     };
     const std::vector<TaskId> candidates = inputs;
     for (TaskId u : candidates) {
-      const bool implied = std::any_of(candidates.begin(), candidates.end(),
-                                       [&](TaskId w) { return implies(w, u); });
+      const bool implied = std::any_of(candidates.begin(), candidates.end(), [&](TaskId w) { return implies(w, u); });
       if (implied) continue;
       waits.push_back({u, placement[u].device, v, pv.device});
       for (std::size_t d = 0; d < nd; ++d) known[d] = std::max(known[d], after[u * nd + d]);

@@ -23,8 +23,7 @@ struct DeviceLinks {
   // Every cross-device hop costs `delay_ms`, whatever the edge weight.
   static DeviceLinks unified_memory(std::size_t devices, double delay_ms);
   // Every cross-device hop costs latency_ms + weight · ms_per_weight.
-  static DeviceLinks weighted(std::size_t devices, double latency_ms = 0.0,
-                              double ms_per_weight = 1.0);
+  static DeviceLinks weighted(std::size_t devices, double latency_ms = 0.0, double ms_per_weight = 1.0);
 
   void set_link(DeviceId from, DeviceId to, double latency, double per_weight);
 

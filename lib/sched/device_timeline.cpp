@@ -13,8 +13,7 @@ DeviceTimeline::DeviceTimeline(double ready_ms, double shortest_task_ms)
 double DeviceTimeline::earliest_start(double ready, double duration, bool insertion) const {
   if (!insertion) return std::max(ready, gaps_.back().start);
   // First gap that ends after `ready`; earlier ones cannot hold the task.
-  auto it = std::upper_bound(gaps_.begin(), gaps_.end(), ready,
-                             [](double r, const Gap& g) { return r < g.end; });
+  auto it = std::upper_bound(gaps_.begin(), gaps_.end(), ready, [](double r, const Gap& g) { return r < g.end; });
   for (; it != gaps_.end(); ++it) {
     const double start = std::max(it->start, ready);
     if (start + duration <= it->end) return start;
@@ -24,8 +23,7 @@ double DeviceTimeline::earliest_start(double ready, double duration, bool insert
 
 void DeviceTimeline::reserve(double start, double finish) {
   // The gap holding `start`: the last one that begins at or before it.
-  auto it = std::upper_bound(gaps_.begin(), gaps_.end(), start,
-                             [](double s, const Gap& g) { return s < g.start; });
+  auto it = std::upper_bound(gaps_.begin(), gaps_.end(), start, [](double s, const Gap& g) { return s < g.start; });
   if (it == gaps_.begin() || finish > std::prev(it)->end || finish < start) {
     throw runtime_error("device timeline: reserved interval is not inside an idle gap");
   }

@@ -12,11 +12,9 @@ namespace atssim::sched {
 
 namespace {
 
-
 // Topological order of the graph plus the ordering chains; a cycle is an
 // error that names it (via TaskGraph's own cycle detection).
-std::vector<TaskId> chained_topological_order(const TaskGraph& graph,
-                                              std::span<const std::vector<TaskId>> orders) {
+std::vector<TaskId> chained_topological_order(const TaskGraph& graph, std::span<const std::vector<TaskId>> orders) {
   TaskGraph chained = graph;
   for (const auto& order : orders) {
     for (std::size_t k = 1; k < order.size(); ++k) chained.add_edge(order[k - 1], order[k], 0.0);
@@ -30,16 +28,14 @@ std::vector<TaskId> chained_topological_order(const TaskGraph& graph,
 
 }  // namespace
 
-std::vector<double> gauss_seidel_rank(const TaskGraph& graph, const CostTable& costs,
-                                      const DeviceLinks& links,
+std::vector<double> gauss_seidel_rank(const TaskGraph& graph, const CostTable& costs, const DeviceLinks& links,
                                       std::span<const std::vector<TaskId>> orders) {
   check_scheduling_inputs(graph, costs, links);
   std::vector<std::vector<TaskId>> next(graph.size());
   for (const auto& order : orders) {
     for (std::size_t k = 0; k < order.size(); ++k) {
       if (order[k] >= graph.size()) {
-        throw Error(fmt::format("Gauss-Seidel order names task {}, the graph has {} tasks",
-                                order[k], graph.size()));
+        throw Error(fmt::format("Gauss-Seidel order names task {}, the graph has {} tasks", order[k], graph.size()));
       }
       if (k > 0) next[order[k - 1]].push_back(order[k]);
     }
@@ -58,8 +54,8 @@ std::vector<double> gauss_seidel_rank(const TaskGraph& graph, const CostTable& c
   return rank;
 }
 
-std::vector<double> gauss_seidel_rank(const TaskGraph& graph, const CostTable& costs,
-                                      const DeviceLinks& links, std::span<const TaskId> order) {
+std::vector<double> gauss_seidel_rank(const TaskGraph& graph, const CostTable& costs, const DeviceLinks& links,
+                                      std::span<const TaskId> order) {
   const std::vector<std::vector<TaskId>> orders{{order.begin(), order.end()}};
   return gauss_seidel_rank(graph, costs, links, orders);
 }

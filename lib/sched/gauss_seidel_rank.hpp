@@ -21,13 +21,12 @@ namespace atssim::sched {
 
 inline constexpr double kGaussSeidelRankStep = 1e-6;  // ms; far below any measured cost
 
-std::vector<double> gauss_seidel_rank(const TaskGraph& graph, const CostTable& costs,
-                                      const DeviceLinks& links,
+std::vector<double> gauss_seidel_rank(const TaskGraph& graph, const CostTable& costs, const DeviceLinks& links,
                                       std::span<const std::vector<TaskId>> orders);
 
 // Convenience: one order.
-std::vector<double> gauss_seidel_rank(const TaskGraph& graph, const CostTable& costs,
-                                      const DeviceLinks& links, std::span<const TaskId> order);
+std::vector<double> gauss_seidel_rank(const TaskGraph& graph, const CostTable& costs, const DeviceLinks& links,
+                                      std::span<const TaskId> order);
 
 // The tasks of `kind` in Gauss-Seidel order: by iteration, then block, then id.
 std::vector<TaskId> gauss_seidel_order(const TaskGraph& graph, std::string_view kind);

@@ -16,11 +16,9 @@ Schedule schedule_heft(const TaskGraph& graph, const CostTable& costs, const Dev
   if (options.priority.empty()) {
     rank = upward_rank(compact, costs, links);
   } else if (options.priority.size() != graph.size()) {
-    throw Error(fmt::format("HEFT: {} priorities given for {} tasks", options.priority.size(),
-                            graph.size()));
+    throw Error(fmt::format("HEFT: {} priorities given for {} tasks", options.priority.size(), graph.size()));
   }
-  const std::span<const double> priority =
-      options.priority.empty() ? std::span<const double>(rank) : options.priority;
+  const std::span<const double> priority = options.priority.empty() ? std::span<const double>(rank) : options.priority;
 
   ScheduleBuilder builder(graph, compact, costs, links, options);
   ReadyList ready(compact, priority);

@@ -14,8 +14,7 @@ namespace atssim::sched {
 // cost is negative or NaN, a task can run on no device, a link or edge weight
 // is negative or not finite, or device_ready_ms is neither empty nor one
 // finite value per device.
-void check_scheduling_inputs(const TaskGraph& graph, const CostTable& costs,
-                             const DeviceLinks& links,
+void check_scheduling_inputs(const TaskGraph& graph, const CostTable& costs, const DeviceLinks& links,
                              std::span<const double> device_ready_ms = {});
 
 }  // namespace atssim::sched

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 #include "util/error.hpp"
 
@@ -21,9 +22,8 @@ double tie_rounded(double priority) { return std::round(priority * 1e9); }
 
 }  // namespace
 
-ScheduleBuilder::ScheduleBuilder(const TaskGraph& graph, const CompactGraph& compact,
-                                 const CostTable& costs, const DeviceLinks& links,
-                                 const ListOptions& options)
+ScheduleBuilder::ScheduleBuilder(const TaskGraph& graph, const CompactGraph& compact, const CostTable& costs,
+                                 const DeviceLinks& links, const ListOptions& options)
     : graph_(graph),
       compact_(compact),
       costs_(costs),
@@ -53,8 +53,7 @@ double ScheduleBuilder::data_ready(TaskId task, DeviceId device) const {
 SlotChoice ScheduleBuilder::earliest_finish(TaskId task, DeviceId device) const {
   const double cost = costs_.at(task, device);
   if (!(cost < kCannotRun)) return {device, 0.0, kCannotRun};
-  const double start =
-      timelines_[device].earliest_start(data_ready(task, device), cost, insertion_);
+  const double start = timelines_[device].earliest_start(data_ready(task, device), cost, insertion_);
   return {device, start, start + cost};
 }
 
@@ -64,8 +63,7 @@ void ScheduleBuilder::earliest_finish_all(TaskId task, std::vector<SlotChoice>& 
   for (const CompactEdge& e : compact_.predecessors(task)) {
     const DeviceId p = device_[e.task];
     for (DeviceId d = 0; d < nd; ++d) {
-      scratch_ready_[d] =
-          std::max(scratch_ready_[d], finish_[e.task] + links_.comm_ms(e.comm, p, d));
+      scratch_ready_[d] = std::max(scratch_ready_[d], finish_[e.task] + links_.comm_ms(e.comm, p, d));
     }
   }
   out.resize(nd);
@@ -82,8 +80,7 @@ void ScheduleBuilder::earliest_finish_all(TaskId task, std::vector<SlotChoice>& 
 
 void ScheduleBuilder::place(TaskId task, const SlotChoice& choice) {
   if (choice.device >= costs_.devices || !(choice.finish_ms < kCannotRun)) {
-    throw runtime_error("list scheduling: task '" + graph_.task(task).name +
-                        "' has no device to run on");
+    throw runtime_error("list scheduling: task '" + graph_.task(task).name + "' has no device to run on");
   }
   timelines_[choice.device].reserve(choice.start_ms, choice.finish_ms);
   device_[task] = choice.device;
@@ -99,17 +96,36 @@ Schedule ScheduleBuilder::finish() && {
 }
 
 ReadyList::ReadyList(const CompactGraph& graph, std::span<const double> priority)
-    : graph_(graph), rounded_(graph.size()), waiting_(graph.size()) {
+    : graph_(graph), rounded_(graph.size()) {
+  for (TaskId t = 0; t < graph.size(); ++t) rounded_[t] = tie_rounded(priority[t]);
+  sorted_.resize(graph.size());
+  std::iota(sorted_.begin(), sorted_.end(), TaskId{0});
+  std::sort(sorted_.begin(), sorted_.end(),
+            [&](TaskId a, TaskId b) { return rounded_[a] > rounded_[b] || (rounded_[a] == rounded_[b] && a < b); });
+  if (sorted_is_topological()) return;
+  sorted_.clear();
+  waiting_.resize(graph.size());
   std::vector<Entry> initial;
   for (TaskId t = 0; t < graph.size(); ++t) {
-    rounded_[t] = tie_rounded(priority[t]);
     waiting_[t] = static_cast<std::uint32_t>(graph.predecessors(t).size());
     if (waiting_[t] == 0) initial.push_back({rounded_[t], t});
   }
   heap_ = decltype(heap_)(Worse{}, std::move(initial));
 }
 
+bool ReadyList::sorted_is_topological() const {
+  std::vector<std::uint32_t> position(sorted_.size());
+  for (std::uint32_t i = 0; i < sorted_.size(); ++i) position[sorted_[i]] = i;
+  for (TaskId t = 0; t < graph_.size(); ++t) {
+    for (const CompactEdge& e : graph_.successors(t)) {
+      if (position[e.task] < position[t]) return false;
+    }
+  }
+  return true;
+}
+
 TaskId ReadyList::pop() {
+  if (!sorted_.empty()) return sorted_[next_++];
   const TaskId t = heap_.top().task;
   heap_.pop();
   for (const CompactEdge& e : graph_.successors(t)) {

@@ -48,8 +48,7 @@ std::vector<double> oct_rank(const CostTable& oct, const CostTable& costs) {
 
 }  // namespace
 
-CostTable optimistic_cost_table(const TaskGraph& graph, const CostTable& costs,
-                                const DeviceLinks& links) {
+CostTable optimistic_cost_table(const TaskGraph& graph, const CostTable& costs, const DeviceLinks& links) {
   check_scheduling_inputs(graph, costs, links);
   return build_oct(CompactGraph(graph), costs, links);
 }

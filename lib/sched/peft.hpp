@@ -14,8 +14,7 @@
 namespace atssim::sched {
 
 // The OCT as a task × device table (ms).
-CostTable optimistic_cost_table(const TaskGraph& graph, const CostTable& costs,
-                                const DeviceLinks& links);
+CostTable optimistic_cost_table(const TaskGraph& graph, const CostTable& costs, const DeviceLinks& links);
 
 Schedule schedule_peft(const TaskGraph& graph, const CostTable& costs, const DeviceLinks& links,
                        const ListOptions& options = {});

@@ -14,13 +14,9 @@ namespace {
 class Random {
  public:
   explicit Random(std::uint64_t seed) : engine_(seed) {}
-  double uniform(double lo, double hi) {
-    return lo + (hi - lo) * (static_cast<double>(engine_() >> 11) * 0x1.0p-53);
-  }
+  double uniform(double lo, double hi) { return lo + (hi - lo) * (static_cast<double>(engine_() >> 11) * 0x1.0p-53); }
   // Uniform in [0, n).
-  std::size_t below(std::size_t n) {
-    return static_cast<std::size_t>(uniform(0.0, static_cast<double>(n)));
-  }
+  std::size_t below(std::size_t n) { return static_cast<std::size_t>(uniform(0.0, static_cast<double>(n))); }
 
  private:
   std::mt19937_64 engine_;
@@ -32,8 +28,7 @@ RandomDag random_layered_dag(const RandomDagOptions& o) {
   Random rng(o.seed);
   RandomDag dag;
   const std::size_t width =
-      o.layer_width > 0 ? o.layer_width
-                        : std::max<std::size_t>(1, static_cast<std::size_t>(std::sqrt(o.tasks)));
+      o.layer_width > 0 ? o.layer_width : std::max<std::size_t>(1, static_cast<std::size_t>(std::sqrt(o.tasks)));
   std::size_t layer_begin = 0;  // first task of the current layer
   std::size_t prev_begin = 0;   // first task of the previous layer
   std::size_t layer_left = 0;

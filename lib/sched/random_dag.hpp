@@ -13,8 +13,8 @@ namespace atssim::sched {
 struct RandomDagOptions {
   std::size_t tasks = 100;
   std::size_t devices = 2;
-  std::size_t layer_width = 0;  // mean tasks per layer; 0 = about sqrt(tasks)
-  std::size_t max_inputs = 3;   // a task past the first layer reads 1..max_inputs earlier tasks
+  std::size_t layer_width = 0;     // mean tasks per layer; 0 = about sqrt(tasks)
+  std::size_t max_inputs = 3;      // a task past the first layer reads 1..max_inputs earlier tasks
   double local_input_share = 0.7;  // share of inputs taken from the previous layer
   double min_cost_ms = 1.0;
   double max_cost_ms = 10.0;

@@ -6,8 +6,7 @@ namespace atssim::sched {
 
 namespace {
 
-double mean_comm_general(TaskId from, TaskId to, double weight, const CostTable& costs,
-                         const DeviceLinks& links) {
+double mean_comm_general(TaskId from, TaskId to, double weight, const CostTable& costs, const DeviceLinks& links) {
   double sum = 0.0;
   int pairs = 0;
   for (DeviceId p = 0; p < costs.devices; ++p) {
@@ -61,13 +60,11 @@ double MeanComm::operator()(TaskId from, TaskId to, double weight) const {
   return mean_comm_general(from, to, weight, costs_, links_);
 }
 
-std::vector<double> upward_rank(const TaskGraph& graph, const CostTable& costs,
-                                const DeviceLinks& links) {
+std::vector<double> upward_rank(const TaskGraph& graph, const CostTable& costs, const DeviceLinks& links) {
   return upward_rank(CompactGraph(graph), costs, links);
 }
 
-std::vector<double> upward_rank(const CompactGraph& graph, const CostTable& costs,
-                                const DeviceLinks& links) {
+std::vector<double> upward_rank(const CompactGraph& graph, const CostTable& costs, const DeviceLinks& links) {
   const MeanComm comm(costs, links);
   const auto topo = graph.topological_order();
   std::vector<double> rank = mean_costs(costs);
@@ -81,13 +78,11 @@ std::vector<double> upward_rank(const CompactGraph& graph, const CostTable& cost
   return rank;
 }
 
-std::vector<double> downward_rank(const TaskGraph& graph, const CostTable& costs,
-                                  const DeviceLinks& links) {
+std::vector<double> downward_rank(const TaskGraph& graph, const CostTable& costs, const DeviceLinks& links) {
   return downward_rank(CompactGraph(graph), costs, links);
 }
 
-std::vector<double> downward_rank(const CompactGraph& graph, const CostTable& costs,
-                                  const DeviceLinks& links) {
+std::vector<double> downward_rank(const CompactGraph& graph, const CostTable& costs, const DeviceLinks& links) {
   const MeanComm comm(costs, links);
   const auto mean = mean_costs(costs);
   std::vector<double> rank(graph.size(), 0.0);

@@ -34,14 +34,10 @@ class MeanComm {
   double per_weight_ = 0.0;
 };
 
-std::vector<double> upward_rank(const TaskGraph& graph, const CostTable& costs,
-                                const DeviceLinks& links);
-std::vector<double> upward_rank(const CompactGraph& graph, const CostTable& costs,
-                                const DeviceLinks& links);
+std::vector<double> upward_rank(const TaskGraph& graph, const CostTable& costs, const DeviceLinks& links);
+std::vector<double> upward_rank(const CompactGraph& graph, const CostTable& costs, const DeviceLinks& links);
 
-std::vector<double> downward_rank(const TaskGraph& graph, const CostTable& costs,
-                                  const DeviceLinks& links);
-std::vector<double> downward_rank(const CompactGraph& graph, const CostTable& costs,
-                                  const DeviceLinks& links);
+std::vector<double> downward_rank(const TaskGraph& graph, const CostTable& costs, const DeviceLinks& links);
+std::vector<double> downward_rank(const CompactGraph& graph, const CostTable& costs, const DeviceLinks& links);
 
 }  // namespace atssim::sched

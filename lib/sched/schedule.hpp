@@ -63,11 +63,9 @@ struct Schedule {
   // not overlapping; each edge's consumer starts after the producer's finish
   // plus the communication delay; the makespan is the latest finish.
   // Times compare with a tolerance of 1e-9 · max(1, makespan).
-  std::vector<std::string> validate(const TaskGraph& graph, const CostTable& costs,
-                                    const DeviceLinks& links) const;
+  std::vector<std::string> validate(const TaskGraph& graph, const CostTable& costs, const DeviceLinks& links) const;
   // Throws atssim::Error (runtime) listing the problems, if any.
-  void throw_if_invalid(const TaskGraph& graph, const CostTable& costs,
-                        const DeviceLinks& links) const;
+  void throw_if_invalid(const TaskGraph& graph, const CostTable& costs, const DeviceLinks& links) const;
 };
 
 // Builds a Schedule from per-device slot lists (any order): sorts each list

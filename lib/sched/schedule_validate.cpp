@@ -23,19 +23,17 @@ const Slot* placed_slot(const Schedule& s, TaskId t) {
   return slot.task == t ? &slot : nullptr;
 }
 
-void check_shapes(const Schedule& s, const TaskGraph& graph, const CostTable& costs,
-                  const DeviceLinks& links, std::vector<std::string>& problems) {
+void check_shapes(const Schedule& s, const TaskGraph& graph, const CostTable& costs, const DeviceLinks& links,
+                  std::vector<std::string>& problems) {
   if (s.placement.size() != graph.size()) {
-    problems.push_back(fmt::format("schedule covers {} tasks, the graph has {}",
-                                   s.placement.size(), graph.size()));
+    problems.push_back(fmt::format("schedule covers {} tasks, the graph has {}", s.placement.size(), graph.size()));
   }
   if (s.devices.size() != costs.devices || s.devices.size() != links.devices) {
-    problems.push_back(fmt::format("schedule has {} devices, the cost table {}, the links {}",
-                                   s.devices.size(), costs.devices, links.devices));
+    problems.push_back(fmt::format("schedule has {} devices, the cost table {}, the links {}", s.devices.size(),
+                                   costs.devices, links.devices));
   }
   if (costs.tasks != graph.size()) {
-    problems.push_back(fmt::format("cost table has {} tasks, the graph {}", costs.tasks,
-                                   graph.size()));
+    problems.push_back(fmt::format("cost table has {} tasks, the graph {}", costs.tasks, graph.size()));
   }
 }
 
@@ -50,35 +48,33 @@ void check_slots(const Schedule& s, const TaskGraph& graph, const CostTable& cos
       const Slot& slot = slots[i];
       latest = std::max(latest, slot.finish_ms);
       if (slot.task >= graph.size()) {
-        problems.push_back(fmt::format("device {} slot {} names task {}, which does not exist", d,
-                                       i, slot.task));
+        problems.push_back(fmt::format("device {} slot {} names task {}, which does not exist", d, i, slot.task));
         continue;
       }
       ++seen[slot.task];
       const std::string& name = name_of(graph, slot.task);
       const Placement& p = slot.task < s.placement.size() ? s.placement[slot.task] : Placement{};
       if (p.device != d || p.index != i) {
-        problems.push_back(fmt::format("placement of '{}' does not point to device {} slot {}",
-                                       name, d, i));
+        problems.push_back(fmt::format("placement of '{}' does not point to device {} slot {}", name, d, i));
       }
       if (d < costs.devices && slot.task < costs.tasks) {
         const double cost = costs.at(slot.task, d);
         if (!(cost < kCannotRun)) {
           problems.push_back(fmt::format("'{}' is on device {}, which cannot run it", name, d));
         } else if (std::abs((slot.finish_ms - slot.start_ms) - cost) > tol) {
-          problems.push_back(fmt::format("'{}' on device {} runs {} ms, its cost is {} ms", name,
-                                         d, slot.finish_ms - slot.start_ms, cost));
+          problems.push_back(fmt::format("'{}' on device {} runs {} ms, its cost is {} ms", name, d,
+                                         slot.finish_ms - slot.start_ms, cost));
         }
       }
       if (slot.start_ms < ready - tol) {
-        problems.push_back(fmt::format("'{}' starts at {} ms, device {} is busy until {} ms",
-                                       name, slot.start_ms, d, ready));
+        problems.push_back(
+            fmt::format("'{}' starts at {} ms, device {} is busy until {} ms", name, slot.start_ms, d, ready));
       }
       if (i > 0 && slot.start_ms < slots[i - 1].finish_ms - tol) {
-        problems.push_back(fmt::format("'{}' on device {} starts at {} ms, before '{}' finishes "
-                                       "at {} ms",
-                                       name, d, slot.start_ms,
-                                       name_of(graph, slots[i - 1].task), slots[i - 1].finish_ms));
+        problems.push_back(
+            fmt::format("'{}' on device {} starts at {} ms, before '{}' finishes "
+                        "at {} ms",
+                        name, d, slot.start_ms, name_of(graph, slots[i - 1].task), slots[i - 1].finish_ms));
       }
     }
   }
@@ -88,8 +84,7 @@ void check_slots(const Schedule& s, const TaskGraph& graph, const CostTable& cos
     }
   }
   if (std::abs(latest - s.makespan_ms) > tol) {
-    problems.push_back(fmt::format("makespan is {} ms, the latest finish is {} ms", s.makespan_ms,
-                                   latest));
+    problems.push_back(fmt::format("makespan is {} ms, the latest finish is {} ms", s.makespan_ms, latest));
   }
 }
 
@@ -103,13 +98,12 @@ void check_edges(const Schedule& s, const TaskGraph& graph, const DeviceLinks& l
       const Slot* su = placed_slot(s, e.from);
       if (su == nullptr) continue;
       const DeviceId p = s.placement[e.from].device;
-      const double comm = (p < links.devices && q < links.devices) ? links.comm_ms(e.comm, p, q)
-                                                                   : 0.0;
+      const double comm = (p < links.devices && q < links.devices) ? links.comm_ms(e.comm, p, q) : 0.0;
       if (sv->start_ms < su->finish_ms + comm - tol) {
-        problems.push_back(fmt::format("'{}' (device {}) starts at {} ms, before its input from "
-                                       "'{}' (device {}) is ready at {} ms (finish {} + comm {})",
-                                       name_of(graph, v), q, sv->start_ms, name_of(graph, e.from),
-                                       p, su->finish_ms + comm, su->finish_ms, comm));
+        problems.push_back(fmt::format(
+            "'{}' (device {}) starts at {} ms, before its input from "
+            "'{}' (device {}) is ready at {} ms (finish {} + comm {})",
+            name_of(graph, v), q, sv->start_ms, name_of(graph, e.from), p, su->finish_ms + comm, su->finish_ms, comm));
       }
     }
   }
@@ -127,8 +121,7 @@ std::vector<std::string> Schedule::validate(const TaskGraph& graph, const CostTa
   return problems;
 }
 
-void Schedule::throw_if_invalid(const TaskGraph& graph, const CostTable& costs,
-                                const DeviceLinks& links) const {
+void Schedule::throw_if_invalid(const TaskGraph& graph, const CostTable& costs, const DeviceLinks& links) const {
   const auto problems = validate(graph, costs, links);
   if (problems.empty()) return;
   std::string message = fmt::format("invalid schedule ({} problems):", problems.size());

@@ -19,8 +19,7 @@ TaskId TaskGraph::add_task(Task task) {
 
 void TaskGraph::add_edge(TaskId from, TaskId to, double comm) {
   if (from >= size() || to >= size()) {
-    throw Error(fmt::format("task graph: edge {} -> {} names a task that does not exist ({} tasks)",
-                            from, to, size()));
+    throw Error(fmt::format("task graph: edge {} -> {} names a task that does not exist ({} tasks)", from, to, size()));
   }
   if (from == to) {
     throw Error(fmt::format("task graph: task '{}' cannot depend on itself", tasks_[from].name));

@@ -12,10 +12,10 @@
 namespace atssim::sched {
 
 struct Task {
-  std::string name;       // unique, human readable: "it2/stretch/c3"
-  std::string kind;       // "predict", "stretch", "bend", "update_velocity", …
-  int iteration = -1;     // solver iteration the task belongs to; -1 = none
-  int block = -1;         // color block within its kind; -1 = none
+  std::string name;    // unique, human readable: "it2/stretch/c3"
+  std::string kind;    // "predict", "stretch", "bend", "update_velocity", …
+  int iteration = -1;  // solver iteration the task belongs to; -1 = none
+  int block = -1;      // color block within its kind; -1 = none
 };
 
 struct Edge {

@@ -15,19 +15,16 @@ namespace {
 constexpr TaskId kUngrouped = std::numeric_limits<TaskId>::max();
 
 // group_of[t]: index of the group holding original task t, or kUngrouped.
-std::vector<TaskId> group_index(const TaskGraph& graph,
-                                std::span<const std::vector<TaskId>> groups) {
+std::vector<TaskId> group_index(const TaskGraph& graph, std::span<const std::vector<TaskId>> groups) {
   std::vector<TaskId> group_of(graph.size(), kUngrouped);
   for (TaskId g = 0; g < groups.size(); ++g) {
     if (groups[g].empty()) throw Error(fmt::format("task merging: group {} is empty", g));
     for (TaskId t : groups[g]) {
       if (t >= graph.size()) {
-        throw Error(fmt::format("task merging: group {} names task {}, the graph has {} tasks",
-                                g, t, graph.size()));
+        throw Error(fmt::format("task merging: group {} names task {}, the graph has {} tasks", g, t, graph.size()));
       }
       if (group_of[t] != kUngrouped) {
-        throw Error(fmt::format("task merging: task '{}' is in more than one group",
-                                graph.task(t).name));
+        throw Error(fmt::format("task merging: task '{}' is in more than one group", graph.task(t).name));
       }
       group_of[t] = g;
     }
@@ -51,11 +48,9 @@ Task merged_task(const TaskGraph& graph, std::span<const TaskId> members) {
 
 }  // namespace
 
-MergedGraph merge_tasks(const TaskGraph& graph, const CostTable& costs,
-                        std::span<const std::vector<TaskId>> groups) {
+MergedGraph merge_tasks(const TaskGraph& graph, const CostTable& costs, std::span<const std::vector<TaskId>> groups) {
   if (costs.tasks != graph.size()) {
-    throw Error(fmt::format("task merging: the cost table has {} tasks, the graph {}",
-                            costs.tasks, graph.size()));
+    throw Error(fmt::format("task merging: the cost table has {} tasks, the graph {}", costs.tasks, graph.size()));
   }
   const auto group_of = group_index(graph, groups);
   const auto topo = graph.topological_order();
@@ -75,8 +70,7 @@ MergedGraph merge_tasks(const TaskGraph& graph, const CostTable& costs,
     }
     if (group_task[g] == kUngrouped) {
       std::vector<TaskId> members = groups[g];
-      std::sort(members.begin(), members.end(),
-                [&](TaskId a, TaskId b) { return position[a] < position[b]; });
+      std::sort(members.begin(), members.end(), [&](TaskId a, TaskId b) { return position[a] < position[b]; });
       group_task[g] = out.graph.add_task(merged_task(graph, members));
       out.members.push_back(std::move(members));
     }
@@ -106,8 +100,7 @@ MergedGraph merge_tasks(const TaskGraph& graph, const CostTable& costs,
   return out;
 }
 
-std::vector<std::vector<TaskId>> consecutive_groups(std::span<const TaskId> sequence,
-                                                    std::size_t group_size) {
+std::vector<std::vector<TaskId>> consecutive_groups(std::span<const TaskId> sequence, std::size_t group_size) {
   if (group_size == 0) throw Error("task merging: group size must be at least 1");
   std::vector<std::vector<TaskId>> groups;
   for (std::size_t i = 0; i < sequence.size(); i += group_size) {
@@ -124,8 +117,7 @@ std::size_t profitable_merge_size(double fast_ms, double slow_ms, double switch_
   return static_cast<std::size_t>(std::max(1.0, k));
 }
 
-Schedule expand_merged_schedule(const Schedule& merged, const MergedGraph& merge,
-                                const CostTable& original_costs) {
+Schedule expand_merged_schedule(const Schedule& merged, const MergedGraph& merge, const CostTable& original_costs) {
   std::vector<std::vector<Slot>> devices(merged.devices.size());
   for (DeviceId d = 0; d < merged.devices.size(); ++d) {
     for (const Slot& slot : merged.devices[d]) {

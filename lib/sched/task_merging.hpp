@@ -34,13 +34,11 @@ struct MergedGraph {
   std::vector<std::vector<TaskId>> members;  // task in `graph` → original tasks, in run order
 };
 
-MergedGraph merge_tasks(const TaskGraph& graph, const CostTable& costs,
-                        std::span<const std::vector<TaskId>> groups);
+MergedGraph merge_tasks(const TaskGraph& graph, const CostTable& costs, std::span<const std::vector<TaskId>> groups);
 
 // Splits `sequence` into consecutive groups of `group_size` (the last may be
 // shorter): the paper's "merge every four bending blocks".
-std::vector<std::vector<TaskId>> consecutive_groups(std::span<const TaskId> sequence,
-                                                    std::size_t group_size);
+std::vector<std::vector<TaskId>> consecutive_groups(std::span<const TaskId> sequence, std::size_t group_size);
 
 // Smallest k with k·slow > switch + k·fast (a merged block of k tasks then
 // prefers the fast device); 0 when no k does (slow <= fast).
@@ -48,7 +46,6 @@ std::size_t profitable_merge_size(double fast_ms, double slow_ms, double switch_
 
 // A schedule of the merged graph as a schedule of the original tasks: each
 // merged slot is split into its members' slots, back to back, in run order.
-Schedule expand_merged_schedule(const Schedule& merged, const MergedGraph& merge,
-                                const CostTable& original_costs);
+Schedule expand_merged_schedule(const Schedule& merged, const MergedGraph& merge, const CostTable& original_costs);
 
 }  // namespace atssim::sched

@@ -21,8 +21,7 @@ struct WeightedEdge {
   double weight;
 };
 
-inline Problem make_problem(const std::vector<std::string>& names,
-                            const std::vector<std::vector<double>>& cost_rows,
+inline Problem make_problem(const std::vector<std::string>& names, const std::vector<std::vector<double>>& cost_rows,
                             const std::vector<WeightedEdge>& edges) {
   Problem p;
   for (const auto& name : names) p.graph.add_task({name, "classic", -1, -1});
@@ -34,6 +33,7 @@ inline Problem make_problem(const std::vector<std::string>& names,
 
 // Topcuoglu, Hariri & Wu 2002, Fig. 2 (10 tasks, 3 processors). Task ids
 // are the paper's n1..n10 minus one.
+// clang-format off
 inline Problem topcuoglu_2002() {
   return make_problem({"n1", "n2", "n3", "n4", "n5", "n6", "n7", "n8", "n9", "n10"},
                       {{14, 16, 9},
@@ -69,5 +69,7 @@ inline Problem arabnejad_2014() {
                        {1, 7, 3}, {1, 8, 30}, {2, 6, 16}, {3, 7, 11}, {3, 8, 7},
                        {4, 8, 57}, {5, 7, 5}, {6, 9, 9}, {7, 9, 42}, {8, 9, 7}});
 }
+
+// clang-format on
 
 }  // namespace atssim::sched::test

@@ -1,6 +1,6 @@
 // The minimal set of cross-device waits for in-order queues.
-#include <catch2/catch.hpp>
 #include <fmt/format.h>
+#include <catch2/catch.hpp>
 
 #include "sched/schedule.hpp"
 
@@ -78,6 +78,5 @@ TEST_CASE("Each device's queue waits for the other when data goes both ways", "[
   g.add_edge(1, 2);
   g.add_edge(2, 3);
   const Schedule s = assemble_schedule(4, {{{0, 0, 1}, {2, 2, 3}}, {{1, 1, 2}, {3, 3, 4}}});
-  CHECK(s.cross_device_waits(g) ==
-        std::vector<Wait>{{1, 1, 2, 0}, {0, 0, 1, 1}, {2, 0, 3, 1}});
+  CHECK(s.cross_device_waits(g) == std::vector<Wait>{{1, 1, 2, 0}, {0, 0, 1, 1}, {2, 0, 3, 1}});
 }

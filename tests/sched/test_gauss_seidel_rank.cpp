@@ -1,6 +1,6 @@
 // Gauss-Seidel rank_u (paper §4.1.2, Fig. 9).
-#include <catch2/catch.hpp>
 #include <fmt/format.h>
+#include <catch2/catch.hpp>
 
 #include "sched/gauss_seidel_rank.hpp"
 #include "sched/heft.hpp"
@@ -56,8 +56,7 @@ TEST_CASE("gauss_seidel_order sorts a kind's tasks by iteration, then block", "[
   for (std::size_t i = 0; i < 20; ++i) CHECK(g.gs_order[i] == i);
 }
 
-TEST_CASE("Plain rank_u lets a later iteration overtake the Gauss-Seidel order",
-          "[gauss_seidel]") {
+TEST_CASE("Plain rank_u lets a later iteration overtake the Gauss-Seidel order", "[gauss_seidel]") {
   const Grid g = grid();
   const Schedule s = schedule_heft(g.graph, g.costs, g.links);
   const auto at = taken_at(s);
@@ -68,8 +67,7 @@ TEST_CASE("Plain rank_u lets a later iteration overtake the Gauss-Seidel order",
   CHECK(out_of_order);
 }
 
-TEST_CASE("Gauss-Seidel ranks strictly decrease along the order and along every edge",
-          "[gauss_seidel]") {
+TEST_CASE("Gauss-Seidel ranks strictly decrease along the order and along every edge", "[gauss_seidel]") {
   const Grid g = grid();
   const auto rank = gauss_seidel_rank(g.graph, g.costs, g.links, g.gs_order);
   for (std::size_t i = 1; i < g.gs_order.size(); ++i) {
@@ -80,8 +78,7 @@ TEST_CASE("Gauss-Seidel ranks strictly decrease along the order and along every 
   }
 }
 
-TEST_CASE("Gauss-Seidel rank keeps the order of a 4-iteration × 5-block chain on two devices",
-          "[gauss_seidel]") {
+TEST_CASE("Gauss-Seidel rank keeps the order of a 4-iteration × 5-block chain on two devices", "[gauss_seidel]") {
   const Grid g = grid();
   HeftOptions options;
   options.priority = gauss_seidel_rank(g.graph, g.costs, g.links, g.gs_order);
@@ -96,8 +93,7 @@ TEST_CASE("Gauss-Seidel rank keeps the order of a 4-iteration × 5-block chain o
   CHECK_FALSE(s.devices[1].empty());
 }
 
-TEST_CASE("A Gauss-Seidel order that contradicts the graph is an error naming the cycle",
-          "[gauss_seidel]") {
+TEST_CASE("A Gauss-Seidel order that contradicts the graph is an error naming the cycle", "[gauss_seidel]") {
   const Grid g = grid();
   std::vector<TaskId> backwards(g.gs_order.rbegin(), g.gs_order.rend());
   CHECK_THROWS_WITH(gauss_seidel_rank(g.graph, g.costs, g.links, backwards),

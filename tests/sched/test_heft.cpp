@@ -11,9 +11,11 @@ using atssim::sched::test::topcuoglu_2002;
 TEST_CASE("rank_u of the Topcuoglu 2002 graph matches the published values", "[heft]") {
   const auto p = topcuoglu_2002();
   const auto rank = upward_rank(p.graph, p.costs, p.links);
+  // clang-format off
   const auto [task, expected] = GENERATE(table<TaskId, double>({
       {0, 108.0}, {1, 77.0}, {2, 80.0}, {3, 80.0}, {4, 69.0},
       {5, 63.333}, {6, 42.667}, {7, 35.667}, {8, 44.333}, {9, 14.667}}));
+  // clang-format on
   CAPTURE(p.graph.task(task).name);
   CHECK(rank[task] == Approx(expected).margin(1e-3));
 }
@@ -25,22 +27,22 @@ TEST_CASE("HEFT reproduces the Topcuoglu 2002 makespan of 80", "[heft]") {
   CHECK(s.validate(p.graph, p.costs, p.links).empty());
 }
 
-TEST_CASE("HEFT places every Topcuoglu 2002 task on the published processor and times",
-          "[heft]") {
+TEST_CASE("HEFT places every Topcuoglu 2002 task on the published processor and times", "[heft]") {
   const auto p = topcuoglu_2002();
   const Schedule s = schedule_heft(p.graph, p.costs, p.links);
   // (task, processor P1..P3 as 0..2, start, finish) from the paper's Fig. 4(a).
+  // clang-format off
   const auto [task, device, start, finish] = GENERATE(table<TaskId, DeviceId, double, double>({
       {0, 2, 0, 9}, {2, 2, 9, 28}, {3, 1, 18, 26}, {1, 0, 27, 40}, {4, 2, 28, 38},
       {5, 1, 26, 42}, {6, 2, 38, 49}, {8, 1, 56, 68}, {7, 0, 57, 62}, {9, 1, 73, 80}}));
+  // clang-format on
   CAPTURE(p.graph.task(task).name);
   CHECK(s.device_of(task) == device);
   CHECK(s.slot(task).start_ms == start);
   CHECK(s.slot(task).finish_ms == finish);
 }
 
-TEST_CASE("HEFT takes the Topcuoglu 2002 tasks in decreasing rank_u, equal ranks in id order",
-          "[heft]") {
+TEST_CASE("HEFT takes the Topcuoglu 2002 tasks in decreasing rank_u, equal ranks in id order", "[heft]") {
   const auto p = topcuoglu_2002();
   const Schedule s = schedule_heft(p.graph, p.costs, p.links);
   // n3 and n4 share rank 80: the lower id goes first.
@@ -65,10 +67,10 @@ TEST_CASE("An extra device that can run nothing stays empty and changes nothing"
   }
 }
 
-TEST_CASE("Ranking every edge at 1, like the paper's public code, loses the classic 80",
-          "[heft]") {
+TEST_CASE("Ranking every edge at 1, like the paper's public code, gives 91 instead of 80", "[heft]") {
   // libAtsSim ranks with a constant edge cost of 1 but still pays the real
   // weights when placing; the published 80 needs the real weights in rank_u.
+  // (The notes report 91 for libAtsSim on this graph; so do we.)
   const auto p = topcuoglu_2002();
   TaskGraph unit;
   for (const auto& t : p.graph.tasks()) unit.add_task(t);
@@ -79,7 +81,7 @@ TEST_CASE("Ranking every edge at 1, like the paper's public code, loses the clas
   options.priority = upward_rank(unit, p.costs, p.links);
   const Schedule s = schedule_heft(p.graph, p.costs, p.links, options);
   CHECK(s.validate(p.graph, p.costs, p.links).empty());
-  CHECK(s.makespan_ms > 80.0);
+  CHECK(s.makespan_ms == 91.0);
 }
 
 TEST_CASE("Without insertion a task never goes before a task already on its device", "[heft]") {
@@ -100,8 +102,7 @@ TEST_CASE("Without insertion a task never goes before a task already on its devi
 TEST_CASE("HEFT rejects a cost table that does not match the graph", "[heft]") {
   const auto p = topcuoglu_2002();
   CostTable short_table(p.graph.size() - 1, 3, 1.0);
-  CHECK_THROWS_WITH(schedule_heft(p.graph, short_table, p.links),
-                    Catch::Contains("cost table has 9 tasks"));
+  CHECK_THROWS_WITH(schedule_heft(p.graph, short_table, p.links), Catch::Contains("cost table has 9 tasks"));
 }
 
 TEST_CASE("HEFT rejects a task that no device can run, naming it", "[heft]") {

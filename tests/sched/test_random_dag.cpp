@@ -16,8 +16,7 @@ TEST_CASE("A random DAG is the same for the same seed and differs for another", 
   CHECK(a.costs.ms != c.costs.ms);
 }
 
-TEST_CASE("A random DAG has the asked size, no cycle, and every task can run somewhere",
-          "[random_dag]") {
+TEST_CASE("A random DAG has the asked size, no cycle, and every task can run somewhere", "[random_dag]") {
   RandomDagOptions o;
   o.tasks = GENERATE(1u, 2u, 37u, 300u);
   o.devices = GENERATE(1u, 3u);

@@ -1,7 +1,7 @@
 // Property tests over seeded random DAGs, and HEFT / CPOP / PEFT against the
 // exhaustive optimum on tiny ones.
-#include <catch2/catch.hpp>
 #include <fmt/format.h>
+#include <catch2/catch.hpp>
 
 #include <cstdio>
 
@@ -44,10 +44,14 @@ Case random_case(std::uint64_t seed, std::size_t min_tasks, std::size_t max_task
   o.cannot_run_probability = next(3) == 0 ? 0.25 : 0.0;
   Case c{random_layered_dag(o), DeviceLinks::weighted(o.devices), {}};
   switch (next(4)) {
-    case 0: c.links = DeviceLinks::unified_memory(o.devices, 0.2 * static_cast<double>(next(10)));
+    case 0:
+      c.links = DeviceLinks::unified_memory(o.devices, 0.2 * static_cast<double>(next(10)));
       break;
-    case 1: c.links = DeviceLinks::weighted(o.devices, 0.5, 0.5); break;
-    default: break;
+    case 1:
+      c.links = DeviceLinks::weighted(o.devices, 0.5, 0.5);
+      break;
+    default:
+      break;
   }
   if (next(4) == 0) {
     for (std::size_t d = 0; d < o.devices; ++d) c.ready.push_back(static_cast<double>(next(10)));
@@ -64,8 +68,10 @@ Schedule run(int algorithm, const Case& c) {
       h.device_ready_ms = c.ready;
       return schedule_heft(c.dag.graph, c.dag.costs, c.links, h);
     }
-    case 1: return schedule_cpop(c.dag.graph, c.dag.costs, c.links, list);
-    default: return schedule_peft(c.dag.graph, c.dag.costs, c.links, list);
+    case 1:
+      return schedule_cpop(c.dag.graph, c.dag.costs, c.links, list);
+    default:
+      return schedule_peft(c.dag.graph, c.dag.costs, c.links, list);
   }
 }
 
@@ -73,22 +79,21 @@ constexpr const char* kNames[] = {"HEFT", "CPOP", "PEFT"};
 
 }  // namespace
 
-TEST_CASE("HEFT, CPOP and PEFT schedules of 1,000 random DAGs validate and respect the lower "
-          "bounds",
-          "[random]") {
+TEST_CASE(
+    "HEFT, CPOP and PEFT schedules of 1,000 random DAGs validate and respect the lower "
+    "bounds",
+    "[random]") {
   for (std::uint64_t seed = 1; seed <= 1000; ++seed) {
     const Case c = random_case(seed, 2, 200);
-    const double ready_min =
-        c.ready.empty() ? 0.0 : *std::min_element(c.ready.begin(), c.ready.end());
+    const double ready_min = c.ready.empty() ? 0.0 : *std::min_element(c.ready.begin(), c.ready.end());
     const double bound = makespan_lower_bound(c.dag.graph, c.dag.costs);
     for (int a = 0; a < 3; ++a) {
       const Schedule s = run(a, c);
       const auto problems = s.validate(c.dag.graph, c.dag.costs, c.links);
       if (!problems.empty() || s.makespan_ms < bound + ready_min - 1e-9) {
-        FAIL(fmt::format("{} on seed {} ({} tasks, {} devices): {} ; makespan {} < bound {}",
-                         kNames[a], seed, c.dag.graph.size(), c.dag.costs.devices,
-                         problems.empty() ? "valid" : problems.front(), s.makespan_ms,
-                         bound + ready_min));
+        FAIL(fmt::format("{} on seed {} ({} tasks, {} devices): {} ; makespan {} < bound {}", kNames[a], seed,
+                         c.dag.graph.size(), c.dag.costs.devices, problems.empty() ? "valid" : problems.front(),
+                         s.makespan_ms, bound + ready_min));
       }
       // Waits can be derived for every valid schedule.
       const auto waits = s.cross_device_waits(c.dag.graph);
@@ -100,8 +105,7 @@ TEST_CASE("HEFT, CPOP and PEFT schedules of 1,000 random DAGs validate and respe
   SUCCEED();
 }
 
-TEST_CASE("On 1,000 random DAGs of at most 8 tasks no heuristic beats the exhaustive optimum",
-          "[random][exhaustive]") {
+TEST_CASE("On 1,000 random DAGs of at most 8 tasks no heuristic beats the exhaustive optimum", "[random][exhaustive]") {
   int reached[3] = {0, 0, 0};
   double ratio_sum[3] = {0, 0, 0};
   const int cases = 1000;
@@ -110,22 +114,21 @@ TEST_CASE("On 1,000 random DAGs of at most 8 tasks no heuristic beats the exhaus
     double makespan[3];
     for (int a = 0; a < 3; ++a) makespan[a] = run(a, c).makespan_ms;
     const double best_heuristic = *std::min_element(makespan, makespan + 3);
-    const double optimum =
-        test::optimal_makespan(c.dag.graph, c.dag.costs, c.links, c.ready, best_heuristic);
+    const double optimum = test::optimal_makespan(c.dag.graph, c.dag.costs, c.links, c.ready, best_heuristic);
     const double tol = 1e-9 * std::max(1.0, optimum);
     for (int a = 0; a < 3; ++a) {
       if (makespan[a] < optimum - tol) {
-        FAIL(fmt::format("{} on seed {} has makespan {} below the optimum {}", kNames[a], seed,
-                         makespan[a], optimum));
+        FAIL(fmt::format("{} on seed {} has makespan {} below the optimum {}", kNames[a], seed, makespan[a], optimum));
       }
       reached[a] += makespan[a] <= optimum + tol;
       ratio_sum[a] += makespan[a] / optimum;
     }
   }
   for (int a = 0; a < 3; ++a) {
-    std::printf("%s reached the exhaustive optimum on %d of %d DAGs (<= 8 tasks); mean "
-                "makespan / optimum %.4f\n",
-                kNames[a], reached[a], cases, ratio_sum[a] / cases);
+    std::printf(
+        "%s reached the exhaustive optimum on %d of %d DAGs (<= 8 tasks); mean "
+        "makespan / optimum %.4f\n",
+        kNames[a], reached[a], cases, ratio_sum[a] / cases);
   }
   CHECK(reached[0] > 0);
 }
@@ -150,9 +153,9 @@ namespace {
 
 // Plain enumeration: every order of appending ready tasks to every device,
 // no start-order restriction, no bound. Slow; a check on the search above.
-double brute_force(const TaskGraph& g, const CostTable& costs, const DeviceLinks& links,
-                   std::uint32_t placed, std::vector<double>& free, std::vector<double>& finish,
-                   std::vector<DeviceId>& device, double makespan) {
+double brute_force(const TaskGraph& g, const CostTable& costs, const DeviceLinks& links, std::uint32_t placed,
+                   std::vector<double>& free, std::vector<double>& finish, std::vector<DeviceId>& device,
+                   double makespan) {
   const std::size_t n = g.size();
   if (placed == (1u << n) - 1) return makespan;
   double best = kCannotRun;
@@ -170,8 +173,8 @@ double brute_force(const TaskGraph& g, const CostTable& costs, const DeviceLinks
       const double saved = free[d];
       free[d] = finish[t] = start + costs.at(t, d);
       device[t] = d;
-      best = std::min(best, brute_force(g, costs, links, placed | 1u << t, free, finish, device,
-                                        std::max(makespan, finish[t])));
+      best = std::min(
+          best, brute_force(g, costs, links, placed | 1u << t, free, finish, device, std::max(makespan, finish[t])));
       free[d] = saved;
     }
   }
@@ -180,16 +183,14 @@ double brute_force(const TaskGraph& g, const CostTable& costs, const DeviceLinks
 
 }  // namespace
 
-TEST_CASE("The exhaustive search agrees with plain enumeration on 200 DAGs of at most 5 tasks",
-          "[exhaustive]") {
+TEST_CASE("The exhaustive search agrees with plain enumeration on 200 DAGs of at most 5 tasks", "[exhaustive]") {
   for (std::uint64_t seed = 1; seed <= 200; ++seed) {
     const Case c = random_case(seed + 200000, 2, 5);
     std::vector<double> free = c.ready;
     if (free.empty()) free.assign(c.dag.costs.devices, 0.0);
     std::vector<double> finish(c.dag.graph.size());
     std::vector<DeviceId> device(c.dag.graph.size());
-    const double plain =
-        brute_force(c.dag.graph, c.dag.costs, c.links, 0, free, finish, device, 0.0);
+    const double plain = brute_force(c.dag.graph, c.dag.costs, c.links, 0, free, finish, device, 0.0);
     const double heft = run(0, c).makespan_ms;
     const double searched = test::optimal_makespan(c.dag.graph, c.dag.costs, c.links, c.ready, heft);
     CAPTURE(seed);

@@ -41,7 +41,7 @@ TEST_CASE("Cost drift is the largest relative change of any entry", "[refit]") {
   const CostTable planned = CostTable::from_rows({{10, 4}, {2, kCannotRun}});
   CostTable now = planned;
   CHECK(cost_drift(planned, now) == 0.0);
-  now.at(0, 1) = 5;  // +25 %
+  now.at(0, 1) = 5;    // +25 %
   now.at(1, 0) = 2.2;  // +10 %
   CHECK(cost_drift(planned, now) == Approx(0.25));
   now.at(1, 1) = 1;  // an inf entry became finite: the problem changed
@@ -77,8 +77,7 @@ TEST_CASE("A device busy until t0 gets no slot before t0", "[rescheduling]") {
   CHECK(s.device_of(0) != 2);
 }
 
-TEST_CASE("Re-scheduling with refitted costs moves work off a device measured slow",
-          "[rescheduling]") {
+TEST_CASE("Re-scheduling with refitted costs moves work off a device measured slow", "[rescheduling]") {
   const auto p = topcuoglu_2002();
   const Schedule before = schedule_heft(p.graph, p.costs, p.links);
   // Every task ran three times slower than predicted on P3.

@@ -1,5 +1,5 @@
-#include <catch2/catch.hpp>
 #include <fmt/format.h>
+#include <catch2/catch.hpp>
 
 #include "sched/task_graph.hpp"
 #include "util/error.hpp"
@@ -28,9 +28,8 @@ TEST_CASE("A cycle is an error that names the tasks on it", "[task_graph]") {
   g.add_edge(c, b);
   g.add_edge(c, d);
   CHECK_THROWS_AS(g.topological_order(), atssim::Error);
-  CHECK_THROWS_WITH(g.topological_order(),
-                    Catch::Contains("it1/stretch/c0 -> it1/bend/c0 -> it1/stretch/c0") ||
-                        Catch::Contains("it1/bend/c0 -> it1/stretch/c0 -> it1/bend/c0"));
+  CHECK_THROWS_WITH(g.topological_order(), Catch::Contains("it1/stretch/c0 -> it1/bend/c0 -> it1/stretch/c0") ||
+                                               Catch::Contains("it1/bend/c0 -> it1/stretch/c0 -> it1/bend/c0"));
   CHECK_THROWS_WITH(g.topological_order(), !Catch::Contains("predict"));
 }
 

@@ -1,6 +1,6 @@
 // Task merging (paper §4.1.1, Fig. 3).
-#include <catch2/catch.hpp>
 #include <fmt/format.h>
+#include <catch2/catch.hpp>
 
 #include "sched/heft.hpp"
 #include "sched/task_merging.hpp"
@@ -43,8 +43,8 @@ BendingChain bending_chain(double t1, double t2, double tc) {
 }  // namespace
 
 TEST_CASE("Fig. 3: merging bending blocks by 4 gives tc + 8·t1 instead of 8·t2", "[merging]") {
-  const auto [t1, t2, tc] = GENERATE(table<double, double, double>({
-      {1.0, 1.5, 1.0}, {2.0, 2.5, 1.5}, {0.5, 0.8, 0.9}, {0.25, 0.3, 0.15}}));
+  const auto [t1, t2, tc] =
+      GENERATE(table<double, double, double>({{1.0, 1.5, 1.0}, {2.0, 2.5, 1.5}, {0.5, 0.8, 0.9}, {0.25, 0.3, 0.15}}));
   // The paper's conditions: the CPU keeps a lone block, a block of 4 moves.
   REQUIRE(t1 < t2);
   REQUIRE(t2 < tc + t1);
@@ -73,8 +73,8 @@ TEST_CASE("A merged schedule expands to a valid schedule of the original blocks"
 }
 
 TEST_CASE("The smallest profitable merge is the first k with k·t2 > tc + k·t1", "[merging]") {
-  const auto [t1, t2, tc, k] = GENERATE(table<double, double, double, std::size_t>({
-      {1.0, 1.5, 1.0, 3}, {1.0, 1.5, 1.5, 4}, {1.0, 3.0, 1.0, 1}, {2.0, 1.0, 1.0, 0}}));
+  const auto [t1, t2, tc, k] = GENERATE(table<double, double, double, std::size_t>(
+      {{1.0, 1.5, 1.0, 3}, {1.0, 1.5, 1.5, 4}, {1.0, 3.0, 1.0, 1}, {2.0, 1.0, 1.0, 0}}));
   CHECK(profitable_merge_size(t1, t2, tc) == k);
 }
 
@@ -103,17 +103,15 @@ TEST_CASE("A merged task costs the sum of its members and keeps outside edges", 
   CHECK(m.graph.successors(bc)[0].comm == 4.0);
 }
 
-TEST_CASE("Merging tasks linked through an outside task is an error naming the cycle",
-          "[merging]") {
+TEST_CASE("Merging tasks linked through an outside task is an error naming the cycle", "[merging]") {
   TaskGraph g;
   for (const char* n : {"a", "b", "c"}) g.add_task({n, "k", -1, -1});
   g.add_edge(0, 1);
   g.add_edge(1, 2);
   const CostTable costs(3, 2, 1.0);
   const std::vector<std::vector<TaskId>> groups{{0, 2}};
-  CHECK_THROWS_WITH(merge_tasks(g, costs, groups), Catch::Contains("cycle") &&
-                                                       Catch::Contains("a+c") &&
-                                                       Catch::Contains("b"));
+  CHECK_THROWS_WITH(merge_tasks(g, costs, groups),
+                    Catch::Contains("cycle") && Catch::Contains("a+c") && Catch::Contains("b"));
 }
 
 TEST_CASE("A task in two merge groups is an error", "[merging]") {
