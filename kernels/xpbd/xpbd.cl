@@ -11,9 +11,10 @@ static inline ats_vec3 xyz(float4 p) { return ats_v3(p.x, p.y, p.z); }
 static inline float4 add_xyz(float4 p, ats_vec3 d) { return (float4)(p.x + d.x, p.y + d.y, p.z + d.z, p.w); }
 
 __kernel void xpbd_predict(__global float4* x, __global float4* v, __global float4* x_prev, float dt,
-                           float gx, float gy, float gz, int n) {
-  const int i = get_global_id(0);
-  if (i >= n) return;
+                           float gx, float gy, float gz, int first, int count) {
+  const int k = get_global_id(0);
+  if (k >= count) return;
+  const int i = first + k;
   const float4 p = x[i];
   x_prev[i] = p;
   if (p.w == 0.0f) {
@@ -64,9 +65,10 @@ __kernel void xpbd_bend(__global float4* x, __global const ats_bend_c* c, __glob
 }
 
 __kernel void xpbd_update_velocity(__global const float4* x, __global float4* v, __global const float4* x_prev,
-                                   float inv_dt, int n) {
-  const int i = get_global_id(0);
-  if (i >= n) return;
+                                   float inv_dt, int first, int count) {
+  const int k = get_global_id(0);
+  if (k >= count) return;
+  const int i = first + k;
   const float4 d = x[i] - x_prev[i];
   v[i] = (float4)(d.x * inv_dt, d.y * inv_dt, d.z * inv_dt, 0.0f);
 }

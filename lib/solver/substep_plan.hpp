@@ -34,6 +34,10 @@ struct KernelLaunch {
   std::string kernel;              // kernel name in the plan's program
   std::size_t global_size = 0;     // work-items; 0 = nothing to do
   std::vector<KernelArg> args;
+  // When ≥ 0, args[range_arg] and args[range_arg + 1] are the (first, count)
+  // of independent elements the launch covers (count == global_size), so it
+  // may be cut into sub-ranges that run on different devices.
+  int range_arg = -1;
 };
 
 struct SubstepPlan {

@@ -31,7 +31,8 @@ sched::TaskId add_blocks(SubstepPlan& plan, sched::TaskId last, const std::vecto
     const int count = blocks[b + 1] - blocks[b];
     KernelLaunch launch{kernel, static_cast<std::size_t>(count),
                         {Arg::of_buffer(x), Arg::of_buffer(elements), Arg::of_buffer(lambda), Arg::of_int(first),
-                         Arg::of_int(count), Arg::of_float(dt), Arg::of_int(iteration == 0 ? 1 : 0)}};
+                         Arg::of_int(count), Arg::of_float(dt), Arg::of_int(iteration == 0 ? 1 : 0)},
+                        3};
     const sched::TaskId id =
         plan.add_task({fmt::format("it{}/{}/c{}", iteration + 1, kind, b), kind, iteration, b}, {launch});
     plan.graph.add_edge(last, id);
@@ -68,7 +69,8 @@ SubstepPlan make_xpbd_plan(const XpbdLayout& layout, const XpbdSettings& setting
       {{"xpbd_predict", global,
         {Arg::of_buffer(b.x), Arg::of_buffer(b.v), Arg::of_buffer(b.x_prev), Arg::of_float(dt),
          Arg::of_float(layout.gravity.x), Arg::of_float(layout.gravity.y), Arg::of_float(layout.gravity.z),
-         Arg::of_int(n)}}});
+         Arg::of_int(0), Arg::of_int(n)},
+        8}});
   for (int it = 0; it < settings.iterations; ++it) {
     if (b.stretch >= 0) {
       last = add_blocks(plan, last, layout.stretch_blocks, "stretch", "xpbd_stretch", b.x, b.stretch,
@@ -82,7 +84,8 @@ SubstepPlan make_xpbd_plan(const XpbdLayout& layout, const XpbdSettings& setting
       {"update_velocity", "update_velocity", -1, -1},
       {{"xpbd_update_velocity", global,
         {Arg::of_buffer(b.x), Arg::of_buffer(b.v), Arg::of_buffer(b.x_prev), Arg::of_float(1.0f / dt),
-         Arg::of_int(n)}}});
+         Arg::of_int(0), Arg::of_int(n)},
+        4}});
   plan.graph.add_edge(last, update);
   if (ids != nullptr) *ids = b;
   return plan;

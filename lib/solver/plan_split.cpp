@@ -1,0 +1,90 @@
+#include "solver/plan_split.hpp"
+
+#include <cmath>
+#include <numeric>
+
+#include <fmt/format.h>
+
+#include "util/error.hpp"
+
+namespace atssim::solver {
+
+namespace {
+
+// Element ranges [begin, end) of each part of `count` elements.
+std::vector<std::pair<std::int32_t, std::int32_t>> part_ranges(std::int32_t count, std::span<const double> fractions,
+                                                               std::size_t granule) {
+  std::vector<std::pair<std::int32_t, std::int32_t>> ranges;
+  double cumulative = 0.0;
+  std::int32_t begin = 0;
+  for (std::size_t p = 0; p < fractions.size(); ++p) {
+    cumulative += fractions[p];
+    std::int32_t end = count;
+    if (p + 1 < fractions.size()) {
+      const double exact = cumulative * count;
+      const auto g = static_cast<double>(granule);
+      end = static_cast<std::int32_t>(std::min<double>(count, std::round(exact / g) * g));
+      end = std::max(end, begin);
+    }
+    ranges.emplace_back(begin, end);
+    begin = end;
+  }
+  return ranges;
+}
+
+}  // namespace
+
+int part_of(const sched::Task& task) {
+  const auto hash = task.name.rfind('#');
+  if (hash == std::string::npos) return -1;
+  return std::atoi(task.name.c_str() + hash + 1);
+}
+
+SubstepPlan split_plan(const SubstepPlan& plan, std::span<const double> fractions, std::size_t granule) {
+  const double total = std::accumulate(fractions.begin(), fractions.end(), 0.0);
+  if (fractions.empty() || std::abs(total - 1.0) > 1e-9) {
+    throw Error(fmt::format("split_plan: {} fractions summing to {} (must sum to 1)", fractions.size(), total));
+  }
+  SubstepPlan out;
+  out.program = plan.program;
+  out.buffers = plan.buffers;
+  out.positions = plan.positions;
+  out.particle_count = plan.particle_count;
+
+  // parts[t]: the new task ids that together perform old task t.
+  std::vector<std::vector<sched::TaskId>> parts(plan.graph.size());
+  for (sched::TaskId t : plan.graph.topological_order()) {
+    const sched::Task& task = plan.graph.task(t);
+    const auto& launches = plan.launches[t];
+    const bool splittable = fractions.size() > 1 && launches.size() == 1 && launches[0].range_arg >= 0;
+    if (!splittable) {
+      parts[t].push_back(out.add_task(task, launches));
+    } else {
+      const KernelLaunch& whole = launches[0];
+      const std::int32_t first = whole.args.at(whole.range_arg).i32;
+      const std::int32_t count = whole.args.at(whole.range_arg + 1).i32;
+      const auto ranges = part_ranges(count, fractions, granule);
+      for (std::size_t p = 0; p < ranges.size(); ++p) {
+        const auto [b, e] = ranges[p];
+        if (e <= b) continue;
+        KernelLaunch piece = whole;
+        piece.args[whole.range_arg] = KernelArg::of_int(first + b);
+        piece.args[whole.range_arg + 1] = KernelArg::of_int(e - b);
+        piece.global_size = static_cast<std::size_t>(e - b);
+        sched::Task named = task;
+        named.name = fmt::format("{}#{}", task.name, p);
+        parts[t].push_back(out.add_task(std::move(named), {std::move(piece)}));
+      }
+      // Nothing to cut (no elements): keep the task so the dependency chain holds.
+      if (parts[t].empty()) parts[t].push_back(out.add_task(task, launches));
+    }
+    for (const sched::Edge& edge : plan.graph.predecessors(t)) {
+      for (sched::TaskId from : parts[edge.from]) {
+        for (sched::TaskId to : parts[t]) out.graph.add_edge(from, to, edge.comm);
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace atssim::solver
