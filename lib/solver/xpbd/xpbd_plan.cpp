@@ -70,7 +70,7 @@ SubstepPlan make_xpbd_plan(const XpbdLayout& layout, const XpbdSettings& setting
         {Arg::of_buffer(b.x), Arg::of_buffer(b.v), Arg::of_buffer(b.x_prev), Arg::of_float(dt),
          Arg::of_float(layout.gravity.x), Arg::of_float(layout.gravity.y), Arg::of_float(layout.gravity.z),
          Arg::of_int(0), Arg::of_int(n)},
-        8}});
+        7}});
   for (int it = 0; it < settings.iterations; ++it) {
     if (b.stretch >= 0) {
       last = add_blocks(plan, last, layout.stretch_blocks, "stretch", "xpbd_stretch", b.x, b.stretch,
