@@ -98,12 +98,12 @@ Schedule ScheduleBuilder::finish() && {
 ReadyList::ReadyList(const CompactGraph& graph, std::span<const double> priority)
     : graph_(graph), rounded_(graph.size()) {
   for (TaskId t = 0; t < graph.size(); ++t) rounded_[t] = tie_rounded(priority[t]);
-  sorted_.resize(graph.size());
-  std::iota(sorted_.begin(), sorted_.end(), TaskId{0});
-  std::sort(sorted_.begin(), sorted_.end(),
-            [&](TaskId a, TaskId b) { return rounded_[a] > rounded_[b] || (rounded_[a] == rounded_[b] && a < b); });
-  if (sorted_is_topological()) return;
-  sorted_.clear();
+  if (sorted_is_topological()) {
+    sorted_.resize(graph.size());
+    std::iota(sorted_.begin(), sorted_.end(), TaskId{0});
+    std::sort(sorted_.begin(), sorted_.end(), [&](TaskId a, TaskId b) { return before(a, b); });
+    return;
+  }
   waiting_.resize(graph.size());
   std::vector<Entry> initial;
   for (TaskId t = 0; t < graph.size(); ++t) {
@@ -113,12 +113,12 @@ ReadyList::ReadyList(const CompactGraph& graph, std::span<const double> priority
   heap_ = decltype(heap_)(Worse{}, std::move(initial));
 }
 
+// The sorted list is a topological order iff every edge goes from a task
+// that sorts earlier to one that sorts later.
 bool ReadyList::sorted_is_topological() const {
-  std::vector<std::uint32_t> position(sorted_.size());
-  for (std::uint32_t i = 0; i < sorted_.size(); ++i) position[sorted_[i]] = i;
   for (TaskId t = 0; t < graph_.size(); ++t) {
     for (const CompactEdge& e : graph_.successors(t)) {
-      if (position[e.task] < position[t]) return false;
+      if (!before(t, e.task)) return false;
     }
   }
   return true;
