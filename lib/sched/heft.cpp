@@ -1,5 +1,7 @@
 #include "sched/heft.hpp"
 
+#include <cmath>
+
 #include <fmt/format.h>
 
 #include "sched/input_checks.hpp"
@@ -17,6 +19,13 @@ Schedule schedule_heft(const TaskGraph& graph, const CostTable& costs, const Dev
     rank = upward_rank(compact, costs, links);
   } else if (options.priority.size() != graph.size()) {
     throw Error(fmt::format("HEFT: {} priorities given for {} tasks", options.priority.size(), graph.size()));
+  } else {
+    for (TaskId t = 0; t < graph.size(); ++t) {
+      if (!std::isfinite(options.priority[t])) {
+        throw Error(fmt::format("HEFT: task '{}' has priority {}; priorities must be finite", graph.task(t).name,
+                                options.priority[t]));
+      }
+    }
   }
   const std::span<const double> priority = options.priority.empty() ? std::span<const double>(rank) : options.priority;
 

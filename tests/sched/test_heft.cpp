@@ -110,3 +110,13 @@ TEST_CASE("HEFT rejects a task that no device can run, naming it", "[heft]") {
   for (DeviceId d = 0; d < 3; ++d) p.costs.at(4, d) = kCannotRun;
   CHECK_THROWS_WITH(schedule_heft(p.graph, p.costs, p.links), Catch::Contains("'n5'"));
 }
+
+TEST_CASE("HEFT rejects priorities that are missing or not finite", "[heft]") {
+  const auto p = topcuoglu_2002();
+  HeftOptions options;
+  options.priority.assign(9, 1.0);
+  CHECK_THROWS_WITH(schedule_heft(p.graph, p.costs, p.links, options), Catch::Contains("9 priorities"));
+  options.priority.assign(10, 1.0);
+  options.priority[6] = std::numeric_limits<double>::quiet_NaN();
+  CHECK_THROWS_WITH(schedule_heft(p.graph, p.costs, p.links, options), Catch::Contains("'n7'"));
+}
