@@ -17,6 +17,7 @@ struct RunArgs {
   std::string output;
   int frames = 0;
   std::string devices;
+  std::string schedule;
   std::vector<std::string> sets;
   bool quiet = false;
   std::string svm;
@@ -39,6 +40,8 @@ Action add_run_command(CLI::App& cli, const std::string& command_line) {
   cmd->add_option("-o,--output", args->output, "Output HDF5 file (default: the scene's output.path)");
   cmd->add_option("--frames", args->frames, "Number of frames to simulate")->check(CLI::PositiveNumber);
   cmd->add_option("--devices", args->devices, "Device spec: default, cpu, gpu, N, cpu/2 (see atssim devices)");
+  cmd->add_option("--schedule", args->schedule,
+                  "How the substep uses the devices: single, split (blocks divided by device speed), heft");
   cmd->add_option("--set", args->sets, "Override a scene key, e.g. --set simulation.substeps=32 (repeatable)");
   cmd->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
   cmd->add_option("--svm", args->svm, "Shared virtual memory: auto (fine grain when offered) or coarse")
@@ -52,6 +55,7 @@ Action add_run_command(CLI::App& cli, const std::string& command_line) {
     if (!args->output.empty()) options.overrides.push_back("output.path=" + args->output);
     if (args->frames > 0) options.overrides.push_back("simulation.frames=" + std::to_string(args->frames));
     if (!args->devices.empty()) options.overrides.push_back("devices=" + args->devices);
+    if (!args->schedule.empty()) options.overrides.push_back("solver.schedule=" + args->schedule);
 
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);

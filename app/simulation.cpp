@@ -1,11 +1,14 @@
 #include "app/simulation.hpp"
 
+#include <algorithm>
+
 #include <atomic>
 #include <chrono>
 #include <cmath>
 
 #include <fmt/format.h>
 
+#include "app/execution.hpp"
 #include "device/device_set.hpp"
 #include "device/plan_executor.hpp"
 #include "io/result_writer.hpp"
@@ -34,6 +37,18 @@ device::SvmMode svm_mode(const std::string& text) {
   return device::SvmMode::automatic;
 }
 
+void record_schedule(io::ResultWriter& writer, int frame, const sched::Schedule& used,
+                     const std::vector<sched::Wait>& waits, const std::vector<device::TaskTiming>& timings) {
+  std::vector<io::ScheduledTask> rows;
+  double measured = 0.0;
+  for (const auto& t : timings) {
+    const sched::Slot& slot = used.slot(t.task);
+    rows.push_back({t.task, static_cast<int>(t.device), slot.start_ms, slot.finish_ms, t.start_ms, t.finish_ms});
+    measured = std::max(measured, t.finish_ms);
+  }
+  writer.append_schedule(frame, rows, waits, used.makespan_ms, measured);
+}
+
 // Keeps only what output needs (object topology and rest shape).
 void release_simulation_state(model::Model& model) {
   model = model::Model{{}, {}, {}, std::move(model.objects), model.gravity};
@@ -58,10 +73,20 @@ RunResult run_simulation(const RunOptions& options, const std::function<void(con
   release_simulation_state(model);
   solver::SubstepPlan plan = solver::xpbd::make_xpbd_plan(layout, settings);
   layout = {};
-  device::PlanExecutor executor(devices, plan, {svm_mode(options.svm_mode)});
-  for (auto& buffer : plan.buffers) std::vector<std::byte>().swap(buffer.initial);
+  ExecutionOptions exec_options;
+  exec_options.mode = parse_schedule_mode(scene.solver.schedule);
+  exec_options.svm = svm_mode(options.svm_mode);
+  Execution execution = prepare_execution(devices, plan, exec_options);
+  plan = {};
+  for (auto& buffer : execution.plan->buffers) std::vector<std::byte>().swap(buffer.initial);
+  device::PlanExecutor& executor = *execution.executor;
 
-  io::RunInfo info{options.command_line, scene.yaml_text, scene.resolved_yaml, devices.infos()};
+  io::RunInfo info{options.command_line, scene.yaml_text, scene.resolved_yaml, devices.infos(), {}};
+  info.schedule.mode = to_string(exec_options.mode);
+  info.schedule.graph = &execution.plan->graph;
+  info.schedule.costs = execution.profiled;
+  info.schedule.latency_ms = execution.links.latency_ms;
+  info.schedule.split_fractions = execution.split_fractions;
   io::ResultWriter writer(scene.output.path, info, model);
 
   RunResult result;
@@ -77,9 +102,17 @@ RunResult run_simulation(const RunOptions& options, const std::function<void(con
     for (int frame = 1; frame <= sim.frames; ++frame) {
       if (g_stop) throw runtime_error(fmt::format("interrupted before frame {}", frame));
       const auto start = std::chrono::steady_clock::now();
-      executor.enqueue_substeps(sim.substeps);
+      executor.enqueue_substeps(sim.substeps, true);
       executor.read_positions(xyz);
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      // Costs from this frame's profiling events refit the table; the
+      // schedule follows (paper §5: re-profiled every frame with smoothing).
+      const sched::Schedule used = execution.schedule;
+      const std::vector<sched::Wait> used_waits = execution.waits;
+      const auto schedule_start = std::chrono::steady_clock::now();
+      const auto timings = refit_and_reschedule(execution, exec_options);
+      const double schedule_ms =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - schedule_start).count();
       if (const int p = find_blow_up(xyz); p >= 0) {
         throw runtime_error(fmt::format("frame {}: the simulation blew up (particle {} is at a non-finite or "
                                         "implausible position); use more substeps or iterations, or softer "
@@ -88,7 +121,10 @@ RunResult run_simulation(const RunOptions& options, const std::function<void(con
       }
       total_ms += ms;
       result.frames_simulated = frame;
-      if (frame % scene.output.stride == 0) writer.append_frame(frame * sim.frame_dt, xyz, ms);
+      if (frame % scene.output.stride == 0) {
+        record_schedule(writer, frame, used, used_waits, timings);
+        writer.append_frame(frame * sim.frame_dt, xyz, ms, schedule_ms);
+      }
       if (progress) progress({frame, sim.frames, ms, total_ms / frame});
     }
   } catch (const Error& e) {

@@ -62,6 +62,41 @@ void write_devices(hid_t file, const std::vector<device::DeviceInfo>& devices) {
   write_int_array(g, "sub_device", sub, 0);
 }
 
+void write_schedule_info(hid_t file, const ScheduleInfo& info, std::size_t devices) {
+  H5Handle g = create_group(file, "schedule");
+  write_string_attribute(g, "mode", info.mode);
+  H5Handle tasks = create_group(g, "tasks");
+  std::vector<std::string> name, kind;
+  std::vector<int> iteration, block;
+  if (info.graph != nullptr) {
+    for (const sched::Task& t : info.graph->tasks()) {
+      name.push_back(t.name);
+      kind.push_back(t.kind);
+      iteration.push_back(t.iteration);
+      block.push_back(t.block);
+    }
+  }
+  write_string_array(tasks, "name", name);
+  write_string_array(tasks, "kind", kind);
+  write_int_array(tasks, "iteration", iteration, 0);
+  write_int_array(tasks, "block", block, 0);
+  std::vector<int> from, to;
+  if (info.graph != nullptr) {
+    for (sched::TaskId t = 0; t < info.graph->size(); ++t) {
+      for (const sched::Edge& e : info.graph->successors(t)) {
+        from.push_back(static_cast<int>(e.from));
+        to.push_back(static_cast<int>(e.to));
+      }
+    }
+  }
+  write_int_array(tasks, "edge_from", from, 0);
+  write_int_array(tasks, "edge_to", to, 0);
+  H5Handle dev = h5_check(H5Gopen2(file, "devices", H5P_DEFAULT), H5Gclose, "/devices");
+  if (info.costs.tasks > 0) write_double_array(dev, "costs_ms", info.costs.ms, info.costs.devices);
+  if (!info.latency_ms.empty()) write_double_array(dev, "latency_ms", info.latency_ms, devices);
+  if (!info.split_fractions.empty()) write_double_array(dev, "split_fractions", info.split_fractions, 0);
+}
+
 void write_mesh(hid_t file, const model::Model& model) {
   H5Handle mesh = create_group(file, "mesh");
   for (const auto& obj : model.objects) {
@@ -105,6 +140,7 @@ ResultWriter::ResultWriter(const std::string& path, const RunInfo& info, const m
   write_string_dataset(scene, "yaml", info.scene_yaml);
   write_string_dataset(scene, "resolved", info.resolved_yaml);
   write_devices(file_, info.devices);
+  write_schedule_info(file_, info.schedule, info.devices.size());
   write_mesh(file_, model);
 
   H5Handle frames = create_group(file_, "frames");
@@ -112,6 +148,25 @@ ResultWriter::ResultWriter(const std::string& path, const RunInfo& info, const m
   positions_ = create_series(frames, "positions", particles_, 3, H5T_IEEE_F32LE);
   H5Handle timing = create_group(file_, "timing");
   frame_ms_ = create_series(timing, "frame_ms", 0, 0, H5T_IEEE_F64LE);
+  schedule_ms_ = create_series(timing, "schedule_ms", 0, 0, H5T_IEEE_F64LE);
+  H5Handle sched = h5_check(H5Gopen2(file_, "schedule", H5P_DEFAULT), H5Gclose, "/schedule");
+  sched_frame_ = create_series(sched, "frame", 0, 0, H5T_STD_I32LE);
+  sched_task_ = create_series(sched, "task", 0, 0, H5T_STD_I32LE);
+  sched_device_ = create_series(sched, "device", 0, 0, H5T_STD_I32LE);
+  sched_pstart_ = create_series(sched, "predicted_start_ms", 0, 0, H5T_IEEE_F64LE);
+  sched_pfinish_ = create_series(sched, "predicted_finish_ms", 0, 0, H5T_IEEE_F64LE);
+  sched_mstart_ = create_series(sched, "measured_start_ms", 0, 0, H5T_IEEE_F64LE);
+  sched_mfinish_ = create_series(sched, "measured_finish_ms", 0, 0, H5T_IEEE_F64LE);
+  H5Handle waits = create_group(sched, "waits");
+  wait_frame_ = create_series(waits, "frame", 0, 0, H5T_STD_I32LE);
+  wait_producer_ = create_series(waits, "producer", 0, 0, H5T_STD_I32LE);
+  wait_consumer_ = create_series(waits, "consumer", 0, 0, H5T_STD_I32LE);
+  wait_pdevice_ = create_series(waits, "producer_device", 0, 0, H5T_STD_I32LE);
+  wait_cdevice_ = create_series(waits, "consumer_device", 0, 0, H5T_STD_I32LE);
+  H5Handle makespan = create_group(sched, "makespan");
+  mk_frame_ = create_series(makespan, "frame", 0, 0, H5T_STD_I32LE);
+  mk_predicted_ = create_series(makespan, "predicted_ms", 0, 0, H5T_IEEE_F64LE);
+  mk_measured_ = create_series(makespan, "measured_ms", 0, 0, H5T_IEEE_F64LE);
 
   h5_check(H5Fstart_swmr_write(file_), "starting single-writer/multi-reader mode");
   write_xdmf();
@@ -136,7 +191,65 @@ void ResultWriter::append_scalar(hid_t set, double value) {
   h5_check(H5Dwrite(set, H5T_NATIVE_DOUBLE, mem, space, H5P_DEFAULT, &value), "writing a frame value");
 }
 
-void ResultWriter::append_frame(double time, std::span<const float> xyz, double frame_ms) {
+template <typename T>
+void ResultWriter::append_rows(hid_t set, std::span<const T> values, hid_t mem_type, hsize_t rows) {
+  if (values.empty()) return;
+  const hsize_t size[1] = {rows + values.size()};
+  h5_check(H5Dset_extent(set, size), "extending a /schedule series");
+  H5Handle space = h5_check(H5Dget_space(set), H5Sclose, "series space");
+  const hsize_t start[1] = {rows}, count[1] = {values.size()};
+  h5_check(H5Sselect_hyperslab(space, H5S_SELECT_SET, start, nullptr, count, nullptr), "selecting rows");
+  H5Handle mem = h5_check(H5Screate_simple(1, count, nullptr), H5Sclose, "memory space");
+  h5_check(H5Dwrite(set, mem_type, mem, space, H5P_DEFAULT, values.data()), "writing /schedule rows");
+}
+
+void ResultWriter::append_schedule(int frame, std::span<const ScheduledTask> tasks, std::span<const sched::Wait> waits,
+                                   double predicted_makespan_ms, double measured_makespan_ms) {
+  std::vector<int> f(tasks.size(), frame), task, device;
+  std::vector<double> ps, pf, ms, mf;
+  for (const ScheduledTask& t : tasks) {
+    task.push_back(static_cast<int>(t.task));
+    device.push_back(t.device);
+    ps.push_back(t.predicted_start_ms);
+    pf.push_back(t.predicted_finish_ms);
+    ms.push_back(t.measured_start_ms);
+    mf.push_back(t.measured_finish_ms);
+  }
+  hsize_t rows = sched_rows_;
+  append_rows<int>(sched_frame_, f, H5T_NATIVE_INT, rows);
+  append_rows<int>(sched_task_, task, H5T_NATIVE_INT, rows);
+  append_rows<int>(sched_device_, device, H5T_NATIVE_INT, rows);
+  append_rows<double>(sched_pstart_, ps, H5T_NATIVE_DOUBLE, rows);
+  append_rows<double>(sched_pfinish_, pf, H5T_NATIVE_DOUBLE, rows);
+  append_rows<double>(sched_mstart_, ms, H5T_NATIVE_DOUBLE, rows);
+  append_rows<double>(sched_mfinish_, mf, H5T_NATIVE_DOUBLE, rows);
+  sched_rows_ += tasks.size();
+
+  std::vector<int> wf(waits.size(), frame), producer, consumer, pdev, cdev;
+  for (const sched::Wait& w : waits) {
+    producer.push_back(static_cast<int>(w.producer));
+    consumer.push_back(static_cast<int>(w.consumer));
+    pdev.push_back(static_cast<int>(w.producer_device));
+    cdev.push_back(static_cast<int>(w.consumer_device));
+  }
+  rows = wait_rows_;
+  append_rows<int>(wait_frame_, wf, H5T_NATIVE_INT, rows);
+  append_rows<int>(wait_producer_, producer, H5T_NATIVE_INT, rows);
+  append_rows<int>(wait_consumer_, consumer, H5T_NATIVE_INT, rows);
+  append_rows<int>(wait_pdevice_, pdev, H5T_NATIVE_INT, rows);
+  append_rows<int>(wait_cdevice_, cdev, H5T_NATIVE_INT, rows);
+  wait_rows_ += waits.size();
+
+  rows = makespan_rows_;
+  const int fr[1] = {frame};
+  const double p[1] = {predicted_makespan_ms}, m[1] = {measured_makespan_ms};
+  append_rows<int>(mk_frame_, fr, H5T_NATIVE_INT, rows);
+  append_rows<double>(mk_predicted_, p, H5T_NATIVE_DOUBLE, rows);
+  append_rows<double>(mk_measured_, m, H5T_NATIVE_DOUBLE, rows);
+  makespan_rows_ += 1;
+}
+
+void ResultWriter::append_frame(double time, std::span<const float> xyz, double frame_ms, double schedule_ms) {
   if (xyz.size() != particles_ * 3) {
     throw Error(fmt::format("output: frame has {} values, expected {}", xyz.size(), particles_ * 3));
   }
@@ -150,6 +263,7 @@ void ResultWriter::append_frame(double time, std::span<const float> xyz, double 
   append_scalar(time_, time);
   times_.push_back(time);
   append_scalar(frame_ms_, frame_ms);
+  append_scalar(schedule_ms_, schedule_ms);
   ++frames_;
   h5_check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flushing the output file");
   // The sidecar grows with the frame count; rewrite it at powers of two.
@@ -164,7 +278,11 @@ void ResultWriter::close_with(bool complete, const std::string& error) {
   closed_ = true;
   positions_.reset();
   time_.reset();
-  frame_ms_.reset();
+  for (H5Handle* h : {&frame_ms_, &schedule_ms_, &sched_frame_, &sched_task_, &sched_device_, &sched_pstart_,
+                      &sched_pfinish_, &sched_mstart_, &sched_mfinish_, &wait_frame_, &wait_producer_,
+                      &wait_consumer_, &wait_pdevice_, &wait_cdevice_, &mk_frame_, &mk_predicted_, &mk_measured_}) {
+    h->reset();
+  }
   file_.reset();
   // Attributes cannot be added in SWMR mode: reopen to record the outcome.
   H5Handle file = h5_check(H5Fopen(path_.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose, "reopening " + path_);

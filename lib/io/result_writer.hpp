@@ -11,16 +11,38 @@
 #include "device/device_info.hpp"
 #include "io/h5_handle.hpp"
 #include "model/model.hpp"
+#include "sched/cost_table.hpp"
+#include "sched/schedule.hpp"
+#include "sched/task_graph.hpp"
 
 namespace atssim::io {
 
 constexpr int kFormatVersion = 1;
+
+// The substep's tasks and what the scheduler was given.
+struct ScheduleInfo {
+  std::string mode;                      // "single", "split", "heft"
+  const sched::TaskGraph* graph = nullptr;
+  sched::CostTable costs;                // pre-profiled, ms, task × device
+  std::vector<double> latency_ms;        // device × device event-hop latency
+  std::vector<double> split_fractions;   // share of each device ("split")
+};
 
 struct RunInfo {
   std::string command_line;
   std::string scene_yaml;      // as given
   std::string resolved_yaml;   // after defaults and --set
   std::vector<device::DeviceInfo> devices;
+  ScheduleInfo schedule;
+};
+
+// One task of the substep recorded in a frame: where it ran, when the
+// scheduler predicted it, when it ran (ms from the substep's first start).
+struct ScheduledTask {
+  sched::TaskId task = 0;
+  int device = 0;
+  double predicted_start_ms = 0, predicted_finish_ms = 0;
+  double measured_start_ms = 0, measured_finish_ms = 0;
 };
 
 class ResultWriter {
@@ -32,7 +54,11 @@ class ResultWriter {
   ~ResultWriter();
 
   // Appends one frame (xyz per particle) and flushes it to disk.
-  void append_frame(double time, std::span<const float> xyz, double frame_ms);
+  void append_frame(double time, std::span<const float> xyz, double frame_ms, double schedule_ms = 0.0);
+  // Appends the recorded substep of simulated frame `frame` (written with
+  // the next append_frame's flush).
+  void append_schedule(int frame, std::span<const ScheduledTask> tasks, std::span<const sched::Wait> waits,
+                       double predicted_makespan_ms, double measured_makespan_ms);
   int frames_written() const { return frames_; }
 
   // Closes the file, marking it complete, or failed with `error`.
@@ -46,6 +72,8 @@ class ResultWriter {
   void close_with(bool complete, const std::string& error);
   void write_xdmf() const;
   void append_scalar(hid_t set, double value);
+  template <typename T>
+  void append_rows(hid_t set, std::span<const T> values, hid_t mem_type, hsize_t rows);
 
   std::string path_;
   std::vector<model::ObjectRange> objects_;  // topology for the XDMF sidecar
@@ -53,7 +81,12 @@ class ResultWriter {
   int frames_ = 0;
   std::vector<double> times_;
   bool closed_ = false;
-  H5Handle file_, positions_, time_, frame_ms_;
+  H5Handle file_, positions_, time_, frame_ms_, schedule_ms_;
+  // /schedule series: one row per recorded task, per wait, per frame.
+  H5Handle sched_frame_, sched_task_, sched_device_, sched_pstart_, sched_pfinish_, sched_mstart_, sched_mfinish_;
+  H5Handle wait_frame_, wait_producer_, wait_consumer_, wait_pdevice_, wait_cdevice_;
+  H5Handle mk_frame_, mk_predicted_, mk_measured_;
+  hsize_t sched_rows_ = 0, wait_rows_ = 0, makespan_rows_ = 0;
 };
 
 }  // namespace atssim::io

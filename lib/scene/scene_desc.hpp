@@ -66,6 +66,7 @@ struct ObjectDesc {
 
 struct SolverDesc {
   std::string method = "xpbd";
+  std::string schedule = "single";  // single | split | heft: how the substep uses the devices
 };
 
 struct OutputDesc {

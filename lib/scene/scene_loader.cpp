@@ -31,7 +31,8 @@ constexpr std::array<std::string_view, 5> kMaterialKeys{"density", "stretch_stif
                                                         "bend_stiffness", "bend_compliance"};
 constexpr std::array<std::string_view, 2> kPinKeys{"vertices", "boxes"};
 constexpr std::array<std::string_view, 2> kBoxKeys{"min", "max"};
-constexpr std::array<std::string_view, 1> kSolverKeys{"method"};
+constexpr std::array<std::string_view, 2> kSolverKeys{"method", "schedule"};
+constexpr std::array<std::string_view, 3> kSchedules{"single", "split", "heft"};
 constexpr std::array<std::string_view, 2> kOutputKeys{"path", "stride"};
 constexpr std::array<std::string_view, 1> kMethods{"xpbd"};
 
@@ -283,6 +284,16 @@ SceneDesc parse_scene(const std::string& yaml_text, const std::string& source_na
       bool known = false;
       for (auto k : kMethods) known = known || scene.solver.method == k;
       if (!known) m.fail(fmt::format("unknown solver method '{}'", scene.solver.method), "available: xpbd");
+    }
+    if (solver.has("schedule")) {
+      const YamlReader m = solver.child("schedule");
+      scene.solver.schedule = m.string();
+      bool known = false;
+      for (auto k : kSchedules) known = known || scene.solver.schedule == k;
+      if (!known) {
+        m.fail(fmt::format("unknown schedule '{}'", scene.solver.schedule),
+               "use single (one device), split (every color block divided by device speed) or heft");
+      }
     }
   }
   const YamlReader output = top.child("output");

@@ -81,7 +81,7 @@ std::string to_resolved_yaml(const SceneDesc& scene) {
   for (const ObjectDesc& obj : scene.objects) emit_object(out, obj);
   out << YAML::EndSeq;
   out << YAML::Key << "solver" << YAML::Value << YAML::BeginMap << YAML::Key << "method" << YAML::Value
-      << scene.solver.method << YAML::EndMap;
+      << scene.solver.method << YAML::Key << "schedule" << YAML::Value << scene.solver.schedule << YAML::EndMap;
   out << YAML::Key << "output" << YAML::Value << YAML::BeginMap << YAML::Key << "path" << YAML::Value
       << scene.output.path << YAML::Key << "stride" << YAML::Value << scene.output.stride << YAML::EndMap;
   out << YAML::Key << "devices" << YAML::Value << scene.devices;

@@ -1,0 +1,146 @@
+#include "app/execution.hpp"
+
+#include <cmath>
+#include <numeric>
+
+#include <fmt/format.h>
+
+#include "sched/cost_refit.hpp"
+#include "sched/fixed_assignment.hpp"
+#include "sched/heft.hpp"
+#include "solver/plan_split.hpp"
+#include "util/error.hpp"
+
+namespace atssim::app {
+
+namespace {
+
+sched::DeviceLinks measure_links(device::PlanExecutor& executor) {
+  const std::size_t n = executor.device_count();
+  sched::DeviceLinks links = sched::DeviceLinks::unified_memory(n, 0.0);
+  for (std::size_t a = 0; a < n; ++a) {
+    for (std::size_t b = 0; b < n; ++b) {
+      if (a != b) links.set_link(static_cast<sched::DeviceId>(a), static_cast<sched::DeviceId>(b),
+                                 executor.measure_latency_ms(a, b), 0.0);
+    }
+  }
+  return links;
+}
+
+// Each device's share, inversely proportional to the time it needs for the
+// whole substep alone (paper §4: balance by measured speed).
+std::vector<double> speed_fractions(const sched::CostTable& costs) {
+  std::vector<double> speed(costs.devices, 0.0);
+  for (std::size_t d = 0; d < costs.devices; ++d) {
+    double total = 0.0;
+    for (std::size_t t = 0; t < costs.tasks; ++t) total += costs.at(static_cast<sched::TaskId>(t), d);
+    speed[d] = 1.0 / std::max(total, 1e-9);
+  }
+  const double sum = std::accumulate(speed.begin(), speed.end(), 0.0);
+  for (double& s : speed) s /= sum;
+  return speed;
+}
+
+void make_schedule(Execution& e, const ExecutionOptions& options, bool choose_devices) {
+  const auto& graph = e.plan->graph;
+  if (choose_devices && e.mode == ScheduleMode::heft) {
+    e.schedule = sched::schedule_heft(graph, e.costs, e.links);
+    for (sched::TaskId t = 0; t < graph.size(); ++t) e.assignment[t] = e.schedule.device_of(t);
+    e.planned = e.costs;
+  } else {
+    e.schedule = sched::schedule_fixed(graph, e.costs, e.links, e.assignment);
+  }
+  (void)options;
+  e.waits = e.schedule.cross_device_waits(graph);
+  e.executor->run_schedule(e.schedule, e.waits);
+}
+
+// Largest relative change of a device's total cost for the whole substep:
+// single tasks are noisy (a few µs), a device's total is what HEFT balances.
+double total_drift(const sched::CostTable& planned, const sched::CostTable& now) {
+  double worst = 0.0;
+  for (std::size_t d = 0; d < planned.devices; ++d) {
+    double a = 0.0, b = 0.0;
+    for (std::size_t t = 0; t < planned.tasks; ++t) {
+      a += planned.at(static_cast<sched::TaskId>(t), d);
+      b += now.at(static_cast<sched::TaskId>(t), d);
+    }
+    if (a > 0.0) worst = std::max(worst, std::abs(b - a) / a);
+  }
+  return worst;
+}
+
+}  // namespace
+
+ScheduleMode parse_schedule_mode(const std::string& text) {
+  if (text == "single") return ScheduleMode::single;
+  if (text == "split") return ScheduleMode::split;
+  if (text == "heft") return ScheduleMode::heft;
+  throw input_error(fmt::format("unknown schedule '{}'; use single, split or heft", text));
+}
+
+std::string to_string(ScheduleMode mode) {
+  switch (mode) {
+    case ScheduleMode::single: return "single";
+    case ScheduleMode::split: return "split";
+    case ScheduleMode::heft: return "heft";
+  }
+  return "?";
+}
+
+Execution prepare_execution(const device::DeviceSet& devices, const solver::SubstepPlan& base,
+                            const ExecutionOptions& options) {
+  const std::size_t n = devices.size();
+  if (options.mode != ScheduleMode::single && n < 2) {
+    throw input_error(fmt::format("schedule '{}' needs at least two devices, but the device spec selects one; "
+                                  "use e.g. --devices cpu/2 (the CPU split into two sub-devices)",
+                                  to_string(options.mode)));
+  }
+  Execution e;
+  e.mode = options.mode;
+  const device::ExecutorOptions exec_options{options.svm, 0, 64};
+  std::vector<double> fractions(1, 1.0);
+  if (options.mode == ScheduleMode::split) {
+    // Measure each device's speed on the whole plan, then cut every block by it.
+    device::PlanExecutor probe(devices, base, exec_options);
+    fractions = speed_fractions(probe.profile(std::max(2, options.profile_repetitions / 2)));
+  } else if (options.mode == ScheduleMode::heft) {
+    fractions.assign(n, 1.0 / static_cast<double>(n));  // equal parts; HEFT places them
+  }
+  e.split_fractions = fractions;
+  e.plan = std::make_unique<solver::SubstepPlan>(fractions.size() > 1 ? solver::split_plan(base, fractions) : base);
+  e.executor = std::make_unique<device::PlanExecutor>(devices, *e.plan, exec_options);
+  e.profiled = e.executor->profile(options.profile_repetitions);
+  e.costs = e.profiled;
+  e.planned = e.profiled;
+  e.links = n > 1 ? measure_links(*e.executor) : sched::DeviceLinks::unified_memory(1, 0.0);
+
+  const auto& graph = e.plan->graph;
+  e.assignment.assign(graph.size(), 0);
+  if (options.mode == ScheduleMode::split) {
+    for (sched::TaskId t = 0; t < graph.size(); ++t) {
+      e.assignment[t] = static_cast<sched::DeviceId>(std::max(0, solver::part_of(graph.task(t))));
+    }
+  }
+  make_schedule(e, options, true);
+  return e;
+}
+
+std::vector<device::TaskTiming> refit_and_reschedule(Execution& e, const ExecutionOptions& options) {
+  std::vector<device::TaskTiming> timings = e.executor->recorded();
+  // What each task cost its queue: from the later of its start and the end
+  // of the queue's previous task, to its end (as pre-profiling measures it).
+  std::vector<double> queue_end(e.executor->device_count(), 0.0);
+  std::vector<sched::Measurement> measurements;
+  for (const auto& t : timings) {
+    const double from = std::max(t.start_ms, queue_end[t.device]);
+    queue_end[t.device] = t.finish_ms;
+    measurements.push_back({t.task, static_cast<sched::DeviceId>(t.device), std::max(t.finish_ms - from, 1e-6)});
+  }
+  sched::refit_costs(e.costs, measurements);
+  const bool drifted = total_drift(e.planned, e.costs) > options.reschedule_drift;
+  make_schedule(e, options, e.mode == ScheduleMode::heft && drifted);
+  return timings;
+}
+
+}  // namespace atssim::app

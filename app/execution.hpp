@@ -1,0 +1,55 @@
+#pragma once
+// How a substep plan runs on the chosen devices: the plan cut as the
+// schedule mode needs, its executor, the costs measured on every device, and
+// the schedule with its cross-device waits (DESIGN.md "Task graph of one
+// substep": single, sync split, HEFT).
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "device/device_set.hpp"
+#include "device/plan_executor.hpp"
+#include "sched/cost_table.hpp"
+#include "sched/device_links.hpp"
+#include "sched/schedule.hpp"
+#include "solver/substep_plan.hpp"
+
+namespace atssim::app {
+
+enum class ScheduleMode { single, split, heft };
+
+ScheduleMode parse_schedule_mode(const std::string& text);  // throws input errors
+std::string to_string(ScheduleMode mode);
+
+struct ExecutionOptions {
+  ScheduleMode mode = ScheduleMode::single;
+  device::SvmMode svm = device::SvmMode::automatic;
+  int profile_repetitions = 5;
+  double reschedule_drift = 0.15;  // re-run HEFT when a cost moved by more than this (relative)
+};
+
+struct Execution {
+  ScheduleMode mode = ScheduleMode::single;
+  std::unique_ptr<solver::SubstepPlan> plan;  // stable address: the executor refers to it
+  std::unique_ptr<device::PlanExecutor> executor;
+  sched::CostTable profiled;                  // pre-profiled costs (ms), task × device
+  sched::CostTable costs;                     // refitted every frame
+  sched::CostTable planned;                   // the costs the current assignment was chosen with
+  sched::DeviceLinks links;                   // measured event-hop latency per device pair
+  std::vector<sched::DeviceId> assignment;    // device per task
+  sched::Schedule schedule;                   // predicted times under `costs`
+  std::vector<sched::Wait> waits;
+  std::vector<double> split_fractions;        // split mode: share of each device
+};
+
+// Builds, profiles and schedules. Throws atssim::Error (input) when the mode
+// needs more devices than the set has.
+Execution prepare_execution(const device::DeviceSet& devices, const solver::SubstepPlan& base,
+                            const ExecutionOptions& options);
+
+// After a recorded substep: refits the costs from its timings (smoothing,
+// sched::refit_costs), recomputes the predicted times, and for `heft`
+// re-runs HEFT when the costs drifted. Returns the measured timings.
+std::vector<device::TaskTiming> refit_and_reschedule(Execution& execution, const ExecutionOptions& options);
+
+}  // namespace atssim::app
