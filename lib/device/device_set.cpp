@@ -88,6 +88,16 @@ DeviceSet DeviceSet::open(const std::string& spec_in) {
   for (std::string item; std::getline(items, item, ',');) {
     std::string selector = item;
     int split = 0;
+    int only = -1;  // "cpu/2:1": just sub-device 1 of the two
+    if (const auto colon = item.find(':'); colon != std::string::npos) {
+      const std::string index = item.substr(colon + 1);
+      if (index.empty() || !std::all_of(index.begin(), index.end(), ::isdigit)) {
+        bad_spec(spec, fmt::format("'{}' must end in a sub-device index, as in cpu/2:1", item), all);
+      }
+      only = std::stoi(index);
+      item = item.substr(0, colon);
+      selector = item;
+    }
     if (const auto slash = item.find('/'); slash != std::string::npos) {
       selector = item.substr(0, slash);
       const std::string count = item.substr(slash + 1);
@@ -95,6 +105,10 @@ DeviceSet DeviceSet::open(const std::string& spec_in) {
         bad_spec(spec, fmt::format("'{}' must be followed by a sub-device count ≥ 2, as in cpu/2", selector), all);
       }
       split = std::stoi(count);
+    }
+    if (only >= 0 && (split == 0 || only >= split)) {
+      bad_spec(spec, fmt::format("'{}:{}' names no sub-device; split first, as in cpu/2:{}", item, only,
+                                 split > 0 ? split - 1 : 1), all);
     }
     for (const DeviceHandle* h : pick(selector, spec, all)) {
       if (split == 0) {
@@ -117,6 +131,7 @@ DeviceSet DeviceSet::open(const std::string& spec_in) {
                                         cl_error_name(e.err())));
       }
       for (int s = 0; s < split && s < static_cast<int>(subs.size()); ++s) {
+        if (only >= 0 && s != only) continue;
         DeviceInfo info = query_info(subs[s], h->info.index, h->info.platform_index, h->info.platform);
         info.sub_device = s;
         info.sub_device_count = split;

@@ -5,6 +5,7 @@
 //   cpu | gpu    first device of that type
 //   N            device N of `atssim devices`
 //   SEL/K        the selected device split into K equal sub-devices ("cpu/2")
+//   SEL/K:i      only sub-device i of them ("cpu/2:1")
 //   A,B          several selections
 #include <memory>
 #include <string>
