@@ -1,5 +1,6 @@
 #include "app/execution.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 
@@ -70,6 +71,40 @@ double total_drift(const sched::CostTable& planned, const sched::CostTable& now)
   return worst;
 }
 
+// The event-hop latency the idle probe measures is a lower bound: under load
+// pocl wakes a waiting queue later. For every cross-device wait that held its
+// consumer back (the producer finished after the consumer's queue was free),
+// the delay from the producer's end to the consumer's start is one sample; the
+// median per device pair moves the link halfway, like the task costs.
+void refit_latency(Execution& e, const std::vector<device::TaskTiming>& timings) {
+  if (e.waits.empty()) return;
+  const std::size_t n = e.executor->device_count();
+  std::vector<const device::TaskTiming*> of_task(e.plan->graph.size(), nullptr);
+  std::vector<double> queue_free(e.plan->graph.size(), 0.0);  // when the consumer's queue was free
+  std::vector<double> last_end(n, 0.0);
+  for (const auto& t : timings) {
+    of_task[t.task] = &t;
+    queue_free[t.task] = last_end[t.device];
+    last_end[t.device] = t.finish_ms;
+  }
+  std::vector<std::vector<double>> samples(n * n);
+  for (const sched::Wait& w : e.waits) {
+    const auto* p = of_task[w.producer];
+    const auto* c = of_task[w.consumer];
+    if (p == nullptr || c == nullptr || p->finish_ms < queue_free[w.consumer]) continue;
+    samples[w.producer_device * n + w.consumer_device].push_back(std::max(c->start_ms - p->finish_ms, 0.0));
+  }
+  for (std::size_t a = 0; a < n; ++a) {
+    for (std::size_t b = 0; b < n; ++b) {
+      auto& s = samples[a * n + b];
+      if (a == b || s.size() < 3) continue;
+      std::nth_element(s.begin(), s.begin() + s.size() / 2, s.end());
+      double& latency = e.links.latency_ms[a * n + b];
+      latency += 0.5 * (s[s.size() / 2] - latency);
+    }
+  }
+}
+
 }  // namespace
 
 ScheduleMode parse_schedule_mode(const std::string& text) {
@@ -138,6 +173,7 @@ std::vector<device::TaskTiming> refit_and_reschedule(Execution& e, const Executi
     measurements.push_back({t.task, static_cast<sched::DeviceId>(t.device), std::max(t.finish_ms - from, 1e-6)});
   }
   sched::refit_costs(e.costs, measurements);
+  refit_latency(e, timings);
   const bool drifted = total_drift(e.planned, e.costs) > options.reschedule_drift;
   make_schedule(e, options, e.mode == ScheduleMode::heft && drifted);
   return timings;
