@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <unordered_map>
 
 #include <fmt/format.h>
 
@@ -159,6 +160,51 @@ Execution prepare_execution(const device::DeviceSet& devices, const solver::Subs
   }
   make_schedule(e, options, true);
   return e;
+}
+
+solver::SubstepPlan cut_for_mode(const solver::SubstepPlan& base, ScheduleMode mode, std::size_t devices) {
+  if (mode == ScheduleMode::single || devices < 2) return base;
+  const std::vector<double> equal(devices, 1.0 / static_cast<double>(devices));
+  return solver::split_plan(base, equal);
+}
+
+PlannedSchedule schedule_from_costs(const solver::SubstepPlan& base, ScheduleMode mode, const sched::CostTable& costs,
+                                    double latency_ms) {
+  const std::size_t n = costs.devices;
+  if (mode != ScheduleMode::single && n < 2) {
+    throw input_error(fmt::format("schedule '{}' needs costs for at least two devices", to_string(mode)));
+  }
+  PlannedSchedule p;
+  p.plan = cut_for_mode(base, mode, n);
+  p.costs = costs;
+  p.links = sched::DeviceLinks::unified_memory(n, latency_ms);
+  std::vector<sched::DeviceId> assignment(p.plan.graph.size(), 0);
+  if (mode == ScheduleMode::split) {
+    // Re-cut by speed; a part's cost scales with its share of the elements.
+    p.split_fractions = speed_fractions(costs);
+    const solver::SubstepPlan equal = std::move(p.plan);
+    p.plan = solver::split_plan(base, p.split_fractions);
+    std::unordered_map<std::string, sched::TaskId> equal_id;
+    for (sched::TaskId t = 0; t < equal.graph.size(); ++t) equal_id[equal.graph.task(t).name] = t;
+    p.costs = sched::CostTable(p.plan.graph.size(), n);
+    for (sched::TaskId t = 0; t < p.plan.graph.size(); ++t) {
+      const sched::Task& task = p.plan.graph.task(t);
+      const int part = solver::part_of(task);
+      assignment[t] = static_cast<sched::DeviceId>(std::max(part, 0));
+      const auto it = equal_id.find(task.name);
+      const double scale = part >= 0 ? p.split_fractions[part] * static_cast<double>(n) : 1.0;
+      for (std::size_t d = 0; d < n; ++d) {
+        p.costs.at(t, d) = it == equal_id.end() ? costs.at(0, d) : costs.at(it->second, d) * scale;
+      }
+    }
+    p.schedule = sched::schedule_fixed(p.plan.graph, p.costs, p.links, assignment);
+  } else if (mode == ScheduleMode::heft) {
+    p.schedule = sched::schedule_heft(p.plan.graph, p.costs, p.links);
+  } else {
+    p.schedule = sched::schedule_fixed(p.plan.graph, p.costs, p.links, assignment);
+  }
+  p.waits = p.schedule.cross_device_waits(p.plan.graph);
+  return p;
 }
 
 std::vector<device::TaskTiming> refit_and_reschedule(Execution& e, const ExecutionOptions& options) {

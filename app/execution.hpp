@@ -47,6 +47,23 @@ struct Execution {
 Execution prepare_execution(const device::DeviceSet& devices, const solver::SubstepPlan& base,
                             const ExecutionOptions& options);
 
+// The schedule from a given cost table instead of a profile (`atssim
+// schedule --costs`): `costs` belongs to the plan cut for `mode` into equal
+// parts, one per device (uncut for single). For split, the parts are then
+// re-cut by the devices' speeds in `costs` and each part's cost scaled by
+// its share. No device is touched.
+struct PlannedSchedule {
+  solver::SubstepPlan plan;
+  sched::CostTable costs;
+  sched::DeviceLinks links;
+  sched::Schedule schedule;
+  std::vector<sched::Wait> waits;
+  std::vector<double> split_fractions;
+};
+solver::SubstepPlan cut_for_mode(const solver::SubstepPlan& base, ScheduleMode mode, std::size_t devices);
+PlannedSchedule schedule_from_costs(const solver::SubstepPlan& base, ScheduleMode mode, const sched::CostTable& costs,
+                                    double latency_ms);
+
 // After a recorded substep: refits the costs from its timings (smoothing,
 // sched::refit_costs), recomputes the predicted times, and for `heft`
 // re-runs HEFT when the costs drifted. Returns the measured timings.

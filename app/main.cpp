@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   cli.set_version_flag("--version", std::string(ATSSIM_VERSION));
   const atssim::app::Action run = atssim::app::add_run_command(cli, command_line);
   const atssim::app::Action devices = atssim::app::add_devices_command(cli);
+  const atssim::app::Action schedule = atssim::app::add_schedule_command(cli);
 
   try {
     cli.parse(argc, argv);
@@ -36,6 +37,7 @@ int main(int argc, char** argv) {
     for (CLI::App* sub : cli.get_subcommands()) {
       if (sub->get_name() == "run") return run();
       if (sub->get_name() == "devices") return devices();
+      if (sub->get_name() == "schedule") return schedule();
     }
   } catch (const atssim::Error& e) {
     fmt::print(stderr, "atssim: {}\n", e.what());

@@ -58,6 +58,13 @@ void release_simulation_state(model::Model& model) {
 
 void request_stop() { g_stop = true; }
 
+solver::SubstepPlan substep_plan_for(const scene::SceneDesc& scene) {
+  const auto& sim = scene.simulation;
+  const model::Model model = model::build_model(scene);
+  return solver::xpbd::make_xpbd_plan(solver::xpbd::make_xpbd_layout(model),
+                                      {sim.frame_dt / sim.substeps, sim.iterations});
+}
+
 RunResult run_simulation(const RunOptions& options, const std::function<void(const RunProgress&)>& progress) {
   g_stop = false;
   const scene::SceneDesc scene = scene::load_scene_file(options.scene_path, options.overrides);

@@ -35,6 +35,17 @@ struct RunResult {
 // errors after the output file exists carry "N frames kept in FILE".
 RunResult run_simulation(const RunOptions& options, const std::function<void(const RunProgress&)>& progress = {});
 
+// The substep plan of a validated scene (model -> layout -> solver plan).
+}  // namespace atssim::app
+namespace atssim::scene {
+struct SceneDesc;
+}
+namespace atssim::solver {
+struct SubstepPlan;
+}
+namespace atssim::app {
+solver::SubstepPlan substep_plan_for(const scene::SceneDesc& scene);
+
 // Set from a signal handler: the run stops after the current frame, keeps
 // what it wrote and fails with "interrupted".
 void request_stop();

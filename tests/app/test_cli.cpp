@@ -159,3 +159,36 @@ TEST_CASE("a run killed mid-way leaves a readable file with the frames flushed b
   const auto last = io::read_frame_positions(out, s.frames - 1);
   CHECK(last.size() == 24 * 24 * 3);
 }
+
+TEST_CASE("atssim schedule prints the substep graph, its costs as CSV, and schedules from that CSV") {
+  test::TempDir dir;
+  const std::string scene = dir.write("cloth.yaml", test::hanging_cloth_yaml(16, 1e4, 0.0, 2));
+  const auto table = run_atssim(dir, "schedule " + scene + " --devices cpu/2 --schedule heft");
+  INFO(table.err);
+  REQUIRE(table.code == 0);
+  CHECK(table.out.find("schedule 'heft' on 2 device(s)") != std::string::npos);
+  CHECK(table.out.find("it2/stretch/c0#1") != std::string::npos);
+  CHECK(table.out.find("bend") == std::string::npos);  // bending stiffness 0: no bending task
+
+  const auto csv = run_atssim(dir, "schedule " + scene + " --devices cpu/2 --schedule heft --csv");
+  REQUIRE(csv.code == 0);
+  const std::string costs = dir.write("costs.csv", csv.out);
+  const auto json = run_atssim(dir, "schedule " + scene + " --schedule heft --costs " + costs + " --json");
+  REQUIRE(json.code == 0);
+  CHECK(json.out.find("\"makespan_ms\"") != std::string::npos);
+  CHECK(json.out.find("\"waits\"") != std::string::npos);
+  const auto dot = run_atssim(dir, "schedule " + scene + " --schedule split --costs " + costs + " --dot");
+  REQUIRE(dot.code == 0);
+  CHECK(dot.out.find("digraph substep") == 0);
+}
+
+TEST_CASE("a cost file that does not match the scene is an input error with its line") {
+  test::TempDir dir;
+  const std::string scene = dir.write("cloth.yaml", test::hanging_cloth_yaml(8, 1e4, 0.0, 1));
+  const std::string costs = dir.write("costs.csv", "latency_ms,0.01\npredict#0,1,1\nnot_a_task,1,1\n");
+  const auto r = run_atssim(dir, "schedule " + scene + " --schedule heft --costs " + costs);
+  CHECK(r.code == 2);
+  CHECK(lines(r.err) == 1);
+  CHECK(r.err.find(costs + ":3:") != std::string::npos);
+  CHECK(r.err.find("not_a_task") != std::string::npos);
+}

@@ -1,0 +1,160 @@
+// `atssim schedule SCENE`: the substep's task graph and its predicted
+// schedule, without simulating: as a table, JSON, Graphviz dot, or the cost
+// table as CSV (which --costs reads back).
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "app/commands.hpp"
+#include "app/execution.hpp"
+#include "app/simulation.hpp"
+#include "device/device_set.hpp"
+#include "io/cost_file.hpp"
+#include "scene/scene_loader.hpp"
+#include "solver/substep_plan.hpp"
+
+namespace atssim::app {
+
+namespace {
+
+struct ScheduleArgs {
+  std::string scene, devices, schedule, costs;
+  std::vector<std::string> sets;
+  bool json = false, dot = false, csv = false;
+};
+
+std::string json_escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out;
+}
+
+void print_table(const PlannedSchedule& p, const std::string& mode) {
+  const auto& g = p.plan.graph;
+  fmt::print("substep: {} tasks, {} edges; schedule '{}' on {} device(s); predicted makespan {:.4f} ms; {} "
+             "cross-device waits\n",
+             g.size(), g.edge_count(), mode, p.costs.devices, p.schedule.makespan_ms, p.waits.size());
+  if (mode == "split" && !p.split_fractions.empty()) {
+    fmt::print("split fractions:");
+    for (double f : p.split_fractions) fmt::print(" {:.3f}", f);
+    fmt::print("\n");
+  }
+  fmt::print("{:>5}  {:<24} {:<16} {:>4} {:>5}  {:>6}  {:>10}  {:>10}\n", "id", "task", "kind", "it", "block", "device",
+             "start_ms", "finish_ms");
+  for (sched::TaskId t = 0; t < g.size(); ++t) {
+    const auto& task = g.task(t);
+    const auto& slot = p.schedule.slot(t);
+    fmt::print("{:>5}  {:<24} {:<16} {:>4} {:>5}  {:>6}  {:>10.4f}  {:>10.4f}\n", t, task.name, task.kind,
+               task.iteration, task.block, p.schedule.device_of(t), slot.start_ms, slot.finish_ms);
+  }
+}
+
+void print_json(const PlannedSchedule& p, const std::string& mode) {
+  const auto& g = p.plan.graph;
+  fmt::print("{{\n  \"schedule\": \"{}\",\n  \"devices\": {},\n  \"makespan_ms\": {:.6f},\n  \"tasks\": [\n", mode,
+             p.costs.devices, p.schedule.makespan_ms);
+  for (sched::TaskId t = 0; t < g.size(); ++t) {
+    const auto& task = g.task(t);
+    const auto& slot = p.schedule.slot(t);
+    std::string costs;
+    for (std::size_t d = 0; d < p.costs.devices; ++d) costs += fmt::format("{}{:.6f}", d ? ", " : "", p.costs.at(t, d));
+    fmt::print("    {{\"id\": {}, \"name\": \"{}\", \"kind\": \"{}\", \"iteration\": {}, \"block\": {}, \"device\": {}, "
+               "\"start_ms\": {:.6f}, \"finish_ms\": {:.6f}, \"cost_ms\": [{}]}}{}\n",
+               t, json_escape(task.name), task.kind, task.iteration, task.block, p.schedule.device_of(t),
+               slot.start_ms, slot.finish_ms, costs, t + 1 < g.size() ? "," : "");
+  }
+  fmt::print("  ],\n  \"edges\": [");
+  bool first = true;
+  for (sched::TaskId t = 0; t < g.size(); ++t) {
+    for (const auto& e : g.successors(t)) {
+      fmt::print("{}[{}, {}]", first ? "" : ", ", e.from, e.to);
+      first = false;
+    }
+  }
+  fmt::print("],\n  \"waits\": [");
+  for (std::size_t i = 0; i < p.waits.size(); ++i) {
+    const auto& w = p.waits[i];
+    fmt::print("{}{{\"producer\": {}, \"producer_device\": {}, \"consumer\": {}, \"consumer_device\": {}}}",
+               i ? ", " : "", w.producer, w.producer_device, w.consumer, w.consumer_device);
+  }
+  fmt::print("]\n}}\n");
+}
+
+void print_dot(const PlannedSchedule& p, const std::string& mode) {
+  static const char* colours[] = {"lightblue", "orange", "palegreen", "pink", "khaki", "plum"};
+  const auto& g = p.plan.graph;
+  fmt::print("digraph substep {{\n  label=\"schedule {} — makespan {:.4f} ms\";\n  node [shape=box, style=filled];\n",
+             mode, p.schedule.makespan_ms);
+  for (sched::TaskId t = 0; t < g.size(); ++t) {
+    const auto d = p.schedule.device_of(t);
+    fmt::print("  t{} [label=\"{}\\ndevice {}\", fillcolor={}];\n", t, g.task(t).name, d, colours[d % 6]);
+  }
+  for (sched::TaskId t = 0; t < g.size(); ++t) {
+    for (const auto& e : g.successors(t)) {
+      const bool cross = p.schedule.device_of(e.from) != p.schedule.device_of(e.to);
+      fmt::print("  t{} -> t{}{};\n", e.from, e.to, cross ? " [color=red, penwidth=2]" : "");
+    }
+  }
+  fmt::print("}}\n");
+}
+
+}  // namespace
+
+Action add_schedule_command(CLI::App& cli) {
+  auto args = std::make_shared<ScheduleArgs>();
+  CLI::App* cmd = cli.add_subcommand("schedule", "Print the substep's task graph and its predicted schedule");
+  cmd->add_option("scene", args->scene, "Scene file (YAML)")->required();
+  cmd->add_option("--devices", args->devices, "Device spec to profile, e.g. cpu/2 (see atssim devices)");
+  cmd->add_option("--schedule", args->schedule, "single, split or heft (default: the scene's solver.schedule)");
+  cmd->add_option("--costs", args->costs, "Cost table CSV (as --csv prints it) instead of profiling the devices");
+  cmd->add_option("--set", args->sets, "Override a scene key (repeatable)");
+  auto* json = cmd->add_flag("--json", args->json, "Print JSON");
+  auto* dot = cmd->add_flag("--dot", args->dot, "Print a Graphviz graph, tasks coloured by device");
+  auto* csv = cmd->add_flag("--csv", args->csv, "Print the cost table (ms per task and device) as CSV");
+  json->excludes(dot)->excludes(csv);
+  dot->excludes(csv);
+  return [args]() {
+    std::vector<std::string> overrides = args->sets;
+    if (!args->devices.empty()) overrides.push_back("devices=" + args->devices);
+    if (!args->schedule.empty()) overrides.push_back("solver.schedule=" + args->schedule);
+    const scene::SceneDesc scene = scene::load_scene_file(args->scene, overrides);
+    const ScheduleMode mode = parse_schedule_mode(scene.solver.schedule);
+    const solver::SubstepPlan base = substep_plan_for(scene);
+
+    PlannedSchedule planned;
+    if (!args->costs.empty()) {
+      // The file's column count is the device count; its rows are the tasks
+      // of the plan cut into that many equal parts.
+      const std::size_t columns = io::cost_file_devices(args->costs);
+      const auto file = io::read_cost_file(args->costs, cut_for_mode(base, mode, columns).graph);
+      planned = schedule_from_costs(base, mode, file.costs, file.latency_ms);
+    } else {
+      const device::DeviceSet devices = device::DeviceSet::open(scene.devices);
+      ExecutionOptions options;
+      options.mode = mode;
+      Execution e = prepare_execution(devices, base, options);
+      planned.plan = *e.plan;
+      planned.costs = e.costs;
+      planned.links = e.links;
+      planned.schedule = e.schedule;
+      planned.waits = e.waits;
+      planned.split_fractions = e.split_fractions;
+    }
+    const std::string mode_name = to_string(mode);
+    if (args->json) {
+      print_json(planned, mode_name);
+    } else if (args->dot) {
+      print_dot(planned, mode_name);
+    } else if (args->csv) {
+      const std::size_t n = planned.links.devices;
+      fmt::print("{}", io::format_cost_file(planned.plan.graph, planned.costs, n > 1 ? planned.links.latency_ms[1] : 0.0));
+    } else {
+      print_table(planned, mode_name);
+    }
+    return 0;
+  };
+}
+
+}  // namespace atssim::app
