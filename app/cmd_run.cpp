@@ -41,7 +41,7 @@ Action add_run_command(CLI::App& cli, const std::string& command_line) {
   cmd->add_option("--frames", args->frames, "Number of frames to simulate")->check(CLI::PositiveNumber);
   cmd->add_option("--devices", args->devices, "Device spec: default, cpu, gpu, N, cpu/2 (see atssim devices)");
   cmd->add_option("--schedule", args->schedule,
-                  "How the substep uses the devices: single, split (blocks divided by device speed), heft");
+                  "How the substep uses the devices: single, split (blocks divided by device speed), heft, async");
   cmd->add_option("--set", args->sets, "Override a scene key, e.g. --set simulation.substeps=32 (repeatable)");
   cmd->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
   cmd->add_option("--svm", args->svm, "Shared virtual memory: auto (fine grain when offered) or coarse")

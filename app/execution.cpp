@@ -9,7 +9,10 @@
 
 #include "sched/cost_refit.hpp"
 #include "sched/fixed_assignment.hpp"
+#include "sched/gauss_seidel_rank.hpp"
 #include "sched/heft.hpp"
+#include "sched/sync_map.hpp"
+#include "solver/async_graph.hpp"
 #include "solver/plan_split.hpp"
 #include "util/error.hpp"
 
@@ -45,6 +48,7 @@ std::vector<double> speed_fractions(const sched::CostTable& costs) {
 
 void make_schedule(Execution& e, const ExecutionOptions& options, bool choose_devices) {
   const auto& graph = e.plan->graph;
+  if (e.mode == ScheduleMode::async && options.replay) return;  // the replay order is fixed
   if (choose_devices && e.mode == ScheduleMode::heft) {
     e.schedule = sched::schedule_heft(graph, e.costs, e.links);
     for (sched::TaskId t = 0; t < graph.size(); ++t) e.assignment[t] = e.schedule.device_of(t);
@@ -112,7 +116,8 @@ ScheduleMode parse_schedule_mode(const std::string& text) {
   if (text == "single") return ScheduleMode::single;
   if (text == "split") return ScheduleMode::split;
   if (text == "heft") return ScheduleMode::heft;
-  throw input_error(fmt::format("unknown schedule '{}'; use single, split or heft", text));
+  if (text == "async") return ScheduleMode::async;
+  throw input_error(fmt::format("unknown schedule '{}'; use single, split, heft or async", text));
 }
 
 std::string to_string(ScheduleMode mode) {
@@ -120,9 +125,81 @@ std::string to_string(ScheduleMode mode) {
     case ScheduleMode::single: return "single";
     case ScheduleMode::split: return "split";
     case ScheduleMode::heft: return "heft";
+    case ScheduleMode::async: return "async";
   }
   return "?";
 }
+
+namespace {
+
+// Asynchronous Gauss-Seidel: HEFT with the Gauss-Seidel rank places the
+// blocks of the relaxed graph (§4.1.2, §4.2.1), the sync map decides the
+// merges (§4.2.2), and the merges become tasks of the plan that runs.
+Execution prepare_async(const device::DeviceSet& devices, const solver::SubstepPlan& base,
+                        const ExecutionOptions& options) {
+  const std::size_t n = devices.size();
+  Execution e;
+  e.mode = ScheduleMode::async;
+  const device::ExecutorOptions exec_options{options.svm, 0, 64};
+  const solver::SubstepPlan graph_plan = solver::async_graph(base, options.async_depth);
+  const auto& graph = graph_plan.graph;
+
+  sched::CostTable costs;
+  sched::DeviceLinks hop;
+  {
+    device::PlanExecutor probe(devices, base, exec_options);
+    costs = probe.profile(std::max(2, options.profile_repetitions / 2));
+    hop = measure_links(probe);
+  }
+  // The main device keeps the stream: the fastest one runs predict and the
+  // velocity update, which read and write the state no other device has.
+  std::vector<double> total(n, 0.0);
+  for (sched::TaskId t = 0; t < graph.size(); ++t) {
+    for (std::size_t d = 0; d < n; ++d) total[d] += costs.at(t, d);
+  }
+  e.main_device = static_cast<sched::DeviceId>(std::min_element(total.begin(), total.end()) - total.begin());
+  sched::TaskId predict = 0;
+  for (sched::TaskId t = 0; t < graph.size(); ++t) {
+    if (graph.task(t).iteration >= 0) continue;
+    if (graph.task(t).kind == "predict") predict = t;
+    for (std::size_t d = 0; d < n; ++d) {
+      if (d != e.main_device) costs.at(t, d) = sched::kCannotRun;
+    }
+  }
+  // A hop now also publishes and merges a whole copy of the positions:
+  // about two particle sweeps, priced like the predict step.
+  sched::DeviceLinks links = hop;
+  for (std::size_t i = 0; i < links.latency_ms.size(); ++i) {
+    if (i % (n + 1) != 0) links.latency_ms[i] += 2.0 * costs.at(predict, e.main_device);
+  }
+  std::vector<std::vector<sched::TaskId>> orders;
+  for (const std::string kind : {"stretch", "bend"}) {
+    auto order = sched::gauss_seidel_order(graph, kind);
+    if (!order.empty()) orders.push_back(std::move(order));
+  }
+  sched::HeftOptions heft;
+  heft.priority = sched::gauss_seidel_rank(graph, costs, links, orders);
+  const sched::Schedule placed = sched::schedule_heft(graph, costs, links, heft);
+  const sched::SyncMap map = sched::build_sync_map(graph, placed, hop, e.main_device, {options.async_latest});
+  solver::AsyncPlan async = solver::make_async_plan(graph_plan, placed, map, options.merge);
+  e.async_slots = async.slots;
+  e.async_merges = map.merges.size();
+
+  e.plan = std::make_unique<solver::SubstepPlan>(std::move(async.plan));
+  e.assignment = std::move(async.device);
+  e.executor = std::make_unique<device::PlanExecutor>(devices, *e.plan, exec_options);
+  e.profiled = e.executor->profile(options.profile_repetitions);
+  e.costs = e.profiled;
+  e.planned = e.profiled;
+  e.links = hop;
+  e.schedule = sched::schedule_fixed(e.plan->graph, e.costs, e.links, e.assignment);
+  e.waits = e.schedule.cross_device_waits(e.plan->graph);
+  e.executor->run_schedule(e.schedule, e.waits);
+  if (options.replay) replay_on_one_device(e);
+  return e;
+}
+
+}  // namespace
 
 Execution prepare_execution(const device::DeviceSet& devices, const solver::SubstepPlan& base,
                             const ExecutionOptions& options) {
@@ -132,6 +209,7 @@ Execution prepare_execution(const device::DeviceSet& devices, const solver::Subs
                                   "use e.g. --devices cpu/2 (the CPU split into two sub-devices)",
                                   to_string(options.mode)));
   }
+  if (options.mode == ScheduleMode::async) return prepare_async(devices, base, options);
   Execution e;
   e.mode = options.mode;
   const device::ExecutorOptions exec_options{options.svm, 0, 64};
@@ -171,6 +249,9 @@ solver::SubstepPlan cut_for_mode(const solver::SubstepPlan& base, ScheduleMode m
 PlannedSchedule schedule_from_costs(const solver::SubstepPlan& base, ScheduleMode mode, const sched::CostTable& costs,
                                     double latency_ms) {
   const std::size_t n = costs.devices;
+  if (mode == ScheduleMode::async) {
+    throw input_error("schedule 'async' needs the devices themselves (its merges are profiled); drop --costs");
+  }
   if (mode != ScheduleMode::single && n < 2) {
     throw input_error(fmt::format("schedule '{}' needs costs for at least two devices", to_string(mode)));
   }
@@ -205,6 +286,24 @@ PlannedSchedule schedule_from_costs(const solver::SubstepPlan& base, ScheduleMod
   }
   p.waits = p.schedule.cross_device_waits(p.plan.graph);
   return p;
+}
+
+void replay_on_one_device(Execution& e) {
+  std::vector<sched::TaskId> order(e.plan->graph.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](sched::TaskId a, sched::TaskId b) {
+    return e.schedule.slot(a).start_ms < e.schedule.slot(b).start_ms;
+  });
+  std::vector<std::vector<sched::Slot>> lanes(e.executor->device_count());
+  double clock = 0.0;
+  for (sched::TaskId t : order) {
+    lanes[0].push_back({t, clock, clock + e.costs.at(t, 0)});
+    clock += e.costs.at(t, 0);
+  }
+  e.assignment.assign(e.plan->graph.size(), 0);
+  e.schedule = sched::assemble_schedule(e.plan->graph.size(), std::move(lanes));
+  e.waits.clear();
+  e.executor->run_schedule(e.schedule, e.waits);
 }
 
 std::vector<device::TaskTiming> refit_and_reschedule(Execution& e, const ExecutionOptions& options) {

@@ -12,11 +12,12 @@
 #include "sched/cost_table.hpp"
 #include "sched/device_links.hpp"
 #include "sched/schedule.hpp"
+#include "solver/async_plan.hpp"
 #include "solver/substep_plan.hpp"
 
 namespace atssim::app {
 
-enum class ScheduleMode { single, split, heft };
+enum class ScheduleMode { single, split, heft, async };
 
 ScheduleMode parse_schedule_mode(const std::string& text);  // throws input errors
 std::string to_string(ScheduleMode mode);
@@ -26,6 +27,11 @@ struct ExecutionOptions {
   device::SvmMode svm = device::SvmMode::automatic;
   int profile_repetitions = 5;
   double reschedule_drift = 0.15;  // re-run HEFT when a cost moved by more than this (relative)
+  // Asynchronous Gauss-Seidel (He et al. 2025 §4.2).
+  int async_depth = 2;
+  solver::MergeStrategy merge = solver::MergeStrategy::average_displacements;
+  bool async_latest = true;
+  bool replay = false;  // run the async schedule on device 0 alone, in schedule order
 };
 
 struct Execution {
@@ -40,6 +46,9 @@ struct Execution {
   sched::Schedule schedule;                   // predicted times under `costs`
   std::vector<sched::Wait> waits;
   std::vector<double> split_fractions;        // split mode: share of each device
+  sched::DeviceId main_device = 0;            // async: the device that keeps the stream
+  int async_slots = 0;                        // async: snapshot buffers
+  std::size_t async_merges = 0;               // async: merges per substep
 };
 
 // Builds, profiles and schedules. Throws atssim::Error (input) when the mode
@@ -63,6 +72,11 @@ struct PlannedSchedule {
 solver::SubstepPlan cut_for_mode(const solver::SubstepPlan& base, ScheduleMode mode, std::size_t devices);
 PlannedSchedule schedule_from_costs(const solver::SubstepPlan& base, ScheduleMode mode, const sched::CostTable& costs,
                                     double latency_ms);
+
+// Replay (async): runs the current schedule's tasks on device 0 alone, in
+// the order of their predicted starts. Every data flow of an async plan is
+// an edge of its graph, so this reproduces the executed result exactly.
+void replay_on_one_device(Execution& execution);
 
 // After a recorded substep: refits the costs from its timings (smoothing,
 // sched::refit_costs), recomputes the predicted times, and for `heft`

@@ -83,6 +83,10 @@ RunResult run_simulation(const RunOptions& options, const std::function<void(con
   ExecutionOptions exec_options;
   exec_options.mode = parse_schedule_mode(scene.solver.schedule);
   exec_options.svm = svm_mode(options.svm_mode);
+  exec_options.async_depth = scene.solver.async_depth;
+  exec_options.merge = solver::parse_merge_strategy(scene.solver.merge);
+  exec_options.async_latest = scene.solver.async_latest;
+  exec_options.replay = scene.solver.replay;
   Execution execution = prepare_execution(devices, plan, exec_options);
   plan = {};
   for (auto& buffer : execution.plan->buffers) std::vector<std::byte>().swap(buffer.initial);

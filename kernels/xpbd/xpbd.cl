@@ -6,6 +6,7 @@
 #include "common/xpbd_types.h"
 #include "common/xpbd_distance.h"
 #include "common/xpbd_bending.h"
+#include "async/merge.cl"
 
 static inline ats_vec3 xyz(float4 p) { return ats_v3(p.x, p.y, p.z); }
 static inline float4 add_xyz(float4 p, ats_vec3 d) { return (float4)(p.x + d.x, p.y + d.y, p.z + d.z, p.w); }

@@ -66,7 +66,11 @@ struct ObjectDesc {
 
 struct SolverDesc {
   std::string method = "xpbd";
-  std::string schedule = "single";  // single | split | heft: how the substep uses the devices
+  std::string schedule = "single";  // single | split | heft | async: how the substep uses the devices
+  int async_depth = 2;              // async: iterations in flight at once (1 = serial Gauss-Seidel)
+  std::string merge = "average_displacements";  // async: how a device merges another's result
+  bool async_latest = true;         // async: also merge the latest finished result, not only dependencies
+  bool replay = false;              // async: run the schedule on one device, in schedule order
 };
 
 struct OutputDesc {

@@ -31,8 +31,10 @@ constexpr std::array<std::string_view, 5> kMaterialKeys{"density", "stretch_stif
                                                         "bend_stiffness", "bend_compliance"};
 constexpr std::array<std::string_view, 2> kPinKeys{"vertices", "boxes"};
 constexpr std::array<std::string_view, 2> kBoxKeys{"min", "max"};
-constexpr std::array<std::string_view, 2> kSolverKeys{"method", "schedule"};
-constexpr std::array<std::string_view, 3> kSchedules{"single", "split", "heft"};
+constexpr std::array<std::string_view, 6> kSolverKeys{"method", "schedule", "async_depth", "merge", "async_fetch",
+                                                      "replay"};
+constexpr std::array<std::string_view, 4> kSchedules{"single", "split", "heft", "async"};
+constexpr std::array<std::string_view, 3> kMerges{"average_displacements", "average_positions", "main_precedence"};
 constexpr std::array<std::string_view, 2> kOutputKeys{"path", "stride"};
 constexpr std::array<std::string_view, 1> kMethods{"xpbd"};
 
@@ -292,8 +294,34 @@ SceneDesc parse_scene(const std::string& yaml_text, const std::string& source_na
       for (auto k : kSchedules) known = known || scene.solver.schedule == k;
       if (!known) {
         m.fail(fmt::format("unknown schedule '{}'", scene.solver.schedule),
-               "use single (one device), split (every color block divided by device speed) or heft");
+               "use single (one device), split (every color block divided by device speed), heft or async");
       }
+    }
+    if (solver.has("async_depth")) scene.solver.async_depth = solver.child("async_depth").integer_in(1, 64);
+    if (solver.has("merge")) {
+      const YamlReader m = solver.child("merge");
+      scene.solver.merge = m.string();
+      bool known = false;
+      for (auto k : kMerges) known = known || scene.solver.merge == k;
+      if (!known) {
+        m.fail(fmt::format("unknown merge strategy '{}'", scene.solver.merge),
+               "use average_displacements, average_positions or main_precedence");
+      }
+    }
+    if (solver.has("async_fetch")) {
+      const YamlReader m = solver.child("async_fetch");
+      const std::string fetch = m.string();
+      if (fetch != "latest" && fetch != "dependencies") {
+        m.fail(fmt::format("unknown async_fetch '{}'", fetch),
+               "use latest (merge the newest finished result) or dependencies (only what the graph requires)");
+      }
+      scene.solver.async_latest = fetch == "latest";
+    }
+    if (solver.has("replay")) {
+      const YamlReader m = solver.child("replay");
+      const std::string v = m.string();
+      if (v != "true" && v != "false") m.fail(fmt::format("'replay' is '{}'", v), "use true or false");
+      scene.solver.replay = v == "true";
     }
   }
   const YamlReader output = top.child("output");

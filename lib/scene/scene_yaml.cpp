@@ -80,8 +80,15 @@ std::string to_resolved_yaml(const SceneDesc& scene) {
   out << YAML::Key << "objects" << YAML::Value << YAML::BeginSeq;
   for (const ObjectDesc& obj : scene.objects) emit_object(out, obj);
   out << YAML::EndSeq;
-  out << YAML::Key << "solver" << YAML::Value << YAML::BeginMap << YAML::Key << "method" << YAML::Value
-      << scene.solver.method << YAML::Key << "schedule" << YAML::Value << scene.solver.schedule << YAML::EndMap;
+  const SolverDesc& solver = scene.solver;
+  out << YAML::Key << "solver" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "method" << YAML::Value << solver.method;
+  out << YAML::Key << "schedule" << YAML::Value << solver.schedule;
+  out << YAML::Key << "async_depth" << YAML::Value << solver.async_depth;
+  out << YAML::Key << "merge" << YAML::Value << solver.merge;
+  out << YAML::Key << "async_fetch" << YAML::Value << (solver.async_latest ? "latest" : "dependencies");
+  out << YAML::Key << "replay" << YAML::Value << (solver.replay ? "true" : "false");
+  out << YAML::EndMap;
   out << YAML::Key << "output" << YAML::Value << YAML::BeginMap << YAML::Key << "path" << YAML::Value
       << scene.output.path << YAML::Key << "stride" << YAML::Value << scene.output.stride << YAML::EndMap;
   out << YAML::Key << "devices" << YAML::Value << scene.devices;
