@@ -4,7 +4,9 @@
 For cloths of about 4k, 16k and 64k vertices, runs atssim on sub-device A
 alone, sub-device B alone (the pocl CPU device split into two 1-CU
 sub-devices), the whole 2-CU device, and the two sub-devices with the
-`split` and `heft` schedules; prints one Markdown table with the median
+`split`, `heft` and `async` schedules (async: asynchronous Gauss-Seidel,
+depth 2, average displacements — not the same iteration, so compare its
+accuracy in docs/accuracy.md too); prints one Markdown table with the median
 frame time, the speedup of the best two-device schedule over the best single
 sub-device and over the whole device, and the scheduler's prediction error
 |measured - predicted| / measured substep makespan (median over frames).
@@ -32,6 +34,7 @@ VARIANTS = [  # label, devices, schedule
     ("whole device", "cpu", "single"),
     ("split", "cpu/2", "split"),
     ("heft", "cpu/2", "heft"),
+    ("async", "cpu/2", "async"),
 ]
 
 
@@ -59,7 +62,7 @@ def main() -> int:
     os.environ.setdefault("POCL_CACHE_DIR", os.path.expanduser("~/.cache/atssim/pocl"))
     sizes = [int(s) for s in args.sizes.split(",")]
     header = "| vertices | " + " | ".join(f"{v[0]} ms" for v in VARIANTS) + \
-             " | best 2-device vs best sub-device | vs whole device | prediction error split / heft |"
+             " | best 2-device vs best sub-device | vs whole device | prediction error split / heft / async |"
     print(header)
     print("|" + "---|" * (len(VARIANTS) + 4))
     with tempfile.TemporaryDirectory() as tmp:
@@ -70,11 +73,11 @@ def main() -> int:
                     t, e = run(res, devices, schedule, args.frames, os.path.join(tmp, "out.h5"))
                     if label not in ms or t < ms[label]:
                         ms[label], err[label] = t, e
-            best_two = min(ms["split"], ms["heft"])
+            best_two = min(ms["split"], ms["heft"], ms["async"])
             best_one = min(ms["A alone"], ms["B alone"])
             row = f"| {res * res} ({res}×{res}) | " + " | ".join(f"{ms[v[0]]:.1f}" for v in VARIANTS)
             row += f" | {best_one / best_two:.2f}× | {ms['whole device'] / best_two:.2f}× |"
-            row += f" {100 * err['split']:.0f} % / {100 * err['heft']:.0f} % |"
+            row += f" {100 * err['split']:.0f} % / {100 * err['heft']:.0f} % / {100 * err['async']:.0f} % |"
             print(row, flush=True)
     print()
     print(f"frames={args.frames} rounds={args.rounds} scene=scenes/hanging_cloth.yaml "
