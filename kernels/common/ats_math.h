@@ -1,23 +1,39 @@
 /* Small vector math in the common subset of C, C++ and OpenCL C, so the
  * element math below compiles both in kernels and in host code (DESIGN.md:
- * one truth for the math). */
+ * one truth for the math).
+ *
+ * The scalar type is the macro ats_real, float unless the including file
+ * defines it first: kernels and the float host twins use float; host code
+ * that needs double (the Newton reference) defines ats_real as double before
+ * the first include (see lib/solver/energy/element_math.hpp). */
 #ifndef ATS_MATH_H
 #define ATS_MATH_H
+
+#ifndef ats_real
+#define ats_real float
+#endif
 
 #ifdef __OPENCL_VERSION__
 #define ATS_FN static inline
 #define ATS_SQRT(x) sqrt(x)
-#else
-#include <math.h>
+#define ATS_FMA(a, b, c) fma(a, b, c)
+#elif defined(__cplusplus)
+#include <math.h> /* C++ <math.h>: sqrt and fma are overloaded for float and double */
 #define ATS_FN static inline
-#define ATS_SQRT(x) sqrtf(x)
+#define ATS_SQRT(x) sqrt(x)
+#define ATS_FMA(a, b, c) fma(a, b, c)
+#else
+#include <tgmath.h> /* C: type-generic sqrt and fma */
+#define ATS_FN static inline
+#define ATS_SQRT(x) sqrt(x)
+#define ATS_FMA(a, b, c) fma(a, b, c)
 #endif
 
 typedef struct {
-  float x, y, z;
+  ats_real x, y, z;
 } ats_vec3;
 
-ATS_FN ats_vec3 ats_v3(float x, float y, float z) {
+ATS_FN ats_vec3 ats_v3(ats_real x, ats_real y, ats_real z) {
   ats_vec3 r;
   r.x = x;
   r.y = y;
@@ -26,8 +42,8 @@ ATS_FN ats_vec3 ats_v3(float x, float y, float z) {
 }
 ATS_FN ats_vec3 ats_add(ats_vec3 a, ats_vec3 b) { return ats_v3(a.x + b.x, a.y + b.y, a.z + b.z); }
 ATS_FN ats_vec3 ats_sub(ats_vec3 a, ats_vec3 b) { return ats_v3(a.x - b.x, a.y - b.y, a.z - b.z); }
-ATS_FN ats_vec3 ats_scale(ats_vec3 a, float s) { return ats_v3(a.x * s, a.y * s, a.z * s); }
-ATS_FN float ats_dot(ats_vec3 a, ats_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-ATS_FN float ats_length(ats_vec3 a) { return ATS_SQRT(ats_dot(a, a)); }
+ATS_FN ats_vec3 ats_scale(ats_vec3 a, ats_real s) { return ats_v3(a.x * s, a.y * s, a.z * s); }
+ATS_FN ats_real ats_dot(ats_vec3 a, ats_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+ATS_FN ats_real ats_length(ats_vec3 a) { return ATS_SQRT(ats_dot(a, a)); }
 
 #endif

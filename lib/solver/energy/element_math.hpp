@@ -1,0 +1,22 @@
+#pragma once
+// The shared element math (kernels/common/energy_*.h) in double precision,
+// for the Newton reference and its tests. The headers are written for one
+// scalar type per translation unit; this one sets ats_real to double and
+// wraps them in a namespace, so its ats_vec3/ats_mat3 (double) are types
+// distinct from the float ones of other files (one definition rule).
+// A file that includes this cannot also use the float headers.
+#include <math.h>
+
+#include <cmath>
+
+#ifdef ATS_MATH_H
+#error "solver/energy/element_math.hpp must come before any float include of common/ats_math.h"
+#endif
+
+namespace atssim::solver::energy::f64 {
+#define ats_real double
+#include "common/energy_bending.h"
+#include "common/energy_inertia.h"
+#include "common/energy_stretch.h"
+#undef ats_real
+}  // namespace atssim::solver::energy::f64

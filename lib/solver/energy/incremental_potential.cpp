@@ -1,0 +1,56 @@
+#include "solver/energy/incremental_potential.hpp"
+
+#include <fmt/format.h>
+
+#include "solver/energy/finite_stiffness.hpp"
+#include "solver/energy/potential_evaluation.hpp"
+#include "util/error.hpp"
+
+namespace atssim::solver::energy {
+
+IncrementalPotential make_incremental_potential(const xpbd::XpbdLayout& layout,
+                                                const std::vector<xpbd::Float4>& predicted, double h) {
+  if (predicted.size() != layout.x.size()) {
+    throw input_error(fmt::format("incremental potential: {} predicted positions for {} particles", predicted.size(),
+                                  layout.x.size()));
+  }
+  require_finite_stiffness(layout);
+  IncrementalPotential p;
+  p.h = h;
+  p.predicted = positions_of(predicted);
+  p.mass.resize(layout.x.size());
+  for (std::size_t i = 0; i < layout.x.size(); ++i) {
+    const double w = layout.x[i].w;
+    p.mass[i] = w > 0.0 ? 1.0 / w : 0.0;
+  }
+  p.stretch.reserve(layout.stretch.size());
+  for (std::size_t i = 0; i < layout.stretch.size(); ++i) {
+    const ats_distance_c& c = layout.stretch[i];
+    p.stretch.push_back({c.a, c.b, c.rest, 1.0 / static_cast<double>(c.compliance)});
+  }
+  p.bend.reserve(layout.bend.size());
+  for (std::size_t i = 0; i < layout.bend.size(); ++i) {
+    const ats_bend_c& c = layout.bend[i];
+    BendTerm t;
+    for (int k = 0; k < 4; ++k) {
+      t.v[k] = c.v[k];
+      t.K[k] = c.K[k];
+    }
+    t.scale = c.scale;
+    t.stiffness = 1.0 / static_cast<double>(c.compliance);
+    p.bend.push_back(t);
+  }
+  return p;
+}
+
+Eigen::VectorXd positions_of(const std::vector<xpbd::Float4>& x) {
+  Eigen::VectorXd out(3 * static_cast<Eigen::Index>(x.size()));
+  for (std::size_t i = 0; i < x.size(); ++i) out.segment<3>(3 * static_cast<Eigen::Index>(i)) << x[i].x, x[i].y, x[i].z;
+  return out;
+}
+
+double incremental_potential(const xpbd::XpbdLayout& layout, const std::vector<xpbd::Float4>& predicted, double h) {
+  return total_energy(make_incremental_potential(layout, predicted, h), positions_of(layout.x));
+}
+
+}  // namespace atssim::solver::energy

@@ -1,0 +1,102 @@
+#include "solver/energy/element_math.hpp"  // first: the double instance of the shared math
+
+#include "solver/energy/potential_evaluation.hpp"
+
+namespace atssim::solver::energy {
+
+namespace {
+
+using f64::ats_mat3;
+using f64::ats_vec3;
+
+ats_vec3 vec_at(const Eigen::VectorXd& x, int i) { return f64::ats_v3(x[3 * i], x[3 * i + 1], x[3 * i + 2]); }
+
+void add_at(Eigen::VectorXd& g, int i, ats_vec3 v) {
+  g[3 * i] += v.x;
+  g[3 * i + 1] += v.y;
+  g[3 * i + 2] += v.z;
+}
+
+void bend_positions(const BendTerm& t, const Eigen::VectorXd& x, ats_vec3 out[4]) {
+  for (int k = 0; k < 4; ++k) out[k] = vec_at(x, t.v[k]);
+}
+
+// Appends the block (i, j) of a 3x3 matrix unless either particle is pinned.
+void add_block(std::vector<Eigen::Triplet<double>>& out, const IncrementalPotential& p, int i, int j, const ats_mat3& m,
+               double sign) {
+  if (!p.is_free(i) || !p.is_free(j)) return;
+  for (int r = 0; r < 3; ++r) {
+    const double row[3] = {m.r[r].x, m.r[r].y, m.r[r].z};
+    for (int c = 0; c < 3; ++c) out.emplace_back(3 * i + r, 3 * j + c, sign * row[c]);
+  }
+}
+
+}  // namespace
+
+EnergyTerms energy_terms(const IncrementalPotential& p, const Eigen::VectorXd& x) {
+  EnergyTerms e;
+  const double inv_h2 = 1.0 / (p.h * p.h);
+  for (int i = 0; i < p.particle_count(); ++i) {
+    if (p.is_free(i)) e.inertia += f64::ats_inertia_energy(vec_at(x, i), vec_at(p.predicted, i), p.mass[i], inv_h2);
+  }
+  for (const StretchTerm& t : p.stretch) {
+    e.stretch += f64::ats_stretch_energy(vec_at(x, t.a), vec_at(x, t.b), t.rest, t.stiffness);
+  }
+  for (const BendTerm& t : p.bend) {
+    ats_vec3 q[4];
+    bend_positions(t, x, q);
+    e.bend += f64::ats_bend_energy(q, t.K.data(), t.scale, t.stiffness);
+  }
+  return e;
+}
+
+double total_energy(const IncrementalPotential& p, const Eigen::VectorXd& x) { return energy_terms(p, x).total(); }
+
+Eigen::VectorXd gradient(const IncrementalPotential& p, const Eigen::VectorXd& x) {
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(x.size());
+  const double inv_h2 = 1.0 / (p.h * p.h);
+  for (int i = 0; i < p.particle_count(); ++i) {
+    if (p.is_free(i)) add_at(g, i, f64::ats_inertia_gradient(vec_at(x, i), vec_at(p.predicted, i), p.mass[i], inv_h2));
+  }
+  for (const StretchTerm& t : p.stretch) {
+    const ats_vec3 ga = f64::ats_stretch_gradient(vec_at(x, t.a), vec_at(x, t.b), t.rest, t.stiffness);
+    add_at(g, t.a, ga);
+    add_at(g, t.b, f64::ats_scale(ga, -1.0));
+  }
+  for (const BendTerm& t : p.bend) {
+    ats_vec3 q[4];
+    bend_positions(t, x, q);
+    for (int k = 0; k < 4; ++k) add_at(g, t.v[k], f64::ats_bend_gradient(q, t.K.data(), t.scale, t.stiffness, k));
+  }
+  for (int i = 0; i < p.particle_count(); ++i) {
+    if (!p.is_free(i)) g.segment<3>(3 * i).setZero();
+  }
+  return g;
+}
+
+std::vector<Eigen::Triplet<double>> hessian_triplets(const IncrementalPotential& p, const Eigen::VectorXd& x,
+                                                     bool project_psd) {
+  std::vector<Eigen::Triplet<double>> out;
+  out.reserve(9 * (p.mass.size() + 4 * p.stretch.size() + 16 * p.bend.size()));
+  const double inv_h2 = 1.0 / (p.h * p.h);
+  for (int i = 0; i < p.particle_count(); ++i) {
+    if (p.is_free(i)) add_block(out, p, i, i, f64::ats_inertia_hessian(p.mass[i], inv_h2), 1.0);
+  }
+  for (const StretchTerm& t : p.stretch) {
+    const ats_mat3 h = f64::ats_stretch_hessian(vec_at(x, t.a), vec_at(x, t.b), t.rest, t.stiffness, project_psd);
+    add_block(out, p, t.a, t.a, h, 1.0);
+    add_block(out, p, t.b, t.b, h, 1.0);
+    add_block(out, p, t.a, t.b, h, -1.0);
+    add_block(out, p, t.b, t.a, h, -1.0);
+  }
+  for (const BendTerm& t : p.bend) {
+    for (int i = 0; i < 4; ++i) {
+      for (int j = 0; j < 4; ++j) {
+        add_block(out, p, t.v[i], t.v[j], f64::ats_bend_hessian(t.K.data(), t.scale, t.stiffness, i, j), 1.0);
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace atssim::solver::energy
