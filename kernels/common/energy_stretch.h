@@ -18,7 +18,9 @@
 #define ATS_STRETCH_MIN_LENGTH ((ats_real)1e-20)
 
 /* Error-free transforms (Ogita, Rump & Oishi 2005): a*b = p + e exactly,
- * a + b = s + e exactly. */
+ * a + b = s + e exactly. They need IEEE arithmetic as written: no fast-math
+ * reassociation, and no contraction of a product into a later sum (the
+ * kernel program turns FP_CONTRACT off, the host files -ffp-contract=off). */
 ATS_FN ats_real ats_two_product(ats_real a, ats_real b, ats_real* e) {
   const ats_real p = a * b;
   *e = ATS_FMA(a, b, -p);

@@ -7,6 +7,9 @@
  * A compliance of 0 has no finite energy: the host rejects it first.
  * Every kernel covers elements [first, first + count), independent of each
  * other, so a launch may be cut between devices. */
+/* The stretch energy's error-free transforms must not be fused into FMAs. */
+#pragma OPENCL FP_CONTRACT OFF
+
 #include "common/ats_math.h"
 #include "common/xpbd_types.h"
 #include "common/energy_inertia.h"
