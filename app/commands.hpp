@@ -15,5 +15,6 @@ using Action = std::function<int()>;
 Action add_run_command(CLI::App& cli, const std::string& command_line);
 Action add_devices_command(CLI::App& cli);
 Action add_schedule_command(CLI::App& cli);
+Action add_converge_command(CLI::App& cli, const std::string& command_line);
 
 }  // namespace atssim::app

@@ -1,0 +1,154 @@
+#include "app/convergence.hpp"
+
+#include <algorithm>
+#include <cstring>
+
+#include <fmt/format.h>
+
+#include "app/execution.hpp"
+#include "device/device_set.hpp"
+#include "device/plan_executor.hpp"
+#include "model/cloth_builder.hpp"
+#include "scene/scene_loader.hpp"
+#include "solver/energy/incremental_potential.hpp"
+#include "solver/energy/predicted_positions.hpp"
+#include "solver/newton/newton_reference.hpp"
+#include "solver/xpbd/xpbd_plan.hpp"
+#include "util/error.hpp"
+
+namespace atssim::app {
+
+namespace {
+
+using solver::xpbd::Float4;
+
+std::vector<Float4> as_float4(const std::vector<std::byte>& raw) {
+  std::vector<Float4> out(raw.size() / sizeof(Float4));
+  std::memcpy(out.data(), raw.data(), out.size() * sizeof(Float4));
+  return out;
+}
+
+std::vector<int> iteration_counts(int max) {
+  std::vector<int> ks;
+  for (int k = 1; k < max; k *= 2) ks.push_back(k);
+  ks.push_back(max);
+  return ks;
+}
+
+struct Variant {
+  std::string name;
+  ExecutionOptions options;
+};
+
+std::vector<Variant> variants_of(const ConvergeOptions& o) {
+  std::vector<Variant> out;
+  for (const std::string& s : o.schedules) {
+    ExecutionOptions e;
+    e.mode = parse_schedule_mode(s);
+    e.profile_repetitions = 3;
+    if (e.mode != ScheduleMode::async) {
+      out.push_back({"xpbd/" + s, e});
+      continue;
+    }
+    for (const std::string& m : o.merges) {
+      e.merge = solver::parse_merge_strategy(m);
+      out.push_back({"xpbd/async/" + m, e});
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+io::ConvergenceResult run_convergence(const ConvergeOptions& o) {
+  if (o.max_iterations < 1 || o.max_iterations > 4096) {
+    throw input_error(fmt::format("--iterations {} is out of range; use 1 to 4096", o.max_iterations));
+  }
+  if (o.frames_before < 0) throw input_error("--frames-before must be ≥ 0");
+  const scene::SceneDesc scene = scene::load_scene_file(o.scene_path, o.overrides);
+  const std::vector<Variant> variants = variants_of(o);
+  const auto& sim = scene.simulation;
+  const double h = sim.frame_dt / sim.substeps;
+  const device::DeviceSet devices = device::DeviceSet::open(scene.devices);
+
+  // The state after `frames_before` frames of serial XPBD on the first device.
+  const model::Model model = model::build_model(scene);
+  solver::xpbd::XpbdLayout state = solver::xpbd::make_xpbd_layout(model);
+  {
+    solver::xpbd::XpbdBuffers ids;
+    const solver::SubstepPlan plan = solver::xpbd::make_xpbd_plan(state, {h, sim.iterations}, &ids);
+    device::PlanExecutor executor(devices, plan);
+    executor.enqueue_substeps(o.frames_before * sim.substeps);
+    state.x = as_float4(executor.read(ids.x));
+    state.v = as_float4(executor.read(ids.v));
+  }
+
+  io::ConvergenceResult result;
+  result.command_line = o.command_line;
+  result.scene_yaml = scene.yaml_text;
+  result.resolved_yaml = scene.resolved_yaml;
+  result.frames_before = o.frames_before;
+  result.substep_dt = h;
+  const std::vector<Float4> predicted = solver::energy::predicted_positions(state, h);
+  {
+    solver::xpbd::XpbdLayout at_start = state;
+    at_start.x = predicted;
+    result.energy_start = solver::energy::incremental_potential(at_start, predicted, h);
+  }
+  const solver::newton::NewtonResult newton = solver::newton::newton_reference(state, predicted, h);
+  result.energy_reference = newton.energy;
+  result.newton_iterations = newton.iterations;
+  result.newton_relative_gradient = newton.relative_gradient;
+  result.newton_status = std::string(solver::newton::to_string(newton.status));
+
+  const double span = result.energy_start - result.energy_reference;
+  for (const Variant& v : variants) {
+    io::ConvergenceTrace trace;
+    trace.variant = v.name;
+    for (int k : iteration_counts(o.max_iterations)) {
+      solver::xpbd::XpbdBuffers ids;
+      const solver::SubstepPlan plan = solver::xpbd::make_xpbd_plan(state, {h, k}, &ids);
+      Execution e = prepare_execution(devices, plan, v.options);
+      std::vector<double> times;
+      std::vector<Float4> x;
+      for (int r = 0; r < std::max(1, o.timing_repeats); ++r) {
+        for (std::size_t b = 0; b < e.plan->buffers.size(); ++b) {
+          e.executor->write(static_cast<solver::BufferId>(b), e.plan->buffers[b].initial);
+        }
+        e.executor->enqueue_substeps(1, true);
+        double makespan = 0.0;
+        for (const auto& t : e.executor->recorded()) makespan = std::max(makespan, t.finish_ms);
+        times.push_back(makespan);
+        x = as_float4(e.executor->read(e.plan->positions));
+      }
+      std::nth_element(times.begin(), times.begin() + times.size() / 2, times.end());
+      solver::xpbd::XpbdLayout after = state;
+      after.x = x;
+      const double energy = solver::energy::incremental_potential(after, predicted, h);
+      trace.iterations.push_back(k);
+      trace.energy.push_back(energy);
+      trace.relative_error.push_back(span > 0.0 ? (energy - result.energy_reference) / span : 0.0);
+      trace.time_ms.push_back(times[times.size() / 2]);
+    }
+    result.traces.push_back(std::move(trace));
+  }
+  return result;
+}
+
+std::string format_convergence_table(const io::ConvergenceResult& r) {
+  std::string out = fmt::format(
+      "E0 = {:.9g}, E* = {:.9g} (Newton: {} steps, relative gradient {:.2e}, {}); y_k = (E_k - E*)/(E0 - E*)\n",
+      r.energy_start, r.energy_reference, r.newton_iterations, r.newton_relative_gradient, r.newton_status);
+  if (r.traces.empty()) return out;
+  out += fmt::format("{:<36}", "variant");
+  for (int k : r.traces.front().iterations) out += fmt::format(" {:>10}", fmt::format("k={}", k));
+  out += fmt::format(" {:>12}\n", "ms (k=max)");
+  for (const auto& t : r.traces) {
+    out += fmt::format("{:<36}", t.variant);
+    for (double y : t.relative_error) out += fmt::format(" {:>10.3e}", y);
+    out += fmt::format(" {:>12.3f}\n", t.time_ms.back());
+  }
+  return out;
+}
+
+}  // namespace atssim::app
