@@ -182,25 +182,20 @@ ResultWriter::~ResultWriter() {
 }
 
 void ResultWriter::append_scalar(hid_t set, double value) {
-  const hsize_t size[1] = {static_cast<hsize_t>(frames_ + 1)};
-  h5_check(H5Dset_extent(set, size), "extending a series");
-  H5Handle space = h5_check(H5Dget_space(set), H5Sclose, "series space");
-  const hsize_t start[1] = {static_cast<hsize_t>(frames_)}, count[1] = {1};
-  h5_check(H5Sselect_hyperslab(space, H5S_SELECT_SET, start, nullptr, count, nullptr), "selecting a frame");
-  H5Handle mem = h5_check(H5Screate_simple(1, count, nullptr), H5Sclose, "memory space");
-  h5_check(H5Dwrite(set, H5T_NATIVE_DOUBLE, mem, space, H5P_DEFAULT, &value), "writing a frame value");
+  const double one[1] = {value};
+  append_rows<double>(set, one, H5T_NATIVE_DOUBLE, static_cast<hsize_t>(frames_));
 }
 
 template <typename T>
 void ResultWriter::append_rows(hid_t set, std::span<const T> values, hid_t mem_type, hsize_t rows) {
   if (values.empty()) return;
   const hsize_t size[1] = {rows + values.size()};
-  h5_check(H5Dset_extent(set, size), "extending a /schedule series");
+  h5_check(H5Dset_extent(set, size), "extending a series");
   H5Handle space = h5_check(H5Dget_space(set), H5Sclose, "series space");
   const hsize_t start[1] = {rows}, count[1] = {values.size()};
   h5_check(H5Sselect_hyperslab(space, H5S_SELECT_SET, start, nullptr, count, nullptr), "selecting rows");
   H5Handle mem = h5_check(H5Screate_simple(1, count, nullptr), H5Sclose, "memory space");
-  h5_check(H5Dwrite(set, mem_type, mem, space, H5P_DEFAULT, values.data()), "writing /schedule rows");
+  h5_check(H5Dwrite(set, mem_type, mem, space, H5P_DEFAULT, values.data()), "writing rows of a series");
 }
 
 void ResultWriter::append_schedule(int frame, std::span<const ScheduledTask> tasks, std::span<const sched::Wait> waits,

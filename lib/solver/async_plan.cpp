@@ -70,15 +70,11 @@ AsyncPlan make_async_plan(const SubstepPlan& graph_plan, const sched::Schedule& 
   plan.buffers = graph_plan.buffers;
   plan.positions = x;
   plan.particle_count = n;
-  auto add_buffer = [&](std::string name, std::vector<std::byte> initial) {
-    plan.buffers.push_back({std::move(name), std::move(initial)});
-    return static_cast<BufferId>(plan.buffers.size() - 1);
-  };
 
   // One copy of the positions per device; the main device's is the plan's.
   std::vector<BufferId> replica(devices, x);
   for (std::size_t d = 0; d < devices; ++d) {
-    if (d != main) replica[d] = add_buffer(fmt::format("x@{}", d), graph_plan.buffers[x].initial);
+    if (d != main) replica[d] = plan.add_buffer(fmt::format("x@{}", d), graph_plan.buffers[x].initial);
   }
   for (sched::TaskId t = 0; t < graph.size(); ++t) {
     auto launches = graph_plan.launches[t];
@@ -128,7 +124,7 @@ AsyncPlan make_async_plan(const SubstepPlan& graph_plan, const sched::Schedule& 
       if (slots[i].busy_until < at && (s == slots.size() || slots[i].busy_until < slots[s].busy_until)) s = i;
     }
     if (s == slots.size()) {
-      slots.push_back({add_buffer(fmt::format("snapshot{}", slots.size()), std::vector<std::byte>(positions_bytes)),
+      slots.push_back({plan.add_buffer(fmt::format("snapshot{}", slots.size()), std::vector<std::byte>(positions_bytes)),
                        -1.0, sched::kNoTask});
     }
     const sched::DeviceId d = schedule.device_of(p);

@@ -4,6 +4,7 @@
 // The device layer runs this without knowing any physics (DESIGN.md).
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,12 @@ struct SubstepPlan {
   BufferId positions = -1;         // float4 per particle (xyz used): what output reads
   int particle_count = 0;
 
+  // Appends a buffer; returns its id.
+  BufferId add_buffer(std::string name, std::vector<std::byte> initial) {
+    buffers.push_back({std::move(name), std::move(initial)});
+    return static_cast<BufferId>(buffers.size() - 1);
+  }
+
   // Appends a task with its launches; returns its id.
   sched::TaskId add_task(sched::Task task, std::vector<KernelLaunch> task_launches) {
     const sched::TaskId id = graph.add_task(std::move(task));
@@ -55,5 +62,13 @@ struct SubstepPlan {
     return id;
   }
 };
+
+// The bytes of a vector of plain values, as a buffer's initial contents.
+template <typename T>
+std::vector<std::byte> bytes_of(const std::vector<T>& values) {
+  std::vector<std::byte> out(values.size() * sizeof(T));
+  if (!out.empty()) std::memcpy(out.data(), values.data(), out.size());
+  return out;
+}
 
 }  // namespace atssim::solver

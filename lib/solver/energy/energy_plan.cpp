@@ -11,18 +11,6 @@ namespace atssim::solver::energy {
 
 namespace {
 
-template <typename T>
-std::vector<std::byte> bytes_of(const std::vector<T>& values) {
-  std::vector<std::byte> out(values.size() * sizeof(T));
-  if (!out.empty()) std::memcpy(out.data(), values.data(), out.size());
-  return out;
-}
-
-BufferId add_buffer(SubstepPlan& plan, std::string name, std::vector<std::byte> initial) {
-  plan.buffers.push_back({std::move(name), std::move(initial)});
-  return static_cast<BufferId>(plan.buffers.size() - 1);
-}
-
 using Arg = KernelArg;
 
 // (out_first, first, count) follow the three buffers: the range is args 4, 5.
@@ -58,11 +46,11 @@ SubstepPlan make_energy_plan(const xpbd::XpbdLayout& layout, const std::vector<x
   plan.program = "xpbd_energy";
   plan.particle_count = static_cast<int>(layout.x.size());
   EnergyBuffers b;
-  b.x = add_buffer(plan, "x", bytes_of(layout.x));
-  b.predicted = add_buffer(plan, "predicted", bytes_of(predicted));
-  if (!layout.stretch.empty()) b.stretch = add_buffer(plan, "stretch", bytes_of(layout.stretch));
-  if (!layout.bend.empty()) b.bend = add_buffer(plan, "bend", bytes_of(layout.bend));
-  b.energy = add_buffer(plan, "energy", std::vector<std::byte>(static_cast<std::size_t>(where.size) * sizeof(float)));
+  b.x = plan.add_buffer("x", bytes_of(layout.x));
+  b.predicted = plan.add_buffer("predicted", bytes_of(predicted));
+  if (!layout.stretch.empty()) b.stretch = plan.add_buffer("stretch", bytes_of(layout.stretch));
+  if (!layout.bend.empty()) b.bend = plan.add_buffer("bend", bytes_of(layout.bend));
+  b.energy = plan.add_buffer("energy", std::vector<std::byte>(static_cast<std::size_t>(where.size) * sizeof(float)));
   plan.positions = b.x;
 
   // Every element is independent, so one task whose launches each cover a

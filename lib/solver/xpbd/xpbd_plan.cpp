@@ -8,18 +8,6 @@ namespace atssim::solver::xpbd {
 
 namespace {
 
-template <typename T>
-std::vector<std::byte> bytes_of(const std::vector<T>& values) {
-  std::vector<std::byte> out(values.size() * sizeof(T));
-  if (!out.empty()) std::memcpy(out.data(), values.data(), out.size());
-  return out;
-}
-
-BufferId add_buffer(SubstepPlan& plan, std::string name, std::vector<std::byte> initial) {
-  plan.buffers.push_back({std::move(name), std::move(initial)});
-  return static_cast<BufferId>(plan.buffers.size() - 1);
-}
-
 using Arg = KernelArg;
 
 // Adds one task per color block of one element set, chained after `last`.
@@ -48,16 +36,16 @@ SubstepPlan make_xpbd_plan(const XpbdLayout& layout, const XpbdSettings& setting
   plan.program = "xpbd";
   plan.particle_count = static_cast<int>(layout.x.size());
   XpbdBuffers b;
-  b.x = add_buffer(plan, "x", bytes_of(layout.x));
-  b.v = add_buffer(plan, "v", bytes_of(layout.v));
-  b.x_prev = add_buffer(plan, "x_prev", bytes_of(layout.x));
+  b.x = plan.add_buffer("x", bytes_of(layout.x));
+  b.v = plan.add_buffer("v", bytes_of(layout.v));
+  b.x_prev = plan.add_buffer("x_prev", bytes_of(layout.x));
   if (!layout.stretch.empty()) {
-    b.stretch = add_buffer(plan, "stretch", bytes_of(layout.stretch));
-    b.stretch_lambda = add_buffer(plan, "stretch_lambda", std::vector<std::byte>(layout.stretch.size() * sizeof(float)));
+    b.stretch = plan.add_buffer("stretch", bytes_of(layout.stretch));
+    b.stretch_lambda = plan.add_buffer("stretch_lambda", std::vector<std::byte>(layout.stretch.size() * sizeof(float)));
   }
   if (!layout.bend.empty()) {
-    b.bend = add_buffer(plan, "bend", bytes_of(layout.bend));
-    b.bend_lambda = add_buffer(plan, "bend_lambda", std::vector<std::byte>(layout.bend.size() * 4 * sizeof(float)));
+    b.bend = plan.add_buffer("bend", bytes_of(layout.bend));
+    b.bend_lambda = plan.add_buffer("bend_lambda", std::vector<std::byte>(layout.bend.size() * 4 * sizeof(float)));
   }
   plan.positions = b.x;
 
