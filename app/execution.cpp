@@ -148,8 +148,13 @@ Execution prepare_async(const device::DeviceSet& devices, const solver::SubstepP
   sched::DeviceLinks hop;
   {
     device::PlanExecutor probe(devices, base, exec_options);
-    costs = probe.profile(std::max(2, options.profile_repetitions / 2));
+    costs = options.placement_costs ? *options.placement_costs
+                                    : probe.profile(std::max(2, options.profile_repetitions / 2));
     hop = measure_links(probe);
+  }
+  if (costs.tasks != graph.size() || costs.devices != n) {
+    throw Error(fmt::format("async: placement costs for {} tasks on {} devices, the plan has {} on {}", costs.tasks,
+                            costs.devices, graph.size(), n));
   }
   // The main device keeps the stream: the fastest one runs predict and the
   // velocity update, which read and write the state no other device has.

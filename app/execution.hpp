@@ -4,6 +4,7 @@
 // the schedule with its cross-device waits (DESIGN.md "Task graph of one
 // substep": single, sync split, HEFT).
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,9 @@ struct ExecutionOptions {
   solver::MergeStrategy merge = solver::MergeStrategy::average_displacements;
   bool async_latest = true;
   bool replay = false;  // run the async schedule on device 0 alone, in schedule order
+  // Async: costs of the base plan's tasks per device to place them with,
+  // instead of a profile (tests use it to make the placement deterministic).
+  std::optional<sched::CostTable> placement_costs;
 };
 
 struct Execution {

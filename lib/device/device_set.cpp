@@ -1,6 +1,8 @@
 #include "device/device_set.hpp"
 
 #include <algorithm>
+#include <map>
+#include <mutex>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -64,7 +66,7 @@ std::vector<const DeviceHandle*> pick(const std::string& selector, const std::st
 
 }  // namespace
 
-DeviceSet::DeviceSet(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+DeviceSet::DeviceSet(std::shared_ptr<Impl> impl) : impl_(std::move(impl)) {}
 DeviceSet::DeviceSet(DeviceSet&&) noexcept = default;
 DeviceSet& DeviceSet::operator=(DeviceSet&&) noexcept = default;
 DeviceSet::~DeviceSet() = default;
@@ -76,14 +78,33 @@ bool DeviceSet::fine_grain_svm() const {
   return std::all_of(impl_->infos.begin(), impl_->infos.end(), [](const DeviceInfo& d) { return d.svm.fine_buffer; });
 }
 
+namespace {
+
+std::shared_ptr<DeviceSet::Impl> open_impl(const std::string& spec_in);
+
+}  // namespace
+
 DeviceSet DeviceSet::open(const std::string& spec_in) {
+  // Leaked on purpose: never destroyed, so never torn down (see the header).
+  static auto* cache = new std::map<std::string, std::shared_ptr<Impl>>();
+  static std::mutex mutex;
+  const std::lock_guard<std::mutex> lock(mutex);
+  const std::string spec = spec_in.empty() ? "default" : spec_in;
+  auto it = cache->find(spec);
+  if (it == cache->end()) it = cache->emplace(spec, open_impl(spec)).first;
+  return DeviceSet(it->second);
+}
+
+namespace {
+
+std::shared_ptr<DeviceSet::Impl> open_impl(const std::string& spec_in) {
   const std::vector<DeviceHandle> all = all_device_handles();
   if (all.empty()) {
     throw runtime_error("no OpenCL device found: install an OpenCL driver (on Debian: pocl-opencl-icd, "
                         "scripts/setup.sh installs it) and check `atssim devices`");
   }
   const std::string spec = spec_in.empty() ? "default" : spec_in;
-  auto impl = std::make_unique<Impl>();
+  auto impl = std::make_shared<DeviceSet::Impl>();
   std::stringstream items(spec);
   for (std::string item; std::getline(items, item, ',');) {
     std::string selector = item;
@@ -160,7 +181,9 @@ DeviceSet DeviceSet::open(const std::string& spec_in) {
   } catch (const cl::Error& e) {
     throw runtime_error(fmt::format("creating the OpenCL context: {} in {}", cl_error_name(e.err()), e.what()));
   }
-  return DeviceSet(std::move(impl));
+  return impl;
 }
+
+}  // namespace
 
 }  // namespace atssim::device

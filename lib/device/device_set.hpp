@@ -17,6 +17,9 @@ namespace atssim::device {
 
 class DeviceSet {
  public:
+  // Contexts are opened once per spec and process, and kept until exit:
+  // tearing a pocl 3.1 context down while its worker threads still finish
+  // event bookkeeping crashed now and then; a run opens one set anyway.
   // Throws atssim::Error: input (exit 2) when the spec is malformed or
   // matches nothing, listing the devices; runtime (exit 1) when there is no
   // OpenCL device at all or a device lacks SVM.
@@ -36,8 +39,8 @@ class DeviceSet {
   Impl& impl() const { return *impl_; }
 
  private:
-  explicit DeviceSet(std::unique_ptr<Impl> impl);
-  std::unique_ptr<Impl> impl_;
+  explicit DeviceSet(std::shared_ptr<Impl> impl);
+  std::shared_ptr<Impl> impl_;
 };
 
 }  // namespace atssim::device

@@ -46,6 +46,13 @@ class EventList {
     }
   }
   void swap(EventList& other) noexcept { events_.swap(other.events_); }
+  // Hands every event to `graveyard` (to be released later) and empties the list.
+  void retire_into(std::vector<cl_event>& graveyard) {
+    for (cl_event& e : events_) {
+      if (e != nullptr) graveyard.push_back(e);
+      e = nullptr;
+    }
+  }
 
  private:
   std::vector<cl_event> events_;
@@ -76,6 +83,10 @@ struct PlanExecutor::Impl {
   bool have_record = false;
   // Each queue's last event of the previous substep (the barrier between substeps).
   EventList last_on_device;
+  // Events no longer needed, released only once every queue is finished:
+  // releasing an event that another device's queue still waits on crashed
+  // pocl 3.1's pthread driver now and then (use after free in its worker).
+  std::vector<cl_event> graveyard;
 
   Impl(const DeviceSet& devices, const solver::SubstepPlan& p, ExecutorOptions o)
       : set(devices.impl()),
@@ -132,6 +143,7 @@ struct PlanExecutor::Impl {
 
   void set_steps(std::vector<Step> new_steps) {
     finish_all();
+    last_on_device.clear();
     steps = std::move(new_steps);
     std::vector<char> seen(set.devices.size(), 0);
     devices_used = 0;
@@ -148,7 +160,6 @@ struct PlanExecutor::Impl {
         last[it->device] = 1;
       }
     }
-    last_on_device.clear();
   }
 
   void enqueue_substep(bool record) {
@@ -205,22 +216,27 @@ struct PlanExecutor::Impl {
         if (last && want_event) events[step.task] = produced;
       }
       if (step.event_needed && events[step.task] != nullptr) {
-        if (this_last[step.device] != nullptr) clReleaseEvent(this_last[step.device]);
+        if (this_last[step.device] != nullptr) graveyard.push_back(this_last[step.device]);
         this_last[step.device] = events[step.task];
         clRetainEvent(events[step.task]);
       }
     }
     for (const cl::CommandQueue& q : set.queues) check_cl(clFlush(q()), "flushing a queue");
     last_on_device.swap(this_last);
+    this_last.retire_into(graveyard);
     if (record) {
       record_start.swap(starts);
       record_end.swap(events);
       have_record = true;
     }
+    starts.retire_into(graveyard);
+    events.retire_into(graveyard);
   }
 
   void finish_all() {
     for (const cl::CommandQueue& q : set.queues) check_cl(clFinish(q()), "waiting for a device");
+    for (cl_event e : graveyard) clReleaseEvent(e);
+    graveyard.clear();
   }
 
   std::vector<TaskTiming> timings() {
@@ -251,6 +267,7 @@ PlanExecutor::PlanExecutor(const DeviceSet& devices, const solver::SubstepPlan& 
 PlanExecutor::~PlanExecutor() {
   if (impl_) {
     for (const cl::CommandQueue& q : impl_->set.queues) clFinish(q());
+    for (cl_event e : impl_->graveyard) clReleaseEvent(e);
   }
 }
 
