@@ -16,5 +16,6 @@ Action add_run_command(CLI::App& cli, const std::string& command_line);
 Action add_devices_command(CLI::App& cli);
 Action add_schedule_command(CLI::App& cli);
 Action add_converge_command(CLI::App& cli, const std::string& command_line);
+Action add_inspect_command(CLI::App& cli);
 
 }  // namespace atssim::app

@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   const atssim::app::Action devices = atssim::app::add_devices_command(cli);
   const atssim::app::Action schedule = atssim::app::add_schedule_command(cli);
   const atssim::app::Action converge = atssim::app::add_converge_command(cli, command_line);
+  const atssim::app::Action inspect = atssim::app::add_inspect_command(cli);
 
   try {
     cli.parse(argc, argv);
@@ -40,6 +41,7 @@ int main(int argc, char** argv) {
       if (sub->get_name() == "devices") return devices();
       if (sub->get_name() == "schedule") return schedule();
       if (sub->get_name() == "converge") return converge();
+      if (sub->get_name() == "inspect") return inspect();
     }
   } catch (const atssim::Error& e) {
     fmt::print(stderr, "atssim: {}\n", e.what());

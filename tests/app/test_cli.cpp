@@ -59,6 +59,12 @@ TEST_CASE("atssim run writes a complete HDF5 file with every frame") {
   CHECK(s.frames == 4);  // the initial state + 3 frames
   CHECK(s.particles == 144);
   CHECK(std::filesystem::exists(dir.file("out.xdmf")));
+
+  const auto inspect = run_atssim(dir, "inspect " + dir.file("out.h5"));
+  CHECK(inspect.code == 0);
+  CHECK(inspect.out.find("status:    complete") != std::string::npos);
+  CHECK(inspect.out.find("frames:    4") != std::string::npos);
+  CHECK(run_atssim(dir, "inspect " + dir.file("nothing.h5")).code == 2);
 }
 
 TEST_CASE("the bundled scenes run") {
@@ -99,7 +105,8 @@ TEST_CASE("bad usage gives one line and exit code 2") {
 
 TEST_CASE("help works for every subcommand") {
   test::TempDir dir;
-  for (const char* args : {"--help", "run --help", "devices --help"}) {
+  for (const char* args : {"--help", "run --help", "devices --help", "schedule --help", "converge --help",
+                           "inspect --help"}) {
     const auto r = run_atssim(dir, args);
     CHECK(r.code == 0);
     CHECK(r.out.find("Usage") != std::string::npos);
