@@ -12,13 +12,12 @@ namespace atssim::app {
 Action add_converge_command(CLI::App& cli, const std::string& command_line) {
   auto o = std::make_shared<ConvergeOptions>();
   auto output = std::make_shared<std::string>("convergence.h5");
-  auto methods = std::make_shared<std::vector<std::string>>(std::vector<std::string>{"xpbd"});
   auto devices = std::make_shared<std::string>();
   CLI::App* cmd = cli.add_subcommand(
       "converge", "Speed/accuracy: relative energy error per iteration vs a Newton reference, per schedule");
   cmd->add_option("scene", o->scene_path, "Scene file (YAML)")->required();
   cmd->add_option("-o,--output", *output, "Output HDF5 file (/convergence)")->capture_default_str();
-  cmd->add_option("--methods", *methods, "Solvers to compare (this version: xpbd)")->delimiter(',');
+  cmd->add_option("--methods", o->methods, "Solvers to compare: xpbd, vbd, jpgd (comma separated)")->delimiter(',');
   cmd->add_option("--schedules", o->schedules, "single, split, heft, async (comma separated)")->delimiter(',');
   cmd->add_option("--merges", o->merges,
                   "Merge strategies for async: average_displacements, average_positions, main_precedence")
@@ -27,10 +26,7 @@ Action add_converge_command(CLI::App& cli, const std::string& command_line) {
   cmd->add_option("--frames-before", o->frames_before, "Frames simulated first to reach a moving state")->capture_default_str();
   cmd->add_option("--devices", *devices, "Device spec (two-device schedules need two, e.g. cpu/2)");
   cmd->add_option("--set", o->overrides, "Override a scene key (repeatable)");
-  return [o, output, methods, devices, command_line]() {
-    for (const std::string& m : *methods) {
-      if (m != "xpbd") throw input_error(fmt::format("--methods: unknown method '{}'; this version has xpbd", m));
-    }
+  return [o, output, devices, command_line]() {
     ConvergeOptions options = *o;
     options.command_line = command_line;
     if (!devices->empty()) options.overrides.push_back("devices=" + *devices);

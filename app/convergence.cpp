@@ -13,6 +13,7 @@
 #include "solver/energy/incremental_potential.hpp"
 #include "solver/energy/predicted_positions.hpp"
 #include "solver/newton/newton_reference.hpp"
+#include "solver/method_plan.hpp"
 #include "solver/xpbd/xpbd_plan.hpp"
 #include "util/error.hpp"
 
@@ -37,22 +38,31 @@ std::vector<int> iteration_counts(int max) {
 
 struct Variant {
   std::string name;
+  std::string method;
   ExecutionOptions options;
 };
 
+// Every method × schedule (× merge strategy for async); async only for
+// Gauss-Seidel methods (a Jacobi method's iterations have nothing to relax).
 std::vector<Variant> variants_of(const ConvergeOptions& o) {
   std::vector<Variant> out;
-  for (const std::string& s : o.schedules) {
-    ExecutionOptions e;
-    e.mode = parse_schedule_mode(s);
-    e.profile_repetitions = 3;
-    if (e.mode != ScheduleMode::async) {
-      out.push_back({"xpbd/" + s, e});
-      continue;
-    }
-    for (const std::string& m : o.merges) {
-      e.merge = solver::parse_merge_strategy(m);
-      out.push_back({"xpbd/async/" + m, e});
+  for (const std::string& method : o.methods) {
+    bool known = false;
+    for (auto m : solver::method_names()) known = known || m == method;
+    if (!known) throw input_error(fmt::format("--methods: unknown method '{}'; available: xpbd, vbd, jpgd", method));
+    for (const std::string& s : o.schedules) {
+      ExecutionOptions e;
+      e.mode = parse_schedule_mode(s);
+      e.profile_repetitions = 3;
+      if (e.mode != ScheduleMode::async) {
+        out.push_back({method + "/" + s, method, e});
+        continue;
+      }
+      if (!solver::is_gauss_seidel(method)) continue;
+      for (const std::string& m : o.merges) {
+        e.merge = solver::parse_merge_strategy(m);
+        out.push_back({method + "/async/" + m, method, e});
+      }
     }
   }
   return out;
@@ -106,8 +116,7 @@ io::ConvergenceResult run_convergence(const ConvergeOptions& o) {
     io::ConvergenceTrace trace;
     trace.variant = v.name;
     for (int k : iteration_counts(o.max_iterations)) {
-      solver::xpbd::XpbdBuffers ids;
-      const solver::SubstepPlan plan = solver::xpbd::make_xpbd_plan(state, {h, k}, &ids);
+      const solver::SubstepPlan plan = solver::make_method_plan(v.method, state, h, k);
       Execution e = prepare_execution(devices, plan, v.options);
       std::vector<double> times;
       std::vector<Float4> x;

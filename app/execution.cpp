@@ -270,6 +270,7 @@ PlannedSchedule schedule_from_costs(const solver::SubstepPlan& base, ScheduleMod
     p.split_fractions = speed_fractions(costs);
     const solver::SubstepPlan equal = std::move(p.plan);
     p.plan = solver::split_plan(base, p.split_fractions);
+    assignment.assign(p.plan.graph.size(), 0);  // the re-cut may drop parts that rounded to nothing
     std::unordered_map<std::string, sched::TaskId> equal_id;
     for (sched::TaskId t = 0; t < equal.graph.size(); ++t) equal_id[equal.graph.task(t).name] = t;
     p.costs = sched::CostTable(p.plan.graph.size(), n);

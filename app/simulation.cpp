@@ -14,6 +14,7 @@
 #include "io/result_writer.hpp"
 #include "model/cloth_builder.hpp"
 #include "scene/scene_loader.hpp"
+#include "solver/method_plan.hpp"
 #include "solver/xpbd/xpbd_plan.hpp"
 #include "util/error.hpp"
 
@@ -61,8 +62,8 @@ void request_stop() { g_stop = true; }
 solver::SubstepPlan substep_plan_for(const scene::SceneDesc& scene) {
   const auto& sim = scene.simulation;
   const model::Model model = model::build_model(scene);
-  return solver::xpbd::make_xpbd_plan(solver::xpbd::make_xpbd_layout(model),
-                                      {sim.frame_dt / sim.substeps, sim.iterations});
+  return solver::make_method_plan(scene.solver.method, solver::xpbd::make_xpbd_layout(model),
+                                  sim.frame_dt / sim.substeps, sim.iterations);
 }
 
 RunResult run_simulation(const RunOptions& options, const std::function<void(const RunProgress&)>& progress) {
@@ -78,10 +79,16 @@ RunResult run_simulation(const RunOptions& options, const std::function<void(con
   const std::size_t particles = model.particles.size();
   solver::xpbd::XpbdLayout layout = solver::xpbd::make_xpbd_layout(model);
   release_simulation_state(model);
-  solver::SubstepPlan plan = solver::xpbd::make_xpbd_plan(layout, settings);
+  solver::SubstepPlan plan =
+      solver::make_method_plan(scene.solver.method, layout, settings.substep_dt, settings.iterations);
   layout = {};
   ExecutionOptions exec_options;
   exec_options.mode = parse_schedule_mode(scene.solver.schedule);
+  if (exec_options.mode == ScheduleMode::async && !solver::is_gauss_seidel(scene.solver.method)) {
+    throw input_error(fmt::format("schedule 'async' relaxes Gauss-Seidel iterations, and '{}' is a Jacobi method "
+                                  "whose iterations already run on every device: use --schedule split or heft",
+                                  scene.solver.method));
+  }
   exec_options.svm = svm_mode(options.svm_mode);
   exec_options.async_depth = scene.solver.async_depth;
   exec_options.merge = solver::parse_merge_strategy(scene.solver.merge);

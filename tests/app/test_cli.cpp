@@ -199,3 +199,25 @@ TEST_CASE("a cost file that does not match the scene is an input error with its 
   CHECK(r.err.find(costs + ":3:") != std::string::npos);
   CHECK(r.err.find("not_a_task") != std::string::npos);
 }
+
+TEST_CASE("a split from a cost table of unequal devices drops the parts that round to nothing") {
+  test::TempDir dir;
+  const std::string scene = dir.write("cloth.yaml", test::hanging_cloth_yaml(16, 1e4, 0.0, 2));
+  const auto csv = run_atssim(dir, "schedule " + scene + " --devices cpu/2 --schedule heft --csv");
+  REQUIRE(csv.code == 0);
+  // Device 1 three times slower: every block is cut 3:1 instead of 1:1, so
+  // some small blocks keep a single part.
+  std::string unequal;
+  std::stringstream in(csv.out);
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#' || line.rfind("task", 0) == 0 || line.rfind("latency", 0) == 0) {
+      unequal += line + "\n";
+      continue;
+    }
+    unequal += line.substr(0, line.find(',')) + ",1,3\n";
+  }
+  const auto r = run_atssim(dir, "schedule " + scene + " --schedule split --costs " + dir.write("u.csv", unequal));
+  INFO(r.err);
+  CHECK(r.code == 0);
+  CHECK(r.out.find("split fractions: 0.750 0.250") != std::string::npos);
+}

@@ -1,0 +1,42 @@
+/* Predict and velocity update of the implicit-Euler substep, for the methods
+ * that minimise the incremental potential directly (VBD, JPGD): predict
+ * keeps x_t (for the velocity) and x~ = x_t + h v + h^2 g (the inertia
+ * target, also the first guess). Pinned particles (w = 0) stay. */
+__kernel void particles_predict(__global float4* x, __global float4* v, __global float4* x_prev,
+                                __global float4* x_tilde, float dt, float gx, float gy, float gz, int first,
+                                int count) {
+  const int k = get_global_id(0);
+  if (k >= count) return;
+  const int i = first + k;
+  const float4 p = x[i];
+  x_prev[i] = p;
+  if (p.w == 0.0f) {
+    v[i] = (float4)(0.0f);
+    x_tilde[i] = p;
+    return;
+  }
+  float4 vel = v[i];
+  vel.x += dt * gx;
+  vel.y += dt * gy;
+  vel.z += dt * gz;
+  v[i] = vel;
+  const float4 q = (float4)(p.x + dt * vel.x, p.y + dt * vel.y, p.z + dt * vel.z, p.w);
+  x[i] = q;
+  x_tilde[i] = q;
+}
+
+__kernel void particles_update_velocity(__global const float4* x, __global float4* v, __global const float4* x_prev,
+                                        float inv_dt, int first, int count) {
+  const int k = get_global_id(0);
+  if (k >= count) return;
+  const int i = first + k;
+  const float4 d = x[i] - x_prev[i];
+  v[i] = (float4)(d.x * inv_dt, d.y * inv_dt, d.z * inv_dt, 0.0f);
+}
+
+/* Copies positions (used where an iteration leaves its result elsewhere). */
+__kernel void particles_copy(__global float4* dst, __global const float4* src, int first, int count) {
+  const int k = get_global_id(0);
+  if (k >= count) return;
+  dst[first + k] = src[first + k];
+}

@@ -1,0 +1,32 @@
+/* Block-Jacobi preconditioned gradient descent with Chebyshev acceleration
+ * (Wang & Yang 2016; Wang 2015): every vertex at once takes the step
+ * H_ii^-1 f_i from x^k, then x^{k+1} = omega (x^k + step - x^{k-1}) + x^{k-1}.
+ * Reads x^k and x^{k-1}, writes x^{k+1}: no vertex sees another's update of
+ * the same iteration, so any cut between devices computes the same result. */
+#pragma OPENCL FP_CONTRACT OFF /* the stretch energy's error-free transforms */
+
+#include "common/ats_math.h"
+#include "common/vertex_solve.h"
+#include "common/vertex_system.cl"
+#include "common/particle_steps.cl"
+#include "async/merge.cl"
+
+__kernel void jpgd_step(__global const float4* x, __global const float4* x_before, __global float4* x_next,
+                        __global const float4* x_tilde, __global const int* adj_offsets, __global const int* adj,
+                        __global const ats_distance_c* stretch, __global const ats_bend_c* bend, float inv_h2,
+                        float omega, int first, int count) {
+  const int k = get_global_id(0);
+  if (k >= count) return;
+  const int i = first + k;
+  const float4 p = x[i];
+  if (p.w == 0.0f) {
+    x_next[i] = p;
+    return;
+  }
+  const vertex_system s = gather_vertex_system(i, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend);
+  const ats_solve3 d = ats_m3_solve(s.h, s.f);
+  const float3 stepped = (float3)(p.x + d.x.x, p.y + d.x.y, p.z + d.x.z);
+  const float3 before = x_before[i].xyz;
+  const float3 next = omega * (stepped - before) + before;
+  x_next[i] = (float4)(next, p.w);
+}

@@ -1,0 +1,26 @@
+/* Vertex Block Descent (Chen et al. 2024): Gauss-Seidel over vertex colors;
+ * each vertex of a color takes one 3x3 Newton step on the incremental
+ * potential with its neighbours fixed, skipped when its block is near
+ * singular. Vertices of one color share no element. */
+#pragma OPENCL FP_CONTRACT OFF /* the stretch energy's error-free transforms */
+
+#include "common/ats_math.h"
+#include "common/vertex_solve.h"
+#include "common/vertex_system.cl"
+#include "common/particle_steps.cl"
+#include "async/merge.cl"
+
+/* Vertices order[first .. first + count) of one color. */
+__kernel void vbd_solve(__global float4* x, __global const float4* x_tilde, __global const int* adj_offsets,
+                        __global const int* adj, __global const ats_distance_c* stretch,
+                        __global const ats_bend_c* bend, __global const int* order, float inv_h2, int first,
+                        int count) {
+  const int k = get_global_id(0);
+  if (k >= count) return;
+  const int i = order[first + k];
+  const vertex_system s = gather_vertex_system(i, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend);
+  const ats_solve3 d = ats_m3_solve(s.h, s.f);
+  if (!d.ok) return;
+  const float4 p = x[i];
+  x[i] = (float4)(p.x + d.x.x, p.y + d.x.y, p.z + d.x.z, p.w);
+}

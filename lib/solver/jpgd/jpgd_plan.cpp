@@ -1,0 +1,63 @@
+#include "solver/jpgd/jpgd_plan.hpp"
+
+#include <fmt/format.h>
+
+namespace atssim::solver::jpgd {
+
+std::vector<double> chebyshev_weights(int iterations, double rho) {
+  std::vector<double> omega;
+  for (int k = 0; k < iterations; ++k) {
+    if (k == 0) {
+      omega.push_back(1.0);
+    } else if (k == 1) {
+      omega.push_back(2.0 / (2.0 - rho * rho));
+    } else {
+      omega.push_back(4.0 / (4.0 - rho * rho * omega.back()));
+    }
+  }
+  return omega;
+}
+
+SubstepPlan make_jpgd_plan(const xpbd::XpbdLayout& layout, const JpgdSettings& settings, vertex::VertexBuffers* ids) {
+  const vertex::VertexLayout vertices = vertex::make_vertex_layout(layout);
+  SubstepPlan plan;
+  plan.program = "jpgd";
+  vertex::VertexBuffers b;
+  sched::TaskId last = vertex::begin_vertex_plan(plan, layout, vertices, settings.substep_dt, b);
+  const int n = plan.particle_count;
+  // x^{k+1} goes to a different buffer than x^k and x^{k-1}: three rotate.
+  const BufferId rotation[3] = {b.x, plan.add_buffer("x_1", bytes_of(layout.x)),
+                                plan.add_buffer("x_2", bytes_of(layout.x))};
+  const float inv_h2 = static_cast<float>(1.0 / (settings.substep_dt * settings.substep_dt));
+  const std::vector<double> omega = chebyshev_weights(settings.iterations, settings.chebyshev_rho);
+  using Arg = KernelArg;
+  for (int it = 0; it < settings.iterations; ++it) {
+    const BufferId current = rotation[it % 3];
+    const BufferId before = it == 0 ? current : rotation[(it + 2) % 3];
+    const BufferId next = rotation[(it + 1) % 3];
+    const sched::TaskId t = plan.add_task(
+        {fmt::format("it{}/jacobi", it + 1), "jacobi", it, 0},
+        {{"jpgd_step", static_cast<std::size_t>(n),
+          {Arg::of_buffer(current), Arg::of_buffer(before), Arg::of_buffer(next), Arg::of_buffer(b.x_tilde),
+           Arg::of_buffer(b.adjacency_offsets), Arg::of_buffer(b.adjacency), Arg::of_buffer(b.stretch),
+           Arg::of_buffer(b.bend), Arg::of_float(inv_h2), Arg::of_float(static_cast<float>(omega[it])),
+           Arg::of_int(0), Arg::of_int(n)},
+          10}});
+    plan.graph.add_edge(last, t);
+    last = t;
+  }
+  const BufferId result = rotation[settings.iterations % 3];
+  if (result != b.x) {
+    const sched::TaskId copy = plan.add_task(
+        {"copy_result", "copy", -1, -1},
+        {{"particles_copy", static_cast<std::size_t>(n),
+          {Arg::of_buffer(b.x), Arg::of_buffer(result), Arg::of_int(0), Arg::of_int(n)}, 2}});
+    plan.graph.add_edge(last, copy);
+    last = copy;
+  }
+  vertex::end_vertex_plan(plan, last, b, settings.substep_dt);
+  if (ids != nullptr) *ids = b;
+  return plan;
+}
+
+}  // namespace atssim::solver::jpgd

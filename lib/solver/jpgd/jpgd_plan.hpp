@@ -1,0 +1,26 @@
+#pragma once
+// Block-Jacobi preconditioned gradient descent with Chebyshev acceleration
+// (Wang & Yang 2016) as a substep plan: predict, then one task per
+// iteration that moves every vertex at once (cut-able between devices with
+// one synchronisation per iteration), then the velocity update.
+#include "solver/substep_plan.hpp"
+#include "solver/vertex/vertex_plan.hpp"
+#include "solver/xpbd/xpbd_layout.hpp"
+
+namespace atssim::solver::jpgd {
+
+struct JpgdSettings {
+  double substep_dt = 1.0 / 960.0;
+  int iterations = 8;
+  // Estimated spectral radius of the Jacobi iteration for the Chebyshev
+  // weights (Wang 2015): 0 turns the acceleration off; too high diverges.
+  double chebyshev_rho = 0.9;
+};
+
+// Chebyshev weights omega_1 .. omega_n: 1, 2/(2 - rho^2), 4/(4 - rho^2 omega_{k-1}).
+std::vector<double> chebyshev_weights(int iterations, double rho);
+
+SubstepPlan make_jpgd_plan(const xpbd::XpbdLayout& layout, const JpgdSettings& settings,
+                           vertex::VertexBuffers* ids = nullptr);
+
+}  // namespace atssim::solver::jpgd

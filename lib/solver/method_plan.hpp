@@ -1,0 +1,24 @@
+#pragma once
+// One entry point from a method name to its substep plan, so the pipeline
+// and the tools need not know the methods one by one.
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "solver/substep_plan.hpp"
+#include "solver/xpbd/xpbd_layout.hpp"
+
+namespace atssim::solver {
+
+// The methods this build knows, for messages and validation.
+std::span<const std::string_view> method_names();
+
+// Throws atssim::Error (input) for an unknown method, or a scene the method
+// cannot solve (VBD and JPGD need finite stiffness).
+SubstepPlan make_method_plan(const std::string& method, const xpbd::XpbdLayout& layout, double substep_dt,
+                             int iterations);
+
+// Whether the method's iterations are Gauss-Seidel (async applies) or Jacobi.
+bool is_gauss_seidel(const std::string& method);
+
+}  // namespace atssim::solver

@@ -1,0 +1,36 @@
+#include "solver/vbd/vbd_plan.hpp"
+
+#include <fmt/format.h>
+
+namespace atssim::solver::vbd {
+
+SubstepPlan make_vbd_plan(const xpbd::XpbdLayout& layout, double substep_dt, int iterations,
+                          vertex::VertexBuffers* ids) {
+  const vertex::VertexLayout vertices = vertex::make_vertex_layout(layout);
+  SubstepPlan plan;
+  plan.program = "vbd";
+  vertex::VertexBuffers b;
+  sched::TaskId last = vertex::begin_vertex_plan(plan, layout, vertices, substep_dt, b);
+  const float inv_h2 = static_cast<float>(1.0 / (substep_dt * substep_dt));
+  for (int it = 0; it < iterations; ++it) {
+    for (int c = 0; c < vertices.colors.count(); ++c) {
+      const int first = vertices.colors.offsets[c];
+      const int count = vertices.colors.offsets[c + 1] - first;
+      using Arg = KernelArg;
+      const sched::TaskId t = plan.add_task(
+          {fmt::format("it{}/vertex/c{}", it + 1, c), "vertex", it, c},
+          {{"vbd_solve", static_cast<std::size_t>(count),
+            {Arg::of_buffer(b.x), Arg::of_buffer(b.x_tilde), Arg::of_buffer(b.adjacency_offsets),
+             Arg::of_buffer(b.adjacency), Arg::of_buffer(b.stretch), Arg::of_buffer(b.bend), Arg::of_buffer(b.order),
+             Arg::of_float(inv_h2), Arg::of_int(first), Arg::of_int(count)},
+            8}});
+      plan.graph.add_edge(last, t);
+      last = t;
+    }
+  }
+  vertex::end_vertex_plan(plan, last, b, substep_dt);
+  if (ids != nullptr) *ids = b;
+  return plan;
+}
+
+}  // namespace atssim::solver::vbd

@@ -1,0 +1,15 @@
+#pragma once
+// Vertex Block Descent (Chen et al. 2024) as a substep plan: predict, then
+// per iteration a Gauss-Seidel sweep over the vertex colors (one task per
+// color, cut-able between devices: a color's vertices share no element),
+// then the velocity update.
+#include "solver/substep_plan.hpp"
+#include "solver/vertex/vertex_plan.hpp"
+#include "solver/xpbd/xpbd_layout.hpp"
+
+namespace atssim::solver::vbd {
+
+SubstepPlan make_vbd_plan(const xpbd::XpbdLayout& layout, double substep_dt, int iterations,
+                          vertex::VertexBuffers* ids = nullptr);
+
+}  // namespace atssim::solver::vbd

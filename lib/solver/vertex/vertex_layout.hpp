@@ -1,0 +1,23 @@
+#pragma once
+// What vertex-block methods (VBD, JPGD) add to the cloth layout: for every
+// particle, the elements that touch it (a CSR list, built NvCloth's way:
+// count, prefix sum, fill), and a vertex coloring for Gauss-Seidel sweeps.
+#include <vector>
+
+#include "graph/color_blocks.hpp"
+#include "solver/xpbd/xpbd_layout.hpp"
+
+namespace atssim::solver::vertex {
+
+struct VertexLayout {
+  std::vector<int> adjacency_offsets;  // particles + 1
+  std::vector<int> adjacency;          // element << 3 | kind << 2 | slot (kind 0 stretch, 1 bending)
+  graph::ColorBlocks colors;           // movable particles only
+};
+
+VertexLayout make_vertex_layout(const xpbd::XpbdLayout& layout);
+
+// Entry code of kernels/common/vertex_system.cl.
+inline int adjacency_code(int element, int kind, int slot) { return element << 3 | kind << 2 | slot; }
+
+}  // namespace atssim::solver::vertex

@@ -1,0 +1,35 @@
+#include <catch2/catch.hpp>
+
+#include "app/convergence.hpp"
+#include "support/scenes.hpp"
+#include "support/temp_dir.hpp"
+
+using namespace atssim;
+
+TEST_CASE("VBD and JPGD lower the energy, their error falls with iterations, and two devices change nothing") {
+  test::TempDir dir;
+  app::ConvergeOptions o;
+  o.scene_path = dir.write("cloth.yaml", test::hanging_cloth_yaml(16, 1e3, 1e-3, 8));
+  o.overrides = {"devices=cpu/2"};
+  o.methods = {"vbd", "jpgd"};
+  o.schedules = {"single", "split", "heft"};
+  o.max_iterations = 32;
+  o.frames_before = 3;
+  o.timing_repeats = 1;
+  const io::ConvergenceResult r = app::run_convergence(o);
+  REQUIRE(r.newton_status == "converged");
+  REQUIRE(r.traces.size() == 6);
+  for (std::size_t v = 0; v < r.traces.size(); ++v) {
+    const auto& t = r.traces[v];
+    INFO(t.variant);
+    for (std::size_t i = 0; i < t.energy.size(); ++i) {
+      CHECK(t.energy[i] < r.energy_start);         // the substep lowered E below E(x~)
+      CHECK(t.energy[i] >= r.energy_reference);    // and not below the minimum
+      if (i > 0) CHECK(t.relative_error[i] < t.relative_error[i - 1]);
+    }
+    CHECK(t.relative_error.back() < 0.05);
+    // split and heft run the same iteration on two devices: same energies.
+    const auto& single = r.traces[v - v % 3];
+    for (std::size_t i = 0; i < t.energy.size(); ++i) CHECK(t.energy[i] == single.energy[i]);
+  }
+}
