@@ -116,7 +116,7 @@ io::ConvergenceResult run_convergence(const ConvergeOptions& o) {
     io::ConvergenceTrace trace;
     trace.variant = v.name;
     for (int k : iteration_counts(o.max_iterations)) {
-      const solver::SubstepPlan plan = solver::make_method_plan(v.method, state, h, k);
+      const solver::SubstepPlan plan = solver::make_method_plan(v.method, state, h, k, {scene.solver.chebyshev_rho, scene.solver.jacobi_step});
       Execution e = prepare_execution(devices, plan, v.options);
       std::vector<double> times;
       std::vector<Float4> x;

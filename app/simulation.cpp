@@ -63,7 +63,7 @@ solver::SubstepPlan substep_plan_for(const scene::SceneDesc& scene) {
   const auto& sim = scene.simulation;
   const model::Model model = model::build_model(scene);
   return solver::make_method_plan(scene.solver.method, solver::xpbd::make_xpbd_layout(model),
-                                  sim.frame_dt / sim.substeps, sim.iterations);
+                                  sim.frame_dt / sim.substeps, sim.iterations, {scene.solver.chebyshev_rho, scene.solver.jacobi_step});
 }
 
 RunResult run_simulation(const RunOptions& options, const std::function<void(const RunProgress&)>& progress) {
@@ -80,7 +80,8 @@ RunResult run_simulation(const RunOptions& options, const std::function<void(con
   solver::xpbd::XpbdLayout layout = solver::xpbd::make_xpbd_layout(model);
   release_simulation_state(model);
   solver::SubstepPlan plan =
-      solver::make_method_plan(scene.solver.method, layout, settings.substep_dt, settings.iterations);
+      solver::make_method_plan(scene.solver.method, layout, settings.substep_dt, settings.iterations,
+                               {scene.solver.chebyshev_rho, scene.solver.jacobi_step});
   layout = {};
   ExecutionOptions exec_options;
   exec_options.mode = parse_schedule_mode(scene.solver.schedule);

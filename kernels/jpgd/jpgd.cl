@@ -1,6 +1,8 @@
 /* Block-Jacobi preconditioned gradient descent with Chebyshev acceleration
  * (Wang & Yang 2016; Wang 2015): every vertex at once takes the step
- * H_ii^-1 f_i from x^k, then x^{k+1} = omega (x^k + step - x^{k-1}) + x^{k-1}.
+ * alpha H_ii^-1 f_i from x^k, then x^{k+1} = omega (x^k + step - x^{k-1}) + x^{k-1}.
+ * A full Jacobi step (alpha = 1) overshoots where stiff neighbours pull on
+ * the same vertex, so alpha < 1 (default 0.5) keeps it a descent step.
  * Reads x^k and x^{k-1}, writes x^{k+1}: no vertex sees another's update of
  * the same iteration, so any cut between devices computes the same result. */
 #pragma OPENCL FP_CONTRACT OFF /* the stretch energy's error-free transforms */
@@ -14,7 +16,7 @@
 __kernel void jpgd_step(__global const float4* x, __global const float4* x_before, __global float4* x_next,
                         __global const float4* x_tilde, __global const int* adj_offsets, __global const int* adj,
                         __global const ats_distance_c* stretch, __global const ats_bend_c* bend, float inv_h2,
-                        float omega, int first, int count) {
+                        float alpha, float omega, int first, int count) {
   const int k = get_global_id(0);
   if (k >= count) return;
   const int i = first + k;
@@ -25,7 +27,7 @@ __kernel void jpgd_step(__global const float4* x, __global const float4* x_befor
   }
   const vertex_system s = gather_vertex_system(i, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend);
   const ats_solve3 d = ats_m3_solve(s.h, s.f);
-  const float3 stepped = (float3)(p.x + d.x.x, p.y + d.x.y, p.z + d.x.z);
+  const float3 stepped = (float3)(p.x + alpha * d.x.x, p.y + alpha * d.x.y, p.z + alpha * d.x.z);
   const float3 before = x_before[i].xyz;
   const float3 next = omega * (stepped - before) + before;
   x_next[i] = (float4)(next, p.w);

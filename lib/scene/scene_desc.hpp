@@ -71,6 +71,8 @@ struct SolverDesc {
   std::string merge = "average_displacements";  // async: how a device merges another's result
   bool async_latest = true;         // async: also merge the latest finished result, not only dependencies
   bool replay = false;              // async: run the schedule on one device, in schedule order
+  double chebyshev_rho = 0.9;       // jpgd: spectral radius estimate of the Chebyshev acceleration (0 = off)
+  double jacobi_step = 0.5;         // jpgd: step length on the block-Jacobi direction
 };
 
 struct OutputDesc {

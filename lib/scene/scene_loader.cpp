@@ -31,8 +31,8 @@ constexpr std::array<std::string_view, 5> kMaterialKeys{"density", "stretch_stif
                                                         "bend_stiffness", "bend_compliance"};
 constexpr std::array<std::string_view, 2> kPinKeys{"vertices", "boxes"};
 constexpr std::array<std::string_view, 2> kBoxKeys{"min", "max"};
-constexpr std::array<std::string_view, 6> kSolverKeys{"method", "schedule", "async_depth", "merge", "async_fetch",
-                                                      "replay"};
+constexpr std::array<std::string_view, 8> kSolverKeys{"method", "schedule", "async_depth", "merge", "async_fetch",
+                                                      "replay", "chebyshev_rho", "jacobi_step"};
 constexpr std::array<std::string_view, 4> kSchedules{"single", "split", "heft", "async"};
 constexpr std::array<std::string_view, 3> kMerges{"average_displacements", "average_positions", "main_precedence"};
 constexpr std::array<std::string_view, 2> kOutputKeys{"path", "stride"};
@@ -298,6 +298,13 @@ SceneDesc parse_scene(const std::string& yaml_text, const std::string& source_na
       }
     }
     if (solver.has("async_depth")) scene.solver.async_depth = solver.child("async_depth").integer_in(1, 64);
+    if (solver.has("chebyshev_rho")) {
+      scene.solver.chebyshev_rho =
+          solver.child("chebyshev_rho").number_in(0.0, 0.999, false, "a spectral radius 0 ≤ rho < 1 (0 = no acceleration)");
+    }
+    if (solver.has("jacobi_step")) {
+      scene.solver.jacobi_step = solver.child("jacobi_step").number_in(0.0, 1.0, true, "a step length 0 < step ≤ 1");
+    }
     if (solver.has("merge")) {
       const YamlReader m = solver.child("merge");
       scene.solver.merge = m.string();

@@ -88,6 +88,8 @@ std::string to_resolved_yaml(const SceneDesc& scene) {
   out << YAML::Key << "merge" << YAML::Value << solver.merge;
   out << YAML::Key << "async_fetch" << YAML::Value << (solver.async_latest ? "latest" : "dependencies");
   out << YAML::Key << "replay" << YAML::Value << (solver.replay ? "true" : "false");
+  out << YAML::Key << "chebyshev_rho" << YAML::Value << solver.chebyshev_rho;
+  out << YAML::Key << "jacobi_step" << YAML::Value << solver.jacobi_step;
   out << YAML::EndMap;
   out << YAML::Key << "output" << YAML::Value << YAML::BeginMap << YAML::Key << "path" << YAML::Value
       << scene.output.path << YAML::Key << "stride" << YAML::Value << scene.output.stride << YAML::EndMap;

@@ -13,10 +13,15 @@ namespace atssim::solver {
 // The methods this build knows, for messages and validation.
 std::span<const std::string_view> method_names();
 
+struct MethodOptions {
+  double chebyshev_rho = 0.9;  // JPGD: spectral radius estimate for the Chebyshev weights (0 = off)
+  double jacobi_step = 0.5;    // JPGD: step length on the block-Jacobi direction
+};
+
 // Throws atssim::Error (input) for an unknown method, or a scene the method
 // cannot solve (VBD and JPGD need finite stiffness).
 SubstepPlan make_method_plan(const std::string& method, const xpbd::XpbdLayout& layout, double substep_dt,
-                             int iterations);
+                             int iterations, const MethodOptions& options = {});
 
 // Whether the method's iterations are Gauss-Seidel (async applies) or Jacobi.
 bool is_gauss_seidel(const std::string& method);

@@ -25,7 +25,10 @@ TEST_CASE("VBD and JPGD lower the energy, their error falls with iterations, and
     for (std::size_t i = 0; i < t.energy.size(); ++i) {
       CHECK(t.energy[i] < r.energy_start);         // the substep lowered E below E(x~)
       CHECK(t.energy[i] >= r.energy_reference);    // and not below the minimum
-      if (i > 0) CHECK(t.relative_error[i] < t.relative_error[i - 1]);
+      // Chebyshev acceleration overshoots on its first accelerated step
+      // (omega_2 > 1, Wang 2015); after that, and for VBD always, y falls.
+      const bool chebyshev_start = t.variant.rfind("jpgd", 0) == 0 && i == 1;
+      if (i > 0 && !chebyshev_start) CHECK(t.relative_error[i] < t.relative_error[i - 1]);
     }
     CHECK(t.relative_error.back() < 0.05);
     // split and heft run the same iteration on two devices: same energies.

@@ -15,6 +15,9 @@ struct JpgdSettings {
   // Estimated spectral radius of the Jacobi iteration for the Chebyshev
   // weights (Wang 2015): 0 turns the acceleration off; too high diverges.
   double chebyshev_rho = 0.9;
+  // Step length on the block-Jacobi direction (Wang & Yang 2016 use a fixed
+  // step): 1 overshoots on stiff cloth, 0.5 descends.
+  double step = 0.5;
 };
 
 // Chebyshev weights omega_1 .. omega_n: 1, 2/(2 - rho^2), 4/(4 - rho^2 omega_{k-1}).
