@@ -18,5 +18,9 @@ namespace atssim::solver::energy::f64 {
 #include "common/energy_bending.h"
 #include "common/energy_inertia.h"
 #include "common/energy_stretch.h"
+#include "common/energy_tet_neohookean.h"
+#include "common/energy_tet_stvk.h"
+#include "common/energy_membrane_stvk.h"
+#include "common/energy_dihedral.h"
 #undef ats_real
 }  // namespace atssim::solver::energy::f64
