@@ -2,12 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include <Eigen/Geometry>
-#include <fmt/format.h>
 
-#include "util/error.hpp"
+#include "model/object_particles.hpp"
+#include "model/tet_builder.hpp"
 
 namespace atssim::model {
 
@@ -75,13 +74,6 @@ std::vector<std::array<int, 4>> bending_stencils(const std::vector<std::array<in
 
 namespace {
 
-Eigen::Matrix3d rotation_xyz_deg(const scene::Vec3& deg) {
-  const double k = std::numbers::pi / 180.0;
-  return (Eigen::AngleAxisd(deg[2] * k, Vec3::UnitZ()) * Eigen::AngleAxisd(deg[1] * k, Vec3::UnitY()) *
-          Eigen::AngleAxisd(deg[0] * k, Vec3::UnitX()))
-      .toRotationMatrix();
-}
-
 double cot_between(const Vec3& a, const Vec3& b) {
   return a.dot(b) / a.cross(b).norm();
 }
@@ -101,22 +93,17 @@ bool isometric_weights(const std::array<Vec3, 4>& x, std::array<double, 4>& K, d
   return true;
 }
 
-void add_object(Model& model, const scene::ObjectDesc& obj, const scene::TriangleMesh& mesh,
-                const std::string& scene_file) {
+void add_cloth(Model& model, const scene::ObjectDesc& obj, const scene::TriangleMesh& mesh,
+               const std::string& scene_file) {
   const int offset = static_cast<int>(model.particles.size());
   const int n = static_cast<int>(mesh.vertices.size());
-  const Eigen::Matrix3d R = rotation_xyz_deg(obj.transform.rotate_deg);
-  const Vec3 scale(obj.transform.scale[0], obj.transform.scale[1], obj.transform.scale[2]);
-  const Vec3 translate(obj.transform.translate[0], obj.transform.translate[1], obj.transform.translate[2]);
 
   ObjectRange range;
   range.name = obj.name;
   range.vertex_offset = offset;
   range.vertex_count = n;
   range.triangles = mesh.triangles;
-  for (const auto& v : mesh.vertices) {
-    range.rest_position.push_back(R * Vec3(v[0], v[1], v[2]).cwiseProduct(scale) + translate);
-  }
+  range.rest_position = place_vertices(obj.transform, mesh.vertices);
 
   std::vector<double> mass(n, 0.0);
   for (const auto& t : mesh.triangles) {
@@ -125,41 +112,7 @@ void add_object(Model& model, const scene::ObjectDesc& obj, const scene::Triangl
     for (int v : t) mass[v] += obj.material.density * area / 3.0;
   }
 
-  std::vector<char> pinned(n, 0);
-  for (int v : obj.pins.vertices) {
-    if (v >= n) {
-      throw input_error(fmt::format("{}:{}: pinned vertex {} is out of range: object '{}' has {} vertices "
-                                    "(0 to {}); fix the index",
-                                    scene_file, obj.source_line, v, obj.name, n, n - 1));
-    }
-    pinned[v] = 1;
-  }
-  for (const auto& box : obj.pins.boxes) {
-    int hits = 0;
-    for (int v = 0; v < n; ++v) {
-      const Vec3& p = range.rest_position[v];
-      bool inside = true;
-      for (int k = 0; k < 3; ++k) inside = inside && p[k] >= box.min[k] && p[k] <= box.max[k];
-      if (inside) {
-        pinned[v] = 1;
-        ++hits;
-      }
-    }
-    if (hits == 0) {
-      throw input_error(fmt::format("{}:{}: a pin box of object '{}' contains no vertex; boxes are in world "
-                                    "coordinates after the transform — enlarge or move it",
-                                    scene_file, obj.source_line, obj.name));
-    }
-  }
-
-  for (int v = 0; v < n; ++v) {
-    model.particles.position.push_back(range.rest_position[v]);
-    model.particles.velocity.push_back(Vec3::Zero());
-    model.particles.mass.push_back(mass[v]);
-    const bool fixed = pinned[v] != 0 || mass[v] <= 0.0;
-    model.particles.inv_mass.push_back(fixed ? 0.0 : 1.0 / mass[v]);
-    if (pinned[v] != 0) range.pinned.push_back(v);
-  }
+  append_particles(model, range, mass, pinned_flags(obj, range.rest_position, scene_file));
 
   if (obj.material.has_stretch) {
     for (const auto& e : unique_edges(mesh.triangles)) {
@@ -190,8 +143,12 @@ Model build_model(const scene::SceneDesc& scene) {
   Model model;
   model.gravity = Vec3(scene.simulation.gravity[0], scene.simulation.gravity[1], scene.simulation.gravity[2]);
   for (const auto& obj : scene.objects) {
+    if (obj.type == scene::ObjectType::solid) {
+      add_solid(model, obj, scene.source_path);
+      continue;
+    }
     const scene::TriangleMesh mesh = obj.grid ? make_grid_mesh(*obj.grid) : obj.mesh;
-    add_object(model, obj, mesh, scene.source_path);
+    add_cloth(model, obj, mesh, scene.source_path);
   }
   return model;
 }

@@ -39,6 +39,22 @@ struct BendSet {
   std::size_t size() const { return stencils.size(); }
 };
 
+// Elasticity model of a tetrahedron (scene `model:`); the solvers use it.
+enum class TetEnergy { neo_hookean, stvk, springs };
+
+// Linear tetrahedra of deformable solids (Sifakis & Barbic 2012, §4): with
+// Dm = [x1−x0, x2−x0, x3−x0] at rest, F = Ds·Dm⁻¹. Every tet has positive
+// rest volume (validated when the model is built).
+struct TetSet {
+  std::vector<std::array<int, 4>> tets;      // particle indices
+  std::vector<double> rest_volume;           // m³, det(Dm)/6 > 0
+  std::vector<Eigen::Matrix3d> rest_inverse; // Dm⁻¹
+  std::vector<double> mu;                    // Lamé μ (shear modulus), Pa
+  std::vector<double> lambda;                // Lamé λ, Pa
+  std::vector<TetEnergy> energy;
+  std::size_t size() const { return tets.size(); }
+};
+
 // One scene object's slice of the particle arrays, for output.
 struct ObjectRange {
   std::string name;
@@ -47,6 +63,9 @@ struct ObjectRange {
   std::vector<std::array<int, 3>> triangles;  // object-local vertex indices
   std::vector<Vec3> rest_position;
   std::vector<int> pinned;                    // object-local indices
+  // Solids: object-local tetrahedra; `triangles` then holds their outward
+  // surface (faces of exactly one tet), so output and XDMF show the body.
+  std::vector<std::array<int, 4>> tetrahedra;
 };
 
 struct Model {
@@ -55,6 +74,9 @@ struct Model {
   BendSet bend;      // empty when the scene models no bending
   std::vector<ObjectRange> objects;
   Vec3 gravity{0.0, -9.81, 0.0};
+  // Last, with an initializer: code that aggregate-initializes the members
+  // above (app/simulation.cpp) keeps compiling without a warning.
+  TetSet tets{};  // empty when the scene has no solid
 };
 
 }  // namespace atssim::model

@@ -29,12 +29,18 @@ struct TransformDesc {
   Vec3 scale{1.0, 1.0, 1.0};
 };
 
+// A tetrahedral body's elasticity model (issue #6); the solvers come later.
+enum class SolidModel { neo_hookean, stvk, springs };
+
 struct MaterialDesc {
-  double density = 0.2;            // kg/m² for cloth
-  double stretch_compliance = 0.0; // m/N (inverse stiffness); used when has_stretch
+  double density = 0.2;            // kg/m² for cloth, kg/m³ for solids (default 1000 there)
+  double stretch_compliance = 0.0; // cloth: m/N (inverse stiffness); used when has_stretch
   bool has_stretch = false;
-  double bend_compliance = 0.0;    // 1/(N·m); used when has_bending
+  double bend_compliance = 0.0;    // cloth: 1/(N·m); used when has_bending
   bool has_bending = false;
+  double youngs_modulus = 1.0e5;   // solids: Pa (> 0)
+  double poisson_ratio = 0.3;      // solids: 0 ≤ ν < 0.5
+  SolidModel solid_model = SolidModel::neo_hookean;
 };
 
 struct BoxDesc {
@@ -53,11 +59,34 @@ struct TriangleMesh {
   std::vector<std::array<int, 3>> triangles;
 };
 
+// A tetrahedral mesh as read from a file (TetGen .node/.ele, Gmsh .msh) or
+// made procedurally. `element_line`/`element_label` say where each element
+// came from, so validation can name the file line and the file's own number.
+struct TetMesh {
+  std::vector<std::array<double, 3>> vertices;
+  std::vector<std::array<int, 4>> tetrahedra;
+  std::string file;                     // "" for procedural meshes
+  std::vector<int> element_line;        // 1-based line in `file` (empty when procedural)
+  std::vector<long long> element_label; // the element's number in `file` (empty when procedural)
+};
+
+// A procedural tetrahedral box centred on the origin; every cell is split
+// into 6 tetrahedra.
+struct TetBoxDesc {
+  Vec3 size{1.0, 1.0, 1.0};                // metres along local x, y, z
+  std::array<int, 3> resolution{4, 4, 4};  // cells along x, y, z (≥ 1 each)
+};
+
+enum class ObjectType { cloth, solid };
+
 struct ObjectDesc {
   std::string name;
-  std::optional<GridDesc> grid;      // exactly one of grid / mesh_path
+  ObjectType type = ObjectType::cloth;
+  std::optional<GridDesc> grid;      // cloth: exactly one of grid / mesh_path
+  std::optional<TetBoxDesc> box;     // solid: exactly one of box / mesh_path
   std::string mesh_path;             // absolute, resolved against the scene's folder
-  TriangleMesh mesh;                 // loaded when mesh_path is set
+  TriangleMesh mesh;                 // cloth: loaded when mesh_path is set
+  TetMesh tet_mesh;                  // solid: loaded when mesh_path is set
   TransformDesc transform;
   MaterialDesc material;
   PinDesc pins;

@@ -8,7 +8,7 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
-#include "scene/mesh_loader.hpp"
+#include "scene/object_reader.hpp"
 #include "scene/scene_yaml.hpp"
 #include "scene/yaml_reader.hpp"
 #include "util/error.hpp"
@@ -18,27 +18,16 @@ namespace atssim::scene {
 namespace {
 
 namespace fs = std::filesystem;
-using Keys = std::span<const std::string_view>;
 
 constexpr std::array<std::string_view, 5> kRootKeys{"simulation", "objects", "solver", "output", "devices"};
 constexpr std::array<std::string_view, 6> kSimulationKeys{"fps", "dt", "substeps", "iterations", "frames",
                                                           "gravity"};
-constexpr std::array<std::string_view, 7> kObjectKeys{"name", "type", "grid", "mesh", "transform", "material",
-                                                      "pins"};
-constexpr std::array<std::string_view, 2> kGridKeys{"size", "resolution"};
-constexpr std::array<std::string_view, 3> kTransformKeys{"translate", "rotate", "scale"};
-constexpr std::array<std::string_view, 5> kMaterialKeys{"density", "stretch_stiffness", "stretch_compliance",
-                                                        "bend_stiffness", "bend_compliance"};
-constexpr std::array<std::string_view, 2> kPinKeys{"vertices", "boxes"};
-constexpr std::array<std::string_view, 2> kBoxKeys{"min", "max"};
 constexpr std::array<std::string_view, 8> kSolverKeys{"method", "schedule", "async_depth", "merge", "async_fetch",
                                                       "replay", "chebyshev_rho", "jacobi_step"};
 constexpr std::array<std::string_view, 4> kSchedules{"single", "split", "heft", "async"};
 constexpr std::array<std::string_view, 3> kMerges{"average_displacements", "average_positions", "main_precedence"};
 constexpr std::array<std::string_view, 2> kOutputKeys{"path", "stride"};
 constexpr std::array<std::string_view, 3> kMethods{"xpbd", "vbd", "jpgd"};
-
-constexpr double kHuge = 1e30;
 
 // Applies "a.b.0.c=value": walks (creating maps as needed) and replaces the
 // leaf with the value parsed as YAML.
@@ -126,123 +115,6 @@ SimulationDesc read_simulation(const YamlReader& r) {
     }
   }
   return sim;
-}
-
-GridDesc read_grid(const YamlReader& r) {
-  r.expect_map(kGridKeys);
-  GridDesc grid;
-  if (r.has("size")) {
-    grid.size = r.child("size").vec2();
-    for (double s : grid.size) {
-      if (s <= 0.0) r.child("size").fail("grid size must be positive", "give the side lengths in metres, e.g. [1, 1]");
-    }
-  }
-  if (r.has("resolution")) {
-    const auto res = r.child("resolution").sequence();
-    if (res.size() != 2) r.child("resolution").fail("resolution needs two entries", "write [nx, nz]");
-    grid.resolution = {res[0].integer_in(2, 8192), res[1].integer_in(2, 8192)};
-  }
-  return grid;
-}
-
-TransformDesc read_transform(const YamlReader& r) {
-  TransformDesc t;
-  r.expect_map(kTransformKeys);
-  if (r.has("translate")) t.translate = r.child("translate").vec3();
-  if (r.has("rotate")) t.rotate_deg = r.child("rotate").vec3();
-  if (r.has("scale")) {
-    const YamlReader s = r.child("scale");
-    if (s.node().IsScalar()) {
-      const double k = s.number_in(0.0, kHuge, true, "a scale factor > 0");
-      t.scale = {k, k, k};
-    } else {
-      t.scale = s.vec3();
-      for (double k : t.scale) {
-        if (k <= 0.0) s.fail("scale factors must be positive", "use e.g. [1, 1, 1]");
-      }
-    }
-  }
-  return t;
-}
-
-// stiffness k > 0 -> compliance 1/k; stiffness 0 -> term not modelled;
-// compliance c ≥ 0 -> modelled (0 = inextensible / perfectly stiff).
-void read_stiffness_pair(const YamlReader& r, const char* stiffness_key, const char* compliance_key,
-                         double& compliance, bool& modelled) {
-  if (r.has(stiffness_key) && r.has(compliance_key)) {
-    r.child(compliance_key).fail(fmt::format("both '{}' and '{}' are given", stiffness_key, compliance_key),
-                                 "keep one of them (compliance = 1/stiffness)");
-  }
-  if (r.has(stiffness_key)) {
-    const double k = r.child(stiffness_key).number_in(0.0, kHuge, false, "a stiffness ≥ 0 (0 turns the term off)");
-    modelled = k > 0.0;
-    compliance = modelled ? 1.0 / k : 0.0;
-  } else if (r.has(compliance_key)) {
-    compliance = r.child(compliance_key).number_in(0.0, kHuge, false, "a compliance ≥ 0 (0 = perfectly stiff)");
-    modelled = true;
-  }
-}
-
-MaterialDesc read_material(const YamlReader& r) {
-  MaterialDesc m;
-  if (r.is_null()) return m;
-  r.expect_map(kMaterialKeys);
-  if (r.has("density")) m.density = r.child("density").number_in(0.0, kHuge, true, "a density > 0 (kg/m² for cloth)");
-  read_stiffness_pair(r, "stretch_stiffness", "stretch_compliance", m.stretch_compliance, m.has_stretch);
-  read_stiffness_pair(r, "bend_stiffness", "bend_compliance", m.bend_compliance, m.has_bending);
-  return m;
-}
-
-PinDesc read_pins(const YamlReader& r) {
-  PinDesc pins;
-  r.expect_map(kPinKeys);
-  if (r.has("vertices")) {
-    pins.vertices = r.child("vertices").int_list();
-    for (int v : pins.vertices) {
-      if (v < 0) r.child("vertices").fail(fmt::format("vertex index {} is negative", v), "use indices ≥ 0");
-    }
-  }
-  if (r.has("boxes")) {
-    for (const YamlReader& b : r.child("boxes").sequence()) {
-      b.expect_map(kBoxKeys);
-      if (!b.has("min") || !b.has("max")) b.fail("a pin box needs 'min' and 'max'", "write {min: [x,y,z], max: [x,y,z]}");
-      BoxDesc box{b.child("min").vec3(), b.child("max").vec3()};
-      for (int k = 0; k < 3; ++k) {
-        if (box.min[k] > box.max[k]) b.fail("pin box has min > max", "swap the corners");
-      }
-      pins.boxes.push_back(box);
-    }
-  }
-  return pins;
-}
-
-ObjectDesc read_object(const YamlReader& r, int index, const fs::path& base_dir) {
-  r.expect_map(kObjectKeys);
-  ObjectDesc obj;
-  obj.source_line = r.line();
-  obj.name = r.has("name") ? r.child("name").string() : fmt::format("object{}", index);
-  if (r.has("type") && r.child("type").string() != "cloth") {
-    r.child("type").fail(fmt::format("unknown object type '{}'", r.child("type").string()),
-                         "this version simulates 'cloth'");
-  }
-  const bool has_grid = r.has("grid");
-  const bool has_mesh = r.has("mesh");
-  if (has_grid == has_mesh) {
-    r.fail(fmt::format("object '{}' needs exactly one of 'grid' or 'mesh'", obj.name),
-           "give grid: {size: [1, 1], resolution: [32, 32]} or mesh: cloth.obj");
-  }
-  if (has_grid) obj.grid = read_grid(r.child("grid"));
-  if (has_mesh) {
-    const YamlReader m = r.child("mesh");
-    fs::path p(m.string());
-    if (p.is_relative()) p = base_dir / p;
-    obj.mesh_path = p.lexically_normal().string();
-    obj.mesh = load_triangle_mesh(obj.mesh_path, m.where());
-  }
-  if (r.has("transform")) obj.transform = read_transform(r.child("transform"));
-  obj.material = read_material(r.child("material"));
-  if (r.has("pins")) obj.pins = read_pins(r.child("pins"));
-  return obj;
 }
 
 }  // namespace

@@ -13,10 +13,27 @@ void flow_seq(YAML::Emitter& out, const Array& values) {
   out << YAML::EndSeq;
 }
 
+const char* solid_model_name(SolidModel model) {
+  switch (model) {
+    case SolidModel::stvk: return "stvk";
+    case SolidModel::springs: return "springs";
+    case SolidModel::neo_hookean: break;
+  }
+  return "neo_hookean";
+}
+
 void emit_object(YAML::Emitter& out, const ObjectDesc& obj) {
   out << YAML::BeginMap << YAML::Key << "name" << YAML::Value << obj.name;
-  out << YAML::Key << "type" << YAML::Value << "cloth";
-  if (obj.grid) {
+  const bool solid = obj.type == ObjectType::solid;
+  out << YAML::Key << "type" << YAML::Value << (solid ? "solid" : "cloth");
+  if (obj.box) {
+    out << YAML::Key << "box" << YAML::Value << YAML::BeginMap;
+    out << YAML::Key << "size" << YAML::Value;
+    flow_seq(out, obj.box->size);
+    out << YAML::Key << "resolution" << YAML::Value;
+    flow_seq(out, obj.box->resolution);
+    out << YAML::EndMap;
+  } else if (obj.grid) {
     out << YAML::Key << "grid" << YAML::Value << YAML::BeginMap;
     out << YAML::Key << "size" << YAML::Value;
     flow_seq(out, obj.grid->size);
@@ -37,6 +54,11 @@ void emit_object(YAML::Emitter& out, const ObjectDesc& obj) {
   const MaterialDesc& m = obj.material;
   out << YAML::Key << "material" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "density" << YAML::Value << m.density;
+  if (solid) {
+    out << YAML::Key << "youngs_modulus" << YAML::Value << m.youngs_modulus;
+    out << YAML::Key << "poisson_ratio" << YAML::Value << m.poisson_ratio;
+    out << YAML::Key << "model" << YAML::Value << solid_model_name(m.solid_model);
+  }
   if (m.has_stretch) out << YAML::Key << "stretch_compliance" << YAML::Value << m.stretch_compliance;
   if (m.has_bending) out << YAML::Key << "bend_compliance" << YAML::Value << m.bend_compliance;
   out << YAML::EndMap;
