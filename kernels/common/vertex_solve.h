@@ -12,16 +12,12 @@ typedef struct {
   int ok; /* 0: |det H| too small relative to its scale, x = 0 */
 } ats_solve3;
 
-ATS_FN ats_vec3 ats_cross(ats_vec3 a, ats_vec3 b) {
-  return ats_v3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
-}
-
 /* Cramer's rule through the adjugate: rows r0, r1, r2 of H. */
 ATS_FN ats_solve3 ats_m3_solve(ats_mat3 h, ats_vec3 b) {
   ats_solve3 s;
-  const ats_vec3 c0 = ats_cross(h.r[1], h.r[2]);
-  const ats_vec3 c1 = ats_cross(h.r[2], h.r[0]);
-  const ats_vec3 c2 = ats_cross(h.r[0], h.r[1]);
+  const ats_vec3 c0 = ats_v3_cross(h.r[1], h.r[2]);
+  const ats_vec3 c1 = ats_v3_cross(h.r[2], h.r[0]);
+  const ats_vec3 c2 = ats_v3_cross(h.r[0], h.r[1]);
   const ats_real det = ats_dot(h.r[0], c0);
   const ats_real scale = ats_dot(h.r[0], h.r[0]) + ats_dot(h.r[1], h.r[1]) + ats_dot(h.r[2], h.r[2]);
   /* det ~ scale^(3/2) for a well-conditioned H; 1e-12 of that is singular in float */
