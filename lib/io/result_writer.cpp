@@ -108,6 +108,9 @@ void write_mesh(hid_t file, const model::Model& model) {
     write_float_array(g, "rest_positions", rest, 3);
     write_int_array(g, "triangles", tris, 3);
     write_int_array(g, "pinned", obj.pinned, 0);
+    std::vector<int> tets;
+    for (const auto& t : obj.tetrahedra) tets.insert(tets.end(), t.begin(), t.end());
+    write_int_array(g, "tetrahedra", tets, 4);  // [k, 4]; empty for cloth
     write_int_attribute(g, "vertex_offset", obj.vertex_offset);
     write_int_attribute(g, "vertex_count", obj.vertex_count);
   }

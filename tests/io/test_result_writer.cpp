@@ -26,7 +26,7 @@ io::RunInfo run_info() {
   d.name = "test device";
   d.type = "cpu";
   d.compute_units = 1;
-  return {"atssim run s.yaml", "a: 1\n", "a: 1\nb: 2\n", {d}};
+  return {"atssim run s.yaml", "a: 1\n", "a: 1\nb: 2\n", {d}, {}};
 }
 
 }  // namespace
