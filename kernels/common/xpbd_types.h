@@ -20,4 +20,19 @@ typedef struct {
   float pad0, pad1;
 } ats_bend_c;
 
+/* A linear tetrahedron (Sifakis & Barbic 2012): vertices, rest-shape
+ * inverse Dm^-1 (row-major), rest volume, Lame parameters, energy model
+ * (0 stable neo-Hookean, 1 StVK; kernels/common/energy_tet_*.h). 64 bytes. */
+typedef struct {
+  int v[4];
+  float dm_inv[9];
+  float volume;
+  float mu;
+  float lambda;
+  int model;
+} ats_tet_c;
+
+#define ATS_TET_NEO_HOOKEAN 0
+#define ATS_TET_STVK 1
+
 #endif

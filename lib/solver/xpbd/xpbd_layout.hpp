@@ -21,6 +21,7 @@ struct XpbdLayout {
   std::vector<int> stretch_blocks;         // offsets, blocks + 1 entries (empty = none)
   std::vector<ats_bend_c> bend;
   std::vector<int> bend_blocks;
+  std::vector<ats_tet_c> tets;             // solids (vertex-block methods; XPBD ignores them for now)
   Float4 gravity;
 };
 
