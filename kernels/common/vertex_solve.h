@@ -12,22 +12,28 @@ typedef struct {
   int ok; /* 0: |det H| too small relative to its scale, x = 0 */
 } ats_solve3;
 
-/* Cramer's rule through the adjugate: rows r0, r1, r2 of H. */
+/* Cramer's rule through the adjugate, on H scaled by its largest entry so
+ * that neither the determinant nor the singularity test can overflow (float
+ * Hessians of stiff, strongly deformed elements reach 1e10 and more). */
 ATS_FN ats_solve3 ats_m3_solve(ats_mat3 h, ats_vec3 b) {
   ats_solve3 s;
+  s.x = ats_v3(0, 0, 0);
+  s.ok = 0;
+  ats_real m = 0;
+  for (int i = 0; i < 3; ++i) {
+    m = fmax(m, fmax(fabs(h.r[i].x), fmax(fabs(h.r[i].y), fabs(h.r[i].z))));
+  }
+  if (!(m > 0)) return s;
+  const ats_real inv_m = (ats_real)1 / m;
+  for (int i = 0; i < 3; ++i) h.r[i] = ats_scale(h.r[i], inv_m);
   const ats_vec3 c0 = ats_v3_cross(h.r[1], h.r[2]);
   const ats_vec3 c1 = ats_v3_cross(h.r[2], h.r[0]);
   const ats_vec3 c2 = ats_v3_cross(h.r[0], h.r[1]);
   const ats_real det = ats_dot(h.r[0], c0);
-  const ats_real scale = ats_dot(h.r[0], h.r[0]) + ats_dot(h.r[1], h.r[1]) + ats_dot(h.r[2], h.r[2]);
-  /* det ~ scale^(3/2) for a well-conditioned H; 1e-12 of that is singular in float */
-  if (!(det * det > (ats_real)1e-24 * scale * scale * scale)) {
-    s.x = ats_v3(0, 0, 0);
-    s.ok = 0;
-    return s;
-  }
-  /* H^-1 = adj(H) / det, adj's columns are c0, c1, c2 */
-  s.x = ats_scale(ats_add(ats_add(ats_scale(c0, b.x), ats_scale(c1, b.y)), ats_scale(c2, b.z)), (ats_real)1 / det);
+  /* entries now lie in [-1, 1]: |det| below 1e-6 is singular in float */
+  if (!(fabs(det) > (ats_real)1e-6)) return s;
+  /* H^-1 b = adj(H/m) (b/m) / det(H/m); adj's columns are c0, c1, c2 */
+  s.x = ats_scale(ats_add(ats_add(ats_scale(c0, b.x), ats_scale(c1, b.y)), ats_scale(c2, b.z)), inv_m / det);
   s.ok = 1;
   return s;
 }

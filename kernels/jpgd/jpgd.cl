@@ -15,8 +15,8 @@
 
 __kernel void jpgd_step(__global const float4* x, __global const float4* x_before, __global float4* x_next,
                         __global const float4* x_tilde, __global const int* adj_offsets, __global const int* adj,
-                        __global const ats_distance_c* stretch, __global const ats_bend_c* bend, float inv_h2,
-                        float alpha, float omega, int first, int count) {
+                        __global const ats_distance_c* stretch, __global const ats_bend_c* bend,
+                        __global const ats_tet_c* tets, float inv_h2, float alpha, float omega, int first, int count) {
   const int k = get_global_id(0);
   if (k >= count) return;
   const int i = first + k;
@@ -25,7 +25,7 @@ __kernel void jpgd_step(__global const float4* x, __global const float4* x_befor
     x_next[i] = p;
     return;
   }
-  const vertex_system s = gather_vertex_system(i, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend);
+  const vertex_system s = gather_vertex_system(i, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend, tets);
   const ats_solve3 d = ats_m3_solve(s.h, s.f);
   const float3 stepped = (float3)(p.x + alpha * d.x.x, p.y + alpha * d.x.y, p.z + alpha * d.x.z);
   const float3 before = x_before[i].xyz;

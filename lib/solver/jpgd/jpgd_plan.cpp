@@ -40,9 +40,10 @@ SubstepPlan make_jpgd_plan(const xpbd::XpbdLayout& layout, const JpgdSettings& s
         {{"jpgd_step", static_cast<std::size_t>(n),
           {Arg::of_buffer(current), Arg::of_buffer(before), Arg::of_buffer(next), Arg::of_buffer(b.x_tilde),
            Arg::of_buffer(b.adjacency_offsets), Arg::of_buffer(b.adjacency), Arg::of_buffer(b.stretch),
-           Arg::of_buffer(b.bend), Arg::of_float(inv_h2), Arg::of_float(static_cast<float>(settings.step)),
-           Arg::of_float(static_cast<float>(omega[it])), Arg::of_int(0), Arg::of_int(n)},
-          11}});
+           Arg::of_buffer(b.bend), Arg::of_buffer(b.tets), Arg::of_float(inv_h2),
+           Arg::of_float(static_cast<float>(settings.step)), Arg::of_float(static_cast<float>(omega[it])),
+           Arg::of_int(0), Arg::of_int(n)},
+          12}});
     plan.graph.add_edge(last, t);
     last = t;
   }

@@ -11,13 +11,13 @@ namespace atssim::solver::vertex {
 
 struct VertexLayout {
   std::vector<int> adjacency_offsets;  // particles + 1
-  std::vector<int> adjacency;          // element << 3 | kind << 2 | slot (kind 0 stretch, 1 bending)
+  std::vector<int> adjacency;          // element << 4 | kind << 2 | slot (kind 0 stretch, 1 bending, 2 tet)
   graph::ColorBlocks colors;           // movable particles only
 };
 
 VertexLayout make_vertex_layout(const xpbd::XpbdLayout& layout);
 
 // Entry code of kernels/common/vertex_system.cl.
-inline int adjacency_code(int element, int kind, int slot) { return element << 3 | kind << 2 | slot; }
+inline int adjacency_code(int element, int kind, int slot) { return element << 4 | kind << 2 | slot; }
 
 }  // namespace atssim::solver::vertex

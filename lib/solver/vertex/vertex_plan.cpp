@@ -17,6 +17,7 @@ sched::TaskId begin_vertex_plan(SubstepPlan& plan, const xpbd::XpbdLayout& layou
   b.x_tilde = plan.add_buffer("x_tilde", bytes_of(layout.x));
   b.stretch = plan.add_buffer("stretch", bytes_of(layout.stretch));
   b.bend = plan.add_buffer("bend", bytes_of(layout.bend));
+  b.tets = plan.add_buffer("tets", bytes_of(layout.tets));
   b.adjacency_offsets = plan.add_buffer("adjacency_offsets", bytes_of(vertices.adjacency_offsets));
   b.adjacency = plan.add_buffer("adjacency", bytes_of(vertices.adjacency));
   b.order = plan.add_buffer("vertex_order", bytes_of(vertices.colors.order));

@@ -9,7 +9,7 @@
 namespace atssim::solver::vertex {
 
 struct VertexBuffers {
-  BufferId x = -1, v = -1, x_prev = -1, x_tilde = -1, stretch = -1, bend = -1, adjacency_offsets = -1,
+  BufferId x = -1, v = -1, x_prev = -1, x_tilde = -1, stretch = -1, bend = -1, tets = -1, adjacency_offsets = -1,
            adjacency = -1, order = -1;
 };
 
