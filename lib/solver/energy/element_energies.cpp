@@ -3,6 +3,8 @@
 #include "common/energy_bending.h"
 #include "common/energy_inertia.h"
 #include "common/energy_stretch.h"
+#include "common/energy_tet_neohookean.h"
+#include "common/energy_tet_stvk.h"
 #include "solver/energy/energy_plan.hpp"
 
 namespace atssim::solver::energy {
@@ -31,6 +33,15 @@ std::vector<float> element_energies(const xpbd::XpbdLayout& layout, const std::v
     ats_vec3 q[4];
     for (int j = 0; j < 4; ++j) q[j] = xyz(layout.x[c.v[j]]);
     out[where.bend_first + i] = ats_bend_energy(q, c.K, c.scale, 1.0f / c.compliance);
+  }
+  for (std::size_t i = 0; i < layout.tets.size(); ++i) {
+    const ats_tet_c& t = layout.tets[i];
+    ats_vec3 q[4];
+    for (int j = 0; j < 4; ++j) q[j] = xyz(layout.x[t.v[j]]);
+    ats_mat3 dm_inv;
+    for (int r = 0; r < 3; ++r) dm_inv.r[r] = ats_v3(t.dm_inv[3 * r], t.dm_inv[3 * r + 1], t.dm_inv[3 * r + 2]);
+    out[where.tet_first + i] = t.model == ATS_TET_STVK ? ats_tet_stvk_energy(q, dm_inv, t.volume, t.mu, t.lambda)
+                                                       : ats_tet_nh_energy(q, dm_inv, t.volume, t.mu, t.lambda);
   }
   return out;
 }

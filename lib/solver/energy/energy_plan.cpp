@@ -29,7 +29,8 @@ EnergyOutput energy_output(const xpbd::XpbdLayout& layout) {
   o.inertia_first = 0;
   o.stretch_first = static_cast<int>(layout.x.size());
   o.bend_first = o.stretch_first + static_cast<int>(layout.stretch.size());
-  o.size = o.bend_first + static_cast<int>(layout.bend.size());
+  o.tet_first = o.bend_first + static_cast<int>(layout.bend.size());
+  o.size = o.tet_first + static_cast<int>(layout.tets.size());
   return o;
 }
 
@@ -40,6 +41,7 @@ SubstepPlan make_energy_plan(const xpbd::XpbdLayout& layout, const std::vector<x
         fmt::format("energy plan: {} predicted positions for {} particles", predicted.size(), layout.x.size()));
   }
   require_finite_stiffness(layout);  // the device would compute inf or NaN
+  require_valid_tets(layout);
   const EnergyOutput where = energy_output(layout);
 
   SubstepPlan plan;
@@ -50,6 +52,7 @@ SubstepPlan make_energy_plan(const xpbd::XpbdLayout& layout, const std::vector<x
   b.predicted = plan.add_buffer("predicted", bytes_of(predicted));
   if (!layout.stretch.empty()) b.stretch = plan.add_buffer("stretch", bytes_of(layout.stretch));
   if (!layout.bend.empty()) b.bend = plan.add_buffer("bend", bytes_of(layout.bend));
+  if (!layout.tets.empty()) b.tets = plan.add_buffer("tets", bytes_of(layout.tets));
   b.energy = plan.add_buffer("energy", std::vector<std::byte>(static_cast<std::size_t>(where.size) * sizeof(float)));
   plan.positions = b.x;
 
@@ -67,6 +70,10 @@ SubstepPlan make_energy_plan(const xpbd::XpbdLayout& layout, const std::vector<x
   if (b.bend >= 0) {
     launches.push_back(
         element_launch("energy_bend", b.x, b.bend, b.energy, where.bend_first, static_cast<int>(layout.bend.size())));
+  }
+  if (b.tets >= 0) {
+    launches.push_back(
+        element_launch("energy_tet", b.x, b.tets, b.energy, where.tet_first, static_cast<int>(layout.tets.size())));
   }
   plan.add_task({"energy", "energy", -1, -1}, std::move(launches));
   if (ids != nullptr) *ids = b;

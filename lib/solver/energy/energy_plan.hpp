@@ -14,22 +14,24 @@ namespace atssim::solver::energy {
 
 // Buffer ids inside an energy plan (those absent from the layout are -1).
 struct EnergyBuffers {
-  BufferId x = -1, predicted = -1, stretch = -1, bend = -1, energy = -1;
+  BufferId x = -1, predicted = -1, stretch = -1, bend = -1, tets = -1, energy = -1;
 };
 
 // Where each term lands in the output array: particles, then stretch
-// constraints, then bending stencils, each in layout order.
+// constraints, then bending stencils, then tets, each in layout order.
 struct EnergyOutput {
   int inertia_first = 0;
   int stretch_first = 0;
   int bend_first = 0;
+  int tet_first = 0;
   int size = 0;
 };
 
 EnergyOutput energy_output(const xpbd::XpbdLayout& layout);
 
 // Throws atssim::Error (input) when a constraint has compliance 0 (no finite
-// energy), or when predicted and the layout differ in size.
+// energy), a tet has mu <= 0 or lambda < 0, or predicted and the layout
+// differ in size.
 SubstepPlan make_energy_plan(const xpbd::XpbdLayout& layout, const std::vector<xpbd::Float4>& predicted, double h,
                              EnergyBuffers* ids = nullptr);
 

@@ -1,5 +1,7 @@
 #include "solver/energy/finite_stiffness.hpp"
 
+#include <cmath>
+
 #include <fmt/format.h>
 
 #include "util/error.hpp"
@@ -25,6 +27,27 @@ void check(const std::vector<Constraint>& constraints, const char* kind) {
 void require_finite_stiffness(const xpbd::XpbdLayout& layout) {
   check(layout.stretch, "stretch");
   check(layout.bend, "bend");
+}
+
+void require_valid_tets(const xpbd::XpbdLayout& layout) {
+  for (std::size_t i = 0; i < layout.tets.size(); ++i) {
+    const ats_tet_c& t = layout.tets[i];
+    // Negated comparisons so that NaN fails them too.
+    if (!(t.mu > 0.0f && std::isfinite(t.mu)) || !(t.lambda >= 0.0f && std::isfinite(t.lambda))) {
+      throw input_error(fmt::format(
+          "tetrahedron {} has Lame parameters mu = {}, lambda = {}: the elastic energy needs mu > 0 and lambda >= 0; "
+          "give the solid a youngs_modulus > 0 and a poisson_ratio in [0, 0.5)",
+          i, t.mu, t.lambda));
+    }
+    if (!(t.volume > 0.0f && std::isfinite(t.volume))) {
+      throw input_error(fmt::format("tetrahedron {} has rest volume {}: it needs a positive volume", i, t.volume));
+    }
+    if (t.model != ATS_TET_NEO_HOOKEAN && t.model != ATS_TET_STVK) {
+      throw input_error(
+          fmt::format("tetrahedron {} has energy model {}: known are {} (stable neo-Hookean) and {} (StVK)", i, t.model,
+                      ATS_TET_NEO_HOOKEAN, ATS_TET_STVK));
+    }
+  }
 }
 
 }  // namespace atssim::solver::energy

@@ -10,4 +10,10 @@ namespace atssim::solver::energy {
 // is not positive.
 void require_finite_stiffness(const xpbd::XpbdLayout& layout);
 
+// Throws atssim::Error (input) naming the first tet whose Lame parameters
+// are not mu > 0, lambda >= 0 (finite), whose rest volume is not positive,
+// or whose model is neither ATS_TET_NEO_HOOKEAN nor ATS_TET_STVK: outside
+// these the tet energies are not bounded below or not defined.
+void require_valid_tets(const xpbd::XpbdLayout& layout);
+
 }  // namespace atssim::solver::energy

@@ -15,6 +15,7 @@ IncrementalPotential make_incremental_potential(const xpbd::XpbdLayout& layout,
                                   layout.x.size()));
   }
   require_finite_stiffness(layout);
+  require_valid_tets(layout);
   IncrementalPotential p;
   p.h = h;
   p.predicted = positions_of(predicted);
@@ -39,6 +40,17 @@ IncrementalPotential make_incremental_potential(const xpbd::XpbdLayout& layout,
     t.scale = c.scale;
     t.stiffness = 1.0 / static_cast<double>(c.compliance);
     p.bend.push_back(t);
+  }
+  p.tets.reserve(layout.tets.size());
+  for (const ats_tet_c& c : layout.tets) {
+    TetTerm t;
+    for (int k = 0; k < 4; ++k) t.v[k] = c.v[k];
+    for (int k = 0; k < 9; ++k) t.dm_inv[k] = c.dm_inv[k];
+    t.volume = c.volume;
+    t.mu = c.mu;
+    t.lambda = c.lambda;
+    t.model = c.model == ATS_TET_STVK ? TetModel::stvk : TetModel::neo_hookean;
+    p.tets.push_back(t);
   }
   return p;
 }

@@ -1,11 +1,14 @@
 #pragma once
 // The incremental potential of one substep (He et al. 2025 §3.1, Eq. 1),
 //   E(x) = 1/2 h^-2 sum_i m_i |x_i - x~_i|^2 + Psi(x),
-//   Psi  = sum_stretch 1/2 alpha^-1 (|x_a - x_b| - L)^2 + sum_bend 1/2 alpha^-1 |C|^2,
-// whose minimiser is what XPBD with compliance alpha converges to (Macklin
-// et al. 2016, Eq. 4 and §3). Built from the XPBD layout, the very float data
-// the XPBD solver and kernels see, converted to double: the reference then
-// solves exactly XPBD's problem, not one that differs by float rounding.
+//   Psi  = sum_stretch 1/2 alpha^-1 (|x_a - x_b| - L)^2 + sum_bend 1/2 alpha^-1 |C|^2
+//        + sum_tet V Psi_tet(F),
+// whose constraint part XPBD with compliance alpha converges to (Macklin et
+// al. 2016, Eq. 4 and §3); the tets are the hyperelastic energies of
+// kernels/common/energy_tet_*.h (stable neo-Hookean or StVK). Built from the
+// XPBD layout, the very float data the solvers and kernels see, converted to
+// double: the reference then solves exactly their problem, not one that
+// differs by float rounding.
 #include <array>
 #include <vector>
 
@@ -28,12 +31,24 @@ struct BendTerm {
   double stiffness = 0.0;  // 1 / compliance
 };
 
+enum class TetModel { neo_hookean, stvk };
+
+// A linear tetrahedron: E = V Psi(F), F = Ds Dm^-1 (tet_kinematics.h).
+struct TetTerm {
+  std::array<int, 4> v{};
+  std::array<double, 9> dm_inv{};  // Dm^-1, row-major
+  double volume = 0.0;             // rest volume V
+  double mu = 0.0, lambda = 0.0;   // Lame parameters
+  TetModel model = TetModel::neo_hookean;
+};
+
 struct IncrementalPotential {
   double h = 0.0;
   Eigen::VectorXd predicted;  // x~, 3 per particle (pinned: their fixed position)
   std::vector<double> mass;   // m_i = 1 / w_i; 0 marks a pinned particle (no variable)
   std::vector<StretchTerm> stretch;
   std::vector<BendTerm> bend;
+  std::vector<TetTerm> tets;
 
   int particle_count() const { return static_cast<int>(mass.size()); }
   bool is_free(int i) const { return mass[i] > 0.0; }
@@ -41,7 +56,8 @@ struct IncrementalPotential {
 
 // Throws atssim::Error (input) when a constraint has compliance 0: an
 // infinitely stiff constraint has no finite energy, so converging needs
-// finite stiffness. Also when predicted and the layout differ in size.
+// finite stiffness. Also when a tet has mu <= 0, lambda < 0 or an unknown
+// model, and when predicted and the layout differ in size.
 IncrementalPotential make_incremental_potential(const xpbd::XpbdLayout& layout,
                                                 const std::vector<xpbd::Float4>& predicted, double h);
 

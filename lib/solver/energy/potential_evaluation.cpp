@@ -2,6 +2,8 @@
 
 #include "solver/energy/potential_evaluation.hpp"
 
+#include <Eigen/Eigenvalues>
+
 namespace atssim::solver::energy {
 
 namespace {
@@ -21,6 +23,48 @@ void bend_positions(const BendTerm& t, const Eigen::VectorXd& x, ats_vec3 out[4]
   for (int k = 0; k < 4; ++k) out[k] = vec_at(x, t.v[k]);
 }
 
+using Matrix12d = Eigen::Matrix<double, 12, 12>;
+
+void tet_positions(const TetTerm& t, const Eigen::VectorXd& x, ats_vec3 out[4]) {
+  for (int k = 0; k < 4; ++k) out[k] = vec_at(x, t.v[k]);
+}
+
+ats_mat3 dm_inv_of(const TetTerm& t) {
+  const auto& m = t.dm_inv;
+  return {{f64::ats_v3(m[0], m[1], m[2]), f64::ats_v3(m[3], m[4], m[5]), f64::ats_v3(m[6], m[7], m[8])}};
+}
+
+double tet_energy(const TetTerm& t, const ats_vec3 q[4]) {
+  const ats_mat3 dm = dm_inv_of(t);
+  return t.model == TetModel::stvk ? f64::ats_tet_stvk_energy(q, dm, t.volume, t.mu, t.lambda)
+                                   : f64::ats_tet_nh_energy(q, dm, t.volume, t.mu, t.lambda);
+}
+
+ats_vec3 tet_gradient(const TetTerm& t, const ats_vec3 q[4], int a) {
+  const ats_mat3 dm = dm_inv_of(t);
+  return t.model == TetModel::stvk ? f64::ats_tet_stvk_gradient(q, dm, t.volume, t.mu, t.lambda, a)
+                                   : f64::ats_tet_nh_gradient(q, dm, t.volume, t.mu, t.lambda, a);
+}
+
+// The 12x12 element Hessian from its 4x4 blocks; with project_psd its
+// negative eigenvalues are clamped to 0. The whole element, not each 3x3
+// block: a sum of PSD blocks placed off the diagonal need not be PSD.
+Matrix12d tet_hessian(const TetTerm& t, const ats_vec3 q[4], bool project_psd) {
+  const ats_mat3 dm = dm_inv_of(t);
+  Matrix12d h;
+  for (int a = 0; a < 4; ++a) {
+    for (int b = 0; b < 4; ++b) {
+      const ats_mat3 m = t.model == TetModel::stvk ? f64::ats_tet_stvk_hessian(q, dm, t.volume, t.mu, t.lambda, a, b)
+                                                   : f64::ats_tet_nh_hessian(q, dm, t.volume, t.mu, t.lambda, a, b);
+      for (int r = 0; r < 3; ++r) h.block<1, 3>(3 * a + r, 3 * b) << m.r[r].x, m.r[r].y, m.r[r].z;
+    }
+  }
+  if (!project_psd) return h;
+  const Eigen::SelfAdjointEigenSolver<Matrix12d> eig(0.5 * (h + h.transpose()));
+  const auto& v = eig.eigenvectors();
+  return v * eig.eigenvalues().cwiseMax(0.0).asDiagonal() * v.transpose();
+}
+
 // Appends the block (i, j) of a 3x3 matrix unless either particle is pinned.
 void add_block(std::vector<Eigen::Triplet<double>>& out, const IncrementalPotential& p, int i, int j, const ats_mat3& m,
                double sign) {
@@ -28,6 +72,14 @@ void add_block(std::vector<Eigen::Triplet<double>>& out, const IncrementalPotent
   for (int r = 0; r < 3; ++r) {
     const double row[3] = {m.r[r].x, m.r[r].y, m.r[r].z};
     for (int c = 0; c < 3; ++c) out.emplace_back(3 * i + r, 3 * j + c, sign * row[c]);
+  }
+}
+
+void add_block(std::vector<Eigen::Triplet<double>>& out, const IncrementalPotential& p, int i, int j,
+               const Eigen::Matrix3d& m) {
+  if (!p.is_free(i) || !p.is_free(j)) return;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) out.emplace_back(3 * i + r, 3 * j + c, m(r, c));
   }
 }
 
@@ -46,6 +98,11 @@ EnergyTerms energy_terms(const IncrementalPotential& p, const Eigen::VectorXd& x
     ats_vec3 q[4];
     bend_positions(t, x, q);
     e.bend += f64::ats_bend_energy(q, t.K.data(), t.scale, t.stiffness);
+  }
+  for (const TetTerm& t : p.tets) {
+    ats_vec3 q[4];
+    tet_positions(t, x, q);
+    e.tet += tet_energy(t, q);
   }
   return e;
 }
@@ -68,6 +125,11 @@ Eigen::VectorXd gradient(const IncrementalPotential& p, const Eigen::VectorXd& x
     bend_positions(t, x, q);
     for (int k = 0; k < 4; ++k) add_at(g, t.v[k], f64::ats_bend_gradient(q, t.K.data(), t.scale, t.stiffness, k));
   }
+  for (const TetTerm& t : p.tets) {
+    ats_vec3 q[4];
+    tet_positions(t, x, q);
+    for (int k = 0; k < 4; ++k) add_at(g, t.v[k], tet_gradient(t, q, k));
+  }
   for (int i = 0; i < p.particle_count(); ++i) {
     if (!p.is_free(i)) g.segment<3>(3 * i).setZero();
   }
@@ -77,7 +139,7 @@ Eigen::VectorXd gradient(const IncrementalPotential& p, const Eigen::VectorXd& x
 std::vector<Eigen::Triplet<double>> hessian_triplets(const IncrementalPotential& p, const Eigen::VectorXd& x,
                                                      bool project_psd) {
   std::vector<Eigen::Triplet<double>> out;
-  out.reserve(9 * (p.mass.size() + 4 * p.stretch.size() + 16 * p.bend.size()));
+  out.reserve(9 * (p.mass.size() + 4 * p.stretch.size() + 16 * (p.bend.size() + p.tets.size())));
   const double inv_h2 = 1.0 / (p.h * p.h);
   for (int i = 0; i < p.particle_count(); ++i) {
     if (p.is_free(i)) add_block(out, p, i, i, f64::ats_inertia_hessian(p.mass[i], inv_h2), 1.0);
@@ -94,6 +156,14 @@ std::vector<Eigen::Triplet<double>> hessian_triplets(const IncrementalPotential&
       for (int j = 0; j < 4; ++j) {
         add_block(out, p, t.v[i], t.v[j], f64::ats_bend_hessian(t.K.data(), t.scale, t.stiffness, i, j), 1.0);
       }
+    }
+  }
+  for (const TetTerm& t : p.tets) {
+    ats_vec3 q[4];
+    tet_positions(t, x, q);
+    const Matrix12d h = tet_hessian(t, q, project_psd);
+    for (int i = 0; i < 4; ++i) {
+      for (int j = 0; j < 4; ++j) add_block(out, p, t.v[i], t.v[j], h.block<3, 3>(3 * i, 3 * j));
     }
   }
   return out;

@@ -15,7 +15,8 @@ struct EnergyTerms {
   double inertia = 0.0;  // 1/2 h^-2 sum m |x - x~|^2
   double stretch = 0.0;
   double bend = 0.0;
-  double total() const { return inertia + stretch + bend; }
+  double tet = 0.0;  // sum V Psi(F) over the tetrahedra
+  double total() const { return inertia + stretch + bend + tet; }
 };
 
 // x: 3 per particle, pinned ones included (they enter the elastic terms).
@@ -27,8 +28,9 @@ Eigen::VectorXd gradient(const IncrementalPotential& p, const Eigen::VectorXd& x
 
 // The Hessian as triplets over all 3 n rows and columns (duplicates add up),
 // the rows and columns of pinned particles left out. With project_psd every
-// element block is projected to be positive semi-definite (only stretch
-// needs it), so the sum with M/h^2 is positive definite.
+// element Hessian is projected to be positive semi-definite (stretch: its
+// 3x3 block; a tet: its whole 12x12 matrix, eigenvalues clamped at 0, before
+// pinned rows are dropped), so the sum with M/h^2 is positive definite.
 std::vector<Eigen::Triplet<double>> hessian_triplets(const IncrementalPotential& p, const Eigen::VectorXd& x,
                                                      bool project_psd);
 

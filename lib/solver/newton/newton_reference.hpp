@@ -1,8 +1,9 @@
 #pragma once
 // A converged reference for one substep: Newton's method on the incremental
 // potential E (He et al. 2025 §3.1, Eq. 1), the problem XPBD with compliance
-// solves (Macklin et al. 2016). Sparse Hessian from the per-element 3x3
-// blocks, each projected PSD, plus M/h^2; pinned particles eliminated;
+// solves (Macklin et al. 2016), plus the elastic energy of tetrahedra.
+// Sparse Hessian from the per-element matrices (3x3 blocks; 12x12 for a
+// tet), each projected PSD, plus M/h^2; pinned particles eliminated;
 // Eigen::SimplicialLDLT; backtracking (Armijo) line search. Accuracy of a
 // solver run is then the relative energy error (E_k - E*) / (E_0 - E*).
 //
@@ -52,7 +53,7 @@ NewtonResult newton_reference(const energy::IncrementalPotential& problem, const
 
 // The usual call: the substep of `layout` with predicted positions x~ and
 // step h, started at x0 = x~. Throws atssim::Error (input) if a constraint
-// has compliance 0 (no finite energy).
+// has compliance 0 (no finite energy) or a tet has mu <= 0 or lambda < 0.
 NewtonResult newton_reference(const xpbd::XpbdLayout& layout, const std::vector<xpbd::Float4>& predicted, double h,
                               const NewtonSettings& settings = {});
 
