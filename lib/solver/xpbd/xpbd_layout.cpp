@@ -1,5 +1,7 @@
 #include "solver/xpbd/xpbd_layout.hpp"
 
+#include "util/error.hpp"
+
 namespace atssim::solver::xpbd {
 
 namespace {
@@ -49,18 +51,27 @@ XpbdLayout make_xpbd_layout(const model::Model& model) {
       out.bend.push_back(c);
     }
   }
-  for (std::size_t t = 0; t < model.tets.size(); ++t) {
-    ats_tet_c c{};
-    for (int k = 0; k < 4; ++k) c.v[k] = model.tets.tets[t][k];
-    const auto& m = model.tets.rest_inverse[t];
-    for (int r = 0; r < 3; ++r) {
-      for (int col = 0; col < 3; ++col) c.dm_inv[3 * r + col] = float(m(r, col));
+  if (model.tets.size() > 0) {
+    // Grouped by color like the other sets: XPBD sweeps them block by block;
+    // the vertex-block methods only gather them and do not mind the order.
+    const graph::ColorBlocks blocks = color<4>(model.tets.tets, movable);
+    out.tet_blocks = blocks.offsets;
+    for (int t : blocks.order) {
+      if (model.tets.energy[t] == model::TetEnergy::springs) {
+        throw input_error("solids with model: springs are not simulated yet; use neo_hookean or stvk");
+      }
+      ats_tet_c c{};
+      for (int k = 0; k < 4; ++k) c.v[k] = model.tets.tets[t][k];
+      const auto& m = model.tets.rest_inverse[t];
+      for (int r = 0; r < 3; ++r) {
+        for (int col = 0; col < 3; ++col) c.dm_inv[3 * r + col] = float(m(r, col));
+      }
+      c.volume = float(model.tets.rest_volume[t]);
+      c.mu = float(model.tets.mu[t]);
+      c.lambda = float(model.tets.lambda[t]);
+      c.model = model.tets.energy[t] == model::TetEnergy::stvk ? ATS_TET_STVK : ATS_TET_NEO_HOOKEAN;
+      out.tets.push_back(c);
     }
-    c.volume = float(model.tets.rest_volume[t]);
-    c.mu = float(model.tets.mu[t]);
-    c.lambda = float(model.tets.lambda[t]);
-    c.model = model.tets.energy[t] == model::TetEnergy::stvk ? ATS_TET_STVK : ATS_TET_NEO_HOOKEAN;
-    out.tets.push_back(c);
   }
   return out;
 }

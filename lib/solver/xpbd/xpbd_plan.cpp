@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include "util/error.hpp"
+
 namespace atssim::solver::xpbd {
 
 namespace {
@@ -46,6 +48,10 @@ SubstepPlan make_xpbd_plan(const XpbdLayout& layout, const XpbdSettings& setting
   if (!layout.bend.empty()) {
     b.bend = plan.add_buffer("bend", bytes_of(layout.bend));
     b.bend_lambda = plan.add_buffer("bend_lambda", std::vector<std::byte>(layout.bend.size() * 4 * sizeof(float)));
+  }
+  if (!layout.tets.empty()) {
+    throw input_error("xpbd has no tetrahedron constraints yet: use solver.method vbd or jpgd for solids "
+                      "(type: solid)");
   }
   plan.positions = b.x;
 
