@@ -1,19 +1,17 @@
-/* Predict and velocity update of the implicit-Euler substep, for the methods
- * that minimise the incremental potential directly (VBD, JPGD): predict
- * keeps x_t (for the velocity) and x~ = x_t + h v + h^2 g (the inertia
- * target, also the first guess). Pinned particles (w = 0) stay. */
-__kernel void particles_predict(__global float4* x, __global float4* v, __global float4* x_prev,
-                                __global float4* x_tilde, float dt, float gx, float gy, float gz, int first,
-                                int count) {
-  const int k = get_global_id(0);
-  if (k >= count) return;
-  const int i = first + k;
+/* Predict and velocity update of the implicit-Euler substep, shared by every
+ * method: predict keeps x_t (for the velocity) and, for the methods that
+ * minimise the incremental potential directly (VBD, JPGD), x~ = x_t + h v +
+ * h^2 g (the inertia target, also the first guess). Pinned particles (w = 0)
+ * stay. */
+/* Semi-implicit Euler for particle i: v += dt g, x += dt v; returns the new
+ * position (pinned particles keep theirs and lose their velocity). */
+static inline float4 predict_particle(int i, __global float4* x, __global float4* v, __global float4* x_prev,
+                                      float dt, float gx, float gy, float gz) {
   const float4 p = x[i];
   x_prev[i] = p;
   if (p.w == 0.0f) {
     v[i] = (float4)(0.0f);
-    x_tilde[i] = p;
-    return;
+    return p;
   }
   float4 vel = v[i];
   vel.x += dt * gx;
@@ -22,7 +20,16 @@ __kernel void particles_predict(__global float4* x, __global float4* v, __global
   v[i] = vel;
   const float4 q = (float4)(p.x + dt * vel.x, p.y + dt * vel.y, p.z + dt * vel.z, p.w);
   x[i] = q;
-  x_tilde[i] = q;
+  return q;
+}
+
+__kernel void particles_predict(__global float4* x, __global float4* v, __global float4* x_prev,
+                                __global float4* x_tilde, float dt, float gx, float gy, float gz, int first,
+                                int count) {
+  const int k = get_global_id(0);
+  if (k >= count) return;
+  const int i = first + k;
+  x_tilde[i] = predict_particle(i, x, v, x_prev, dt, gx, gy, gz);
 }
 
 __kernel void particles_update_velocity(__global const float4* x, __global float4* v, __global const float4* x_prev,

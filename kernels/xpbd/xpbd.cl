@@ -6,6 +6,7 @@
 #include "common/xpbd_types.h"
 #include "common/xpbd_distance.h"
 #include "common/xpbd_bending.h"
+#include "common/particle_steps.cl"
 #include "async/merge.cl"
 
 static inline ats_vec3 xyz(float4 p) { return ats_v3(p.x, p.y, p.z); }
@@ -15,19 +16,7 @@ __kernel void xpbd_predict(__global float4* x, __global float4* v, __global floa
                            float gx, float gy, float gz, int first, int count) {
   const int k = get_global_id(0);
   if (k >= count) return;
-  const int i = first + k;
-  const float4 p = x[i];
-  x_prev[i] = p;
-  if (p.w == 0.0f) {
-    v[i] = (float4)(0.0f);
-    return;
-  }
-  float4 vel = v[i];
-  vel.x += dt * gx;
-  vel.y += dt * gy;
-  vel.z += dt * gz;
-  v[i] = vel;
-  x[i] = (float4)(p.x + dt * vel.x, p.y + dt * vel.y, p.z + dt * vel.z, p.w);
+  predict_particle(first + k, x, v, x_prev, dt, gx, gy, gz);
 }
 
 __kernel void xpbd_stretch(__global float4* x, __global const ats_distance_c* c, __global float* lambda, int first,
@@ -63,13 +52,4 @@ __kernel void xpbd_bend(__global float4* x, __global const ats_bend_c* c, __glob
   const ats_bend_step s = ats_xpbd_bend(p, w, con.K, con.scale, con.compliance, xyz(l4), dt);
   lambda[i] = (float4)(l4.x + s.dlambda.x, l4.y + s.dlambda.y, l4.z + s.dlambda.z, 0.0f);
   for (int j = 0; j < 4; ++j) x[con.v[j]] = add_xyz(q[j], s.dx[j]);
-}
-
-__kernel void xpbd_update_velocity(__global const float4* x, __global float4* v, __global const float4* x_prev,
-                                   float inv_dt, int first, int count) {
-  const int k = get_global_id(0);
-  if (k >= count) return;
-  const int i = first + k;
-  const float4 d = x[i] - x_prev[i];
-  v[i] = (float4)(d.x * inv_dt, d.y * inv_dt, d.z * inv_dt, 0.0f);
 }

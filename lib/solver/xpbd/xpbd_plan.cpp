@@ -76,7 +76,7 @@ SubstepPlan make_xpbd_plan(const XpbdLayout& layout, const XpbdSettings& setting
   }
   const sched::TaskId update = plan.add_task(
       {"update_velocity", "update_velocity", -1, -1},
-      {{"xpbd_update_velocity", global,
+      {{"particles_update_velocity", global,
         {Arg::of_buffer(b.x), Arg::of_buffer(b.v), Arg::of_buffer(b.x_prev), Arg::of_float(1.0f / dt),
          Arg::of_int(0), Arg::of_int(n)},
         4}});
