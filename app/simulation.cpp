@@ -52,7 +52,7 @@ void record_schedule(io::ResultWriter& writer, int frame, const sched::Schedule&
 
 // Keeps only what output needs (object topology and rest shape).
 void release_simulation_state(model::Model& model) {
-  model = model::Model{{}, {}, {}, std::move(model.objects), model.gravity};
+  model = model::Model{{}, {}, {}, std::move(model.objects), model.gravity, {}, model.ground};
 }
 
 }  // namespace

@@ -41,6 +41,16 @@ __kernel void particles_update_velocity(__global const float4* x, __global float
   v[i] = (float4)(d.x * inv_dt, d.y * inv_dt, d.z * inv_dt, 0.0f);
 }
 
+/* The ground plane y = height: a particle below it is put back on it (the
+ * velocity update then removes the motion into the ground; no friction). */
+__kernel void particles_ground(__global float4* x, float height, int first, int count) {
+  const int k = get_global_id(0);
+  if (k >= count) return;
+  const int i = first + k;
+  const float4 p = x[i];
+  if (p.w > 0.0f && p.y < height) x[i] = (float4)(p.x, height, p.z, p.w);
+}
+
 /* Copies positions (used where an iteration leaves its result elsewhere). */
 __kernel void particles_copy(__global float4* dst, __global const float4* src, int first, int count) {
   const int k = get_global_id(0);

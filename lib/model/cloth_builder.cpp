@@ -142,6 +142,7 @@ void add_cloth(Model& model, const scene::ObjectDesc& obj, const scene::Triangle
 Model build_model(const scene::SceneDesc& scene) {
   Model model;
   model.gravity = Vec3(scene.simulation.gravity[0], scene.simulation.gravity[1], scene.simulation.gravity[2]);
+  model.ground = scene.simulation.ground;
   for (const auto& obj : scene.objects) {
     if (obj.type == scene::ObjectType::solid) {
       add_solid(model, obj, scene.source_path);

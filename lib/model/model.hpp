@@ -3,6 +3,7 @@
 // only what the scene requires"). Plain data in double precision; solvers
 // convert it to their device layouts.
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -77,6 +78,7 @@ struct Model {
   // Last, with an initializer: code that aggregate-initializes the members
   // above (app/simulation.cpp) keeps compiling without a warning.
   TetSet tets{};  // empty when the scene has no solid
+  std::optional<double> ground{};  // ground plane height (y), if the scene has one
 };
 
 }  // namespace atssim::model

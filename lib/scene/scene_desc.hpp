@@ -16,6 +16,10 @@ struct SimulationDesc {
   int iterations = 8;
   int frames = 60;
   Vec3 gravity{0.0, -9.81, 0.0};
+  // Height of a ground plane y = ground that no particle goes below (the
+  // only collider of this version: a projection at the end of every
+  // iteration, no friction); absent = no ground.
+  std::optional<double> ground;
 };
 
 struct GridDesc {

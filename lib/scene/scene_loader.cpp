@@ -20,8 +20,8 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr std::array<std::string_view, 5> kRootKeys{"simulation", "objects", "solver", "output", "devices"};
-constexpr std::array<std::string_view, 6> kSimulationKeys{"fps", "dt", "substeps", "iterations", "frames",
-                                                          "gravity"};
+constexpr std::array<std::string_view, 7> kSimulationKeys{"fps", "dt", "substeps", "iterations", "frames",
+                                                          "gravity", "ground"};
 constexpr std::array<std::string_view, 8> kSolverKeys{"method", "schedule", "async_depth", "merge", "async_fetch",
                                                       "replay", "chebyshev_rho", "jacobi_step"};
 constexpr std::array<std::string_view, 4> kSchedules{"single", "split", "heft", "async"};
@@ -108,6 +108,7 @@ SimulationDesc read_simulation(const YamlReader& r) {
   if (r.has("substeps")) sim.substeps = r.child("substeps").integer_in(1, 10000);
   if (r.has("iterations")) sim.iterations = r.child("iterations").integer_in(1, 100000);
   if (r.has("frames")) sim.frames = r.child("frames").integer_in(1, 10000000);
+  if (r.has("ground")) sim.ground = r.child("ground").number_in(-1e6, 1e6, false, "a ground height in metres");
   if (r.has("gravity")) {
     sim.gravity = r.child("gravity").vec3();
     for (double g : sim.gravity) {

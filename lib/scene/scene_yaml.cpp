@@ -98,6 +98,7 @@ std::string to_resolved_yaml(const SceneDesc& scene) {
   out << YAML::Key << "frames" << YAML::Value << s.frames;
   out << YAML::Key << "gravity" << YAML::Value;
   flow_seq(out, s.gravity);
+  if (s.ground) out << YAML::Key << "ground" << YAML::Value << *s.ground;
   out << YAML::EndMap;
   out << YAML::Key << "objects" << YAML::Value << YAML::BeginSeq;
   for (const ObjectDesc& obj : scene.objects) emit_object(out, obj);

@@ -27,6 +27,14 @@ SubstepPlan async_graph(const SubstepPlan& serial, int depth) {
       continue;
     }
     seen_iteration = true;
+    if (task.kind == "collision") {
+      // Ends its iteration: after every kind's last task of it; every kind's
+      // next task waits for it (through previous_of_kind below).
+      for (const auto& [kind, last] : last_of[task.iteration]) out.graph.add_edge(last, t);
+      for (auto& [kind, previous] : previous_of_kind) previous = t;
+      last_of[task.iteration]["collision"] = t;
+      continue;
+    }
     if (auto it = previous_of_kind.find(task.kind); it != previous_of_kind.end()) out.graph.add_edge(it->second, t);
     previous_of_kind[task.kind] = t;
     last_of[task.iteration][task.kind] = t;

@@ -53,3 +53,32 @@ TEST_CASE("a bar hanging under its own weight stretches by rho g L^2 / (2E) (VBD
   INFO(method << ": mean tip displacement " << tip << " m, analytic " << analytic << " m");
   CHECK(tip == Approx(analytic).epsilon(0.05));
 }
+
+TEST_CASE("no particle ends below the ground plane, whatever the method and schedule") {
+  const auto [method, schedule] = GENERATE(std::make_pair(std::string("xpbd"), std::string("single")),
+                                           std::make_pair(std::string("xpbd"), std::string("async")),
+                                           std::make_pair(std::string("vbd"), std::string("heft")),
+                                           std::make_pair(std::string("jpgd"), std::string("split")));
+  test::TempDir dir;
+  // A cloth 1.5 m up on a ground at 1.2 m: after 20 frames it has hit it.
+  const std::string yaml =
+      "simulation: {fps: 60, substeps: 4, iterations: 8, frames: 20, ground: 1.2}\n"
+      "objects:\n"
+      "  - grid: {size: [1, 1], resolution: [12, 12]}\n"
+      "    transform: {translate: [0, 1.5, 0]}\n"
+      "    material: {density: 0.2, stretch_stiffness: 1000, bend_stiffness: 0.001}\n"
+      "    pins: {vertices: [0]}\n";
+  app::RunOptions o;
+  o.scene_path = dir.write("ground.yaml", yaml);
+  o.overrides = {"output.path=" + dir.file("g.h5"), "devices=cpu/2", "solver.method=" + method,
+                 "solver.schedule=" + schedule};
+  app::run_simulation(o);
+  double lowest = 1e9;
+  for (std::size_t f = 0; f <= 20; ++f) {
+    const auto x = io::read_frame_positions(dir.file("g.h5"), f);
+    for (std::size_t i = 1; i < x.size(); i += 3) lowest = std::min(lowest, double(x[i]));
+  }
+  INFO(method << "/" << schedule);
+  CHECK(lowest >= 1.2 - 1e-6);
+  CHECK(lowest <= 1.2 + 1e-6);  // and it did reach the ground
+}

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "solver/collision_tasks.hpp"
+
 namespace atssim::solver::jpgd {
 
 std::vector<double> chebyshev_weights(int iterations, double rho) {
@@ -45,7 +47,7 @@ SubstepPlan make_jpgd_plan(const xpbd::XpbdLayout& layout, const JpgdSettings& s
            Arg::of_int(0), Arg::of_int(n)},
           12}});
     plan.graph.add_edge(last, t);
-    last = t;
+    last = add_ground_task(plan, t, layout, next, it);
   }
   const BufferId result = rotation[settings.iterations % 3];
   if (result != b.x) {

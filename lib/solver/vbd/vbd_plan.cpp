@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "solver/collision_tasks.hpp"
+
 namespace atssim::solver::vbd {
 
 SubstepPlan make_vbd_plan(const xpbd::XpbdLayout& layout, double substep_dt, int iterations,
@@ -27,6 +29,7 @@ SubstepPlan make_vbd_plan(const xpbd::XpbdLayout& layout, double substep_dt, int
       plan.graph.add_edge(last, t);
       last = t;
     }
+    last = add_ground_task(plan, last, layout, b.x, it);
   }
   vertex::end_vertex_plan(plan, last, b, substep_dt);
   if (ids != nullptr) *ids = b;

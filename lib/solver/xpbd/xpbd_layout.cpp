@@ -28,6 +28,8 @@ XpbdLayout make_xpbd_layout(const model::Model& model) {
     movable[i] = p.inv_mass[i] > 0.0;
   }
   out.gravity = {float(model.gravity.x()), float(model.gravity.y()), float(model.gravity.z()), 0.0f};
+  out.has_ground = model.ground.has_value();
+  out.ground_y = out.has_ground ? float(*model.ground) : 0.0f;
 
   if (model.stretch.size() > 0) {
     const graph::ColorBlocks blocks = color<2>(model.stretch.edges, movable);

@@ -24,6 +24,8 @@ struct XpbdLayout {
   std::vector<ats_tet_c> tets;             // solids (VBD, JPGD; XPBD rejects them for now)
   std::vector<int> tet_blocks;             // color offsets of `tets` (tets are grouped by color)
   Float4 gravity;
+  bool has_ground = false;                 // a ground plane y = ground_y (collision task after each iteration)
+  float ground_y = 0.0f;
 };
 
 XpbdLayout make_xpbd_layout(const model::Model& model);

@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include "solver/collision_tasks.hpp"
+
 #include "util/error.hpp"
 
 namespace atssim::solver::xpbd {
@@ -73,6 +75,7 @@ SubstepPlan make_xpbd_plan(const XpbdLayout& layout, const XpbdSettings& setting
     if (b.bend >= 0) {
       last = add_blocks(plan, last, layout.bend_blocks, "bend", "xpbd_bend", b.x, b.bend, b.bend_lambda, dt, it);
     }
+    last = add_ground_task(plan, last, layout, b.x, it);
   }
   const sched::TaskId update = plan.add_task(
       {"update_velocity", "update_velocity", -1, -1},

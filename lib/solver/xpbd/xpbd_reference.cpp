@@ -28,6 +28,11 @@ void XpbdReference::substep() {
   for (int it = 0; it < settings_.iterations; ++it) {
     solve_stretch(it == 0);
     solve_bend(it == 0);
+    if (layout_.has_ground) {
+      for (Float4& p : layout_.x) {
+        if (p.w > 0.0f && p.y < layout_.ground_y) p.y = layout_.ground_y;
+      }
+    }
   }
   update_velocity();
 }
