@@ -146,11 +146,7 @@ RunResult run_simulation(const RunOptions& options, const std::function<void(con
       }
       if (progress) progress({frame, sim.frames, ms, total_ms / frame});
     }
-  } catch (const Error& e) {
-    const int kept = writer.frames_written();
-    writer.fail(e.what());
-    throw runtime_error(fmt::format("{} ({} frames kept in {})", e.what(), kept, writer.path()));
-  } catch (const std::exception& e) {
+  } catch (const std::exception& e) {  // atssim::Error included
     const int kept = writer.frames_written();
     writer.fail(e.what());
     throw runtime_error(fmt::format("{} ({} frames kept in {})", e.what(), kept, writer.path()));

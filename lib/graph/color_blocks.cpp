@@ -4,6 +4,7 @@
 #include <numeric>
 
 #include "graph/adjacency.hpp"
+#include "graph/greedy_color.hpp"
 
 namespace atssim::graph {
 
@@ -23,13 +24,8 @@ ColorBlocks color_elements(std::span<const int> element_vertices, int arity, std
         if (color[f] >= 0) taken_by[color[f]] = e;
       }
     }
-    int c = 0;
-    while (c < color_count && taken_by[c] == e) ++c;
-    if (c == color_count) {
-      ++color_count;
-      taken_by.push_back(-1);
-    }
-    color[e] = c;
+    color[e] = first_free_color(taken_by, e);
+    color_count = static_cast<int>(taken_by.size());
   }
 
   auto min_vertex = [&](int e) {

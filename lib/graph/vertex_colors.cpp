@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <numeric>
 
+#include "graph/greedy_color.hpp"
+
 namespace atssim::graph {
 
 ColorBlocks color_vertices(std::span<const ElementSet> sets, std::span<const char> movable) {
@@ -24,13 +26,8 @@ ColorBlocks color_vertices(std::span<const ElementSet> sets, std::span<const cha
         }
       }
     }
-    int c = 0;
-    while (c < colors && taken_by[c] == v) ++c;
-    if (c == colors) {
-      ++colors;
-      taken_by.push_back(-1);
-    }
-    color[v] = c;
+    color[v] = first_free_color(taken_by, v);
+    colors = static_cast<int>(taken_by.size());
   }
   ColorBlocks blocks;
   blocks.offsets.assign(colors + 1, 0);

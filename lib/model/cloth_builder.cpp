@@ -95,15 +95,10 @@ bool isometric_weights(const std::array<Vec3, 4>& x, std::array<double, 4>& K, d
 
 void add_cloth(Model& model, const scene::ObjectDesc& obj, const scene::TriangleMesh& mesh,
                const std::string& scene_file) {
-  const int offset = static_cast<int>(model.particles.size());
-  const int n = static_cast<int>(mesh.vertices.size());
-
-  ObjectRange range;
-  range.name = obj.name;
-  range.vertex_offset = offset;
-  range.vertex_count = n;
+  ObjectRange range = begin_object(model, obj, mesh.vertices);
+  const int offset = range.vertex_offset;
+  const int n = range.vertex_count;
   range.triangles = mesh.triangles;
-  range.rest_position = place_vertices(obj.transform, mesh.vertices);
 
   std::vector<double> mass(n, 0.0);
   for (const auto& t : mesh.triangles) {

@@ -20,6 +20,16 @@ Eigen::Matrix3d rotation_xyz_deg(const scene::Vec3& deg) {
 
 }  // namespace
 
+ObjectRange begin_object(const Model& model, const scene::ObjectDesc& obj,
+                         const std::vector<std::array<double, 3>>& vertices) {
+  ObjectRange range;
+  range.name = obj.name;
+  range.vertex_offset = static_cast<int>(model.particles.size());
+  range.vertex_count = static_cast<int>(vertices.size());
+  range.rest_position = place_vertices(obj.transform, vertices);
+  return range;
+}
+
 std::vector<Vec3> place_vertices(const scene::TransformDesc& transform,
                                  const std::vector<std::array<double, 3>>& vertices) {
   const Eigen::Matrix3d R = rotation_xyz_deg(transform.rotate_deg);

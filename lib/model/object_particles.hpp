@@ -10,6 +10,11 @@
 
 namespace atssim::model {
 
+// The range of an object about to be appended to `model`: name, offset
+// (the current particle count), vertex count and world-space rest positions.
+ObjectRange begin_object(const Model& model, const scene::ObjectDesc& obj,
+                         const std::vector<std::array<double, 3>>& vertices);
+
 // Object-local vertices to world space: scale, rotate about x, y, z (degrees), translate.
 std::vector<Vec3> place_vertices(const scene::TransformDesc& transform,
                                  const std::vector<std::array<double, 3>>& vertices);

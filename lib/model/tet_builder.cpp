@@ -89,14 +89,9 @@ std::vector<double> checked_volumes(scene::TetMesh& mesh, const std::vector<Vec3
 
 void add_solid(Model& model, const scene::ObjectDesc& obj, const std::string& scene_file) {
   scene::TetMesh mesh = obj.box ? make_tet_box(*obj.box) : obj.tet_mesh;
-  const int offset = static_cast<int>(model.particles.size());
-  const int n = static_cast<int>(mesh.vertices.size());
-
-  ObjectRange range;
-  range.name = obj.name;
-  range.vertex_offset = offset;
-  range.vertex_count = n;
-  range.rest_position = place_vertices(obj.transform, mesh.vertices);
+  ObjectRange range = begin_object(model, obj, mesh.vertices);
+  const int offset = range.vertex_offset;
+  const int n = range.vertex_count;
   const std::vector<double> volume = checked_volumes(mesh, range.rest_position, obj, scene_file);
 
   // Lumped masses: each tet gives a quarter of its mass to each corner.
