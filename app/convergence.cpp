@@ -49,7 +49,7 @@ std::vector<Variant> variants_of(const ConvergeOptions& o) {
   for (const std::string& method : o.methods) {
     bool known = false;
     for (auto m : solver::method_names()) known = known || m == method;
-    if (!known) throw input_error(fmt::format("--methods: unknown method '{}'; available: xpbd, vbd, jpgd", method));
+    if (!known) throw input_error(fmt::format("--methods: unknown method '{}'; available: xpbd, vbd, sosd, jpgd", method));
     for (const std::string& s : o.schedules) {
       ExecutionOptions e;
       e.mode = parse_schedule_mode(s);

@@ -86,8 +86,9 @@ RunResult run_simulation(const RunOptions& options, const std::function<void(con
   ExecutionOptions exec_options;
   exec_options.mode = parse_schedule_mode(scene.solver.schedule);
   if (exec_options.mode == ScheduleMode::async && !solver::is_gauss_seidel(scene.solver.method)) {
-    throw input_error(fmt::format("schedule 'async' relaxes Gauss-Seidel iterations, and '{}' is a Jacobi method "
-                                  "whose iterations already run on every device: use --schedule split or heft",
+    throw input_error(fmt::format("schedule 'async' relaxes Gauss-Seidel iterations, and '{}' iterates Jacobi sweeps "
+                                  "that already run on every device with one synchronisation each: use --schedule "
+                                  "split or heft",
                                   scene.solver.method));
   }
   exec_options.svm = svm_mode(options.svm_mode);

@@ -27,7 +27,7 @@ constexpr std::array<std::string_view, 8> kSolverKeys{"method", "schedule", "asy
 constexpr std::array<std::string_view, 4> kSchedules{"single", "split", "heft", "async"};
 constexpr std::array<std::string_view, 3> kMerges{"average_displacements", "average_positions", "main_precedence"};
 constexpr std::array<std::string_view, 2> kOutputKeys{"path", "stride"};
-constexpr std::array<std::string_view, 3> kMethods{"xpbd", "vbd", "jpgd"};
+constexpr std::array<std::string_view, 4> kMethods{"xpbd", "vbd", "sosd", "jpgd"};
 
 // Applies "a.b.0.c=value": walks (creating maps as needed) and replaces the
 // leaf with the value parsed as YAML.
@@ -158,7 +158,7 @@ SceneDesc parse_scene(const std::string& yaml_text, const std::string& source_na
       scene.solver.method = m.string();
       bool known = false;
       for (auto k : kMethods) known = known || scene.solver.method == k;
-      if (!known) m.fail(fmt::format("unknown solver method '{}'", scene.solver.method), "available: xpbd, vbd, jpgd");
+      if (!known) m.fail(fmt::format("unknown solver method '{}'", scene.solver.method), "available: xpbd, vbd, sosd, jpgd");
     }
     if (solver.has("schedule")) {
       const YamlReader m = solver.child("schedule");

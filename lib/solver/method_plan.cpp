@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "solver/jpgd/jpgd_plan.hpp"
+#include "solver/sosd/sosd_plan.hpp"
 #include "solver/vbd/vbd_plan.hpp"
 #include "solver/xpbd/xpbd_plan.hpp"
 #include "util/error.hpp"
@@ -12,19 +13,22 @@
 namespace atssim::solver {
 
 namespace {
-constexpr std::array<std::string_view, 3> kMethods{"xpbd", "vbd", "jpgd"};
+constexpr std::array<std::string_view, 4> kMethods{"xpbd", "vbd", "sosd", "jpgd"};
 }
 
 std::span<const std::string_view> method_names() { return kMethods; }
 
-bool is_gauss_seidel(const std::string& method) { return method != "jpgd"; }
+// SOSD is hybrid: its Gauss-Seidel part is the main block's precedence in
+// one combine step per iteration; its stencil solves are Jacobi sweeps.
+bool is_gauss_seidel(const std::string& method) { return method == "xpbd" || method == "vbd"; }
 
 SubstepPlan make_method_plan(const std::string& method, const xpbd::XpbdLayout& layout, double substep_dt,
                              int iterations, const MethodOptions& options) {
   if (method == "xpbd") return xpbd::make_xpbd_plan(layout, {substep_dt, iterations});
   if (method == "vbd") return vbd::make_vbd_plan(layout, substep_dt, iterations);
+  if (method == "sosd") return sosd::make_sosd_plan(layout, substep_dt, iterations);
   if (method == "jpgd") return jpgd::make_jpgd_plan(layout, {substep_dt, iterations, options.chebyshev_rho, options.jacobi_step});
-  throw input_error(fmt::format("unknown method '{}'; available: xpbd, vbd, jpgd", method));
+  throw input_error(fmt::format("unknown method '{}'; available: xpbd, vbd, sosd, jpgd", method));
 }
 
 }  // namespace atssim::solver

@@ -19,11 +19,12 @@ struct MethodOptions {
 };
 
 // Throws atssim::Error (input) for an unknown method, or a scene the method
-// cannot solve (VBD and JPGD need finite stiffness).
+// cannot solve (VBD, SOSD and JPGD need finite stiffness).
 SubstepPlan make_method_plan(const std::string& method, const xpbd::XpbdLayout& layout, double substep_dt,
                              int iterations, const MethodOptions& options = {});
 
-// Whether the method's iterations are Gauss-Seidel (async applies) or Jacobi.
+// Whether the method's iterations are Gauss-Seidel (async applies) or Jacobi
+// sweeps with one synchronisation each (JPGD, SOSD).
 bool is_gauss_seidel(const std::string& method);
 
 }  // namespace atssim::solver

@@ -6,19 +6,19 @@
 
 using namespace atssim;
 
-TEST_CASE("VBD and JPGD lower the energy, their error falls with iterations, and two devices change nothing") {
+TEST_CASE("VBD, SOSD and JPGD lower the energy, their error falls with iterations, and two devices change nothing") {
   test::TempDir dir;
   app::ConvergeOptions o;
   o.scene_path = dir.write("cloth.yaml", test::hanging_cloth_yaml(16, 1e3, 1e-3, 8));
   o.overrides = {"devices=cpu/2"};
-  o.methods = {"vbd", "jpgd"};
+  o.methods = {"vbd", "sosd", "jpgd"};
   o.schedules = {"single", "split", "heft"};
   o.max_iterations = 32;
   o.frames_before = 3;
   o.timing_repeats = 1;
   const io::ConvergenceResult r = app::run_convergence(o);
   REQUIRE(r.newton_status == "converged");
-  REQUIRE(r.traces.size() == 6);
+  REQUIRE(r.traces.size() == 9);
   for (std::size_t v = 0; v < r.traces.size(); ++v) {
     const auto& t = r.traces[v];
     INFO(t.variant);
@@ -26,7 +26,7 @@ TEST_CASE("VBD and JPGD lower the energy, their error falls with iterations, and
       CHECK(t.energy[i] < r.energy_start);         // the substep lowered E below E(x~)
       CHECK(t.energy[i] >= r.energy_reference);    // and not below the minimum
       // Chebyshev acceleration overshoots on its first accelerated step
-      // (omega_2 > 1, Wang 2015); after that, and for VBD always, y falls.
+      // (omega_2 > 1, Wang 2015); after that, and for VBD and SOSD always, y falls.
       const bool chebyshev_start = t.variant.rfind("jpgd", 0) == 0 && i == 1;
       if (i > 0 && !chebyshev_start) CHECK(t.relative_error[i] < t.relative_error[i - 1]);
     }

@@ -24,9 +24,10 @@ const char* kBar =
 
 }  // namespace
 
-TEST_CASE("a bar hanging under its own weight stretches by rho g L^2 / (2E) (VBD and JPGD on tetrahedra)") {
+TEST_CASE("a bar hanging under its own weight stretches by rho g L^2 / (2E) (VBD, SOSD and JPGD on tetrahedra)") {
   const auto [method, iterations] =
-      GENERATE(std::make_pair(std::string("vbd"), 100), std::make_pair(std::string("jpgd"), 300));
+      GENERATE(std::make_pair(std::string("vbd"), 100), std::make_pair(std::string("sosd"), 200),
+               std::make_pair(std::string("jpgd"), 300));
   test::TempDir dir;
   app::RunOptions o;
   o.scene_path = dir.write("bar.yaml", kBar);
@@ -58,6 +59,7 @@ TEST_CASE("no particle ends below the ground plane, whatever the method and sche
   const auto [method, schedule] = GENERATE(std::make_pair(std::string("xpbd"), std::string("single")),
                                            std::make_pair(std::string("xpbd"), std::string("async")),
                                            std::make_pair(std::string("vbd"), std::string("heft")),
+                                           std::make_pair(std::string("sosd"), std::string("heft")),
                                            std::make_pair(std::string("jpgd"), std::string("split")));
   test::TempDir dir;
   // A cloth 1.5 m up on a ground at 1.2 m: after 20 frames it has hit it.

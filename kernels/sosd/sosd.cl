@@ -1,0 +1,206 @@
+/* Second-order Stencil Descent (Lan et al. 2023) in the hybrid Jacobi /
+ * Gauss-Seidel form of the ATS paper (§5, "SOSD"): a stencil is one element
+ * (a stretch edge, a bending stencil, a tetrahedron) and its vertices. Per
+ * iteration:
+ *   1. sosd_vertex_systems: every vertex's force f_a and Hessian block H_aa of
+ *      the incremental potential (all incident elements), from x^k;
+ *   2. sosd_<kind>: every stencil solves its local Newton system
+ *      [H_aa  H_ab^e; H_ba^e  H_bb] d = f over its own vertices, the others
+ *      fixed (diagonal blocks: the full vertex blocks; off-diagonal blocks:
+ *      this element's coupling), and stores d per (element, slot);
+ *   3. sosd_combine: a vertex that belongs to a stencil of the iteration's
+ *      main Gauss-Seidel block takes that stencil's displacement (no two
+ *      stencils of a block share a vertex); every other vertex takes the
+ *      mean of its stencils' displacements (the Jacobi blocks).
+ * Every step reads only what the step before wrote, so any cut of a step
+ * between devices computes the same result. */
+#pragma OPENCL FP_CONTRACT OFF /* the stretch energy's error-free transforms */
+
+#include "common/ats_math.h"
+#include "common/vertex_solve.h"
+#include "common/vertex_system.cl"
+#include "common/particle_steps.cl"
+#include "async/merge.cl"
+
+#define SOSD_MAX 12 /* 4 vertices x 3 */
+
+/* sys[4 i] = (f, 0), sys[4 i + 1 .. 4 i + 3] = rows of H_ii. */
+__kernel void sosd_vertex_systems(__global const float4* x, __global const float4* x_tilde,
+                                  __global const int* adj_offsets, __global const int* adj,
+                                  __global const ats_distance_c* stretch, __global const ats_bend_c* bend,
+                                  __global const ats_tet_c* tets, __global float4* sys, float inv_h2, int first,
+                                  int count) {
+  const int k = get_global_id(0);
+  if (k >= count) return;
+  const int i = first + k;
+  if (x[i].w == 0.0f) return; /* pinned: never read */
+  const vertex_system s = gather_vertex_system(i, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend, tets);
+  sys[4 * i] = (float4)(s.f.x, s.f.y, s.f.z, 0.0f);
+  for (int r = 0; r < 3; ++r) sys[4 * i + 1 + r] = (float4)(s.h.r[r].x, s.h.r[r].y, s.h.r[r].z, 0.0f);
+}
+
+static inline ats_mat3 sosd_block(__global const float4* sys, int i) {
+  ats_mat3 h;
+  for (int r = 0; r < 3; ++r) h.r[r] = vs_xyz(sys[4 * i + 1 + r]);
+  return h;
+}
+
+static inline void sosd_set_block(float a[SOSD_MAX][SOSD_MAX], int row, int col, ats_mat3 h) {
+  for (int r = 0; r < 3; ++r) {
+    a[row + r][col] = h.r[r].x;
+    a[row + r][col + 1] = h.r[r].y;
+    a[row + r][col + 2] = h.r[r].z;
+  }
+}
+
+/* Solves the stencil system over vertices v[0 .. n) with off-diagonal
+ * blocks off[a][b] (a < b; H_ba = H_ab^T) and writes d[base + a]. Pinned
+ * vertices keep d = 0. When the system is not positive definite (an
+ * indefinite element coupling), each vertex takes its own block step, as
+ * VBD would; a near-singular vertex block stays put. */
+static void sosd_solve(const int* v, int n, ats_mat3 off[4][4], __global const float4* x,
+                       __global const float4* sys, __global float4* d, int base) {
+  float a[SOSD_MAX][SOSD_MAX];
+  float b[SOSD_MAX];
+  int movable[4];
+  const int m = 3 * n;
+  for (int p = 0; p < n; ++p) movable[p] = x[v[p]].w != 0.0f;
+  for (int r = 0; r < m; ++r) {
+    b[r] = 0.0f;
+    for (int c = 0; c < m; ++c) a[r][c] = 0.0f;
+  }
+  for (int p = 0; p < n; ++p) {
+    if (!movable[p]) {
+      for (int r = 0; r < 3; ++r) a[3 * p + r][3 * p + r] = 1.0f;
+      continue;
+    }
+    const ats_vec3 f = vs_xyz(sys[4 * v[p]]);
+    b[3 * p] = f.x;
+    b[3 * p + 1] = f.y;
+    b[3 * p + 2] = f.z;
+    sosd_set_block(a, 3 * p, 3 * p, sosd_block(sys, v[p]));
+    for (int q = p + 1; q < n; ++q) {
+      if (!movable[q]) continue;
+      sosd_set_block(a, 3 * p, 3 * q, off[p][q]);
+      sosd_set_block(a, 3 * q, 3 * p, ats_m3_transpose(off[p][q]));
+    }
+  }
+  /* Cholesky A = L L^T in place (lower triangle), pivots checked against
+   * the original diagonal so that scale does not matter. */
+  int ok = 1;
+  for (int j = 0; j < m && ok; ++j) {
+    const float diag = a[j][j];
+    float s = diag;
+    for (int k = 0; k < j; ++k) s -= a[j][k] * a[j][k];
+    if (!(s > 1e-6f * fabs(diag)) || !(diag > 0.0f)) {
+      ok = 0;
+      break;
+    }
+    const float l = sqrt(s);
+    a[j][j] = l;
+    for (int r = j + 1; r < m; ++r) {
+      float t = a[r][j];
+      for (int k = 0; k < j; ++k) t -= a[r][k] * a[j][k];
+      a[r][j] = t / l;
+    }
+  }
+  if (ok) {
+    for (int r = 0; r < m; ++r) { /* L y = b */
+      float t = b[r];
+      for (int k = 0; k < r; ++k) t -= a[r][k] * b[k];
+      b[r] = t / a[r][r];
+    }
+    for (int r = m - 1; r >= 0; --r) { /* L^T d = y */
+      float t = b[r];
+      for (int k = r + 1; k < m; ++k) t -= a[k][r] * b[k];
+      b[r] = t / a[r][r];
+    }
+    for (int p = 0; p < n; ++p) {
+      d[base + p] = movable[p] ? (float4)(b[3 * p], b[3 * p + 1], b[3 * p + 2], 0.0f) : (float4)(0.0f);
+    }
+    return;
+  }
+  for (int p = 0; p < n; ++p) {
+    float4 out = (float4)(0.0f);
+    if (movable[p]) {
+      const ats_solve3 s = ats_m3_solve(sosd_block(sys, v[p]), vs_xyz(sys[4 * v[p]]));
+      if (s.ok) out = (float4)(s.x.x, s.x.y, s.x.z, 0.0f);
+    }
+    d[base + p] = out;
+  }
+}
+
+__kernel void sosd_stretch(__global const float4* x, __global const float4* sys,
+                           __global const ats_distance_c* stretch, __global float4* d, int first, int count) {
+  const int k = get_global_id(0);
+  if (k >= count) return;
+  const int e = first + k;
+  const ats_distance_c c = stretch[e];
+  const int v[2] = {c.a, c.b};
+  ats_mat3 off[4][4];
+  off[0][1] = ats_m3_scale(ats_stretch_hessian(vs_xyz(x[c.a]), vs_xyz(x[c.b]), c.rest, 1.0f / c.compliance, 1), -1.0f);
+  sosd_solve(v, 2, off, x, sys, d, 2 * e);
+}
+
+__kernel void sosd_bend(__global const float4* x, __global const float4* sys, __global const ats_bend_c* bend,
+                        __global float4* d, int first, int count) {
+  const int k = get_global_id(0);
+  if (k >= count) return;
+  const int e = first + k;
+  const ats_bend_c c = bend[e];
+  ats_mat3 off[4][4];
+  for (int p = 0; p < 4; ++p) {
+    for (int q = p + 1; q < 4; ++q) off[p][q] = ats_bend_hessian(c.K, c.scale, 1.0f / c.compliance, p, q);
+  }
+  sosd_solve(c.v, 4, off, x, sys, d, 4 * e);
+}
+
+__kernel void sosd_tet(__global const float4* x, __global const float4* sys, __global const ats_tet_c* tets,
+                       __global float4* d, int first, int count) {
+  const int k = get_global_id(0);
+  if (k >= count) return;
+  const int e = first + k;
+  const ats_tet_c t = tets[e];
+  ats_vec3 q[4];
+  for (int j = 0; j < 4; ++j) q[j] = vs_xyz(x[t.v[j]]);
+  ats_mat3 dm;
+  for (int r = 0; r < 3; ++r) dm.r[r] = ats_v3(t.dm_inv[3 * r], t.dm_inv[3 * r + 1], t.dm_inv[3 * r + 2]);
+  ats_mat3 off[4][4];
+  for (int p = 0; p < 4; ++p) {
+    for (int s = p + 1; s < 4; ++s) {
+      off[p][s] = t.model == ATS_TET_STVK ? ats_tet_stvk_hessian(q, dm, t.volume, t.mu, t.lambda, p, s)
+                                          : ats_tet_nh_hessian(q, dm, t.volume, t.mu, t.lambda, p, s);
+    }
+  }
+  sosd_solve(t.v, 4, off, x, sys, d, 4 * e);
+}
+
+/* Stencil displacements of kind `main_kind`, elements [main_first,
+ * main_end), take precedence (the main Gauss-Seidel block); main_kind = -1:
+ * none. */
+__kernel void sosd_combine(__global float4* x, __global const int* adj_offsets, __global const int* adj,
+                           __global const float4* d_stretch, __global const float4* d_bend,
+                           __global const float4* d_tet, int main_kind, int main_first, int main_end, int first,
+                           int count) {
+  const int k = get_global_id(0);
+  if (k >= count) return;
+  const int i = first + k;
+  const float4 p = x[i];
+  if (p.w == 0.0f) return;
+  float4 sum = (float4)(0.0f);
+  int n = 0;
+  for (int j = adj_offsets[i]; j < adj_offsets[i + 1]; ++j) {
+    const int code = adj[j];
+    const int e = code >> 4, kind = (code >> 2) & 3, slot = code & 3;
+    const float4 dj = kind == 0 ? d_stretch[2 * e + slot] : kind == 1 ? d_bend[4 * e + slot] : d_tet[4 * e + slot];
+    if (kind == main_kind && e >= main_first && e < main_end) {
+      x[i] = (float4)(p.x + dj.x, p.y + dj.y, p.z + dj.z, p.w);
+      return;
+    }
+    sum += dj;
+    ++n;
+  }
+  if (n == 0) return;
+  const float inv = 1.0f / (float)n;
+  x[i] = (float4)(p.x + sum.x * inv, p.y + sum.y * inv, p.z + sum.z * inv, p.w);
+}

@@ -1,0 +1,88 @@
+#include "solver/sosd/sosd_plan.hpp"
+
+#include <array>
+
+#include <fmt/format.h>
+
+#include "solver/collision_tasks.hpp"
+
+namespace atssim::solver::sosd {
+
+namespace {
+
+void append_blocks(std::vector<StencilBlock>& out, int kind, const std::vector<int>& offsets) {
+  for (std::size_t c = 0; c + 1 < offsets.size(); ++c) {
+    if (offsets[c + 1] > offsets[c]) out.push_back({kind, offsets[c], offsets[c + 1]});
+  }
+}
+
+}  // namespace
+
+std::vector<StencilBlock> stencil_blocks(const xpbd::XpbdLayout& layout) {
+  std::vector<StencilBlock> blocks;
+  append_blocks(blocks, 0, layout.stretch_blocks);
+  append_blocks(blocks, 1, layout.bend_blocks);
+  append_blocks(blocks, 2, layout.tet_blocks);
+  return blocks;
+}
+
+SubstepPlan make_sosd_plan(const xpbd::XpbdLayout& layout, double substep_dt, int iterations,
+                           vertex::VertexBuffers* ids) {
+  const vertex::VertexLayout vertices = vertex::make_vertex_layout(layout);
+  SubstepPlan plan;
+  plan.program = "sosd";
+  vertex::VertexBuffers b;
+  sched::TaskId last = vertex::begin_vertex_plan(plan, layout, vertices, substep_dt, b);
+  const int n = plan.particle_count;
+  constexpr std::size_t kFloat4 = 4 * sizeof(float);
+  const BufferId systems = plan.add_buffer("vertex_systems", std::vector<std::byte>(4 * n * kFloat4));
+  const std::array<BufferId, 3> d{
+      plan.add_buffer("d_stretch", std::vector<std::byte>(2 * layout.stretch.size() * kFloat4)),
+      plan.add_buffer("d_bend", std::vector<std::byte>(4 * layout.bend.size() * kFloat4)),
+      plan.add_buffer("d_tet", std::vector<std::byte>(4 * layout.tets.size() * kFloat4))};
+  const std::array<BufferId, 3> elements{b.stretch, b.bend, b.tets};
+  constexpr std::array<const char*, 3> kKinds{"stretch", "bend", "tet"};
+  const std::vector<StencilBlock> blocks = stencil_blocks(layout);
+  const float inv_h2 = static_cast<float>(1.0 / (substep_dt * substep_dt));
+  using Arg = KernelArg;
+  for (int it = 0; it < iterations; ++it) {
+    const sched::TaskId systems_task = plan.add_task(
+        {fmt::format("it{}/systems", it + 1), "systems", it, -1},
+        {{"sosd_vertex_systems", static_cast<std::size_t>(n),
+          {Arg::of_buffer(b.x), Arg::of_buffer(b.x_tilde), Arg::of_buffer(b.adjacency_offsets),
+           Arg::of_buffer(b.adjacency), Arg::of_buffer(b.stretch), Arg::of_buffer(b.bend), Arg::of_buffer(b.tets),
+           Arg::of_buffer(systems), Arg::of_float(inv_h2), Arg::of_int(0), Arg::of_int(n)},
+          9}});
+    plan.graph.add_edge(last, systems_task);
+    std::vector<sched::TaskId> stencil_tasks;
+    std::array<int, 3> color{0, 0, 0};
+    for (const StencilBlock& s : blocks) {
+      const int count = s.end - s.first;
+      const sched::TaskId t = plan.add_task(
+          {fmt::format("it{}/{}/c{}", it + 1, kKinds[s.kind], color[s.kind]), kKinds[s.kind], it, color[s.kind]},
+          {{fmt::format("sosd_{}", kKinds[s.kind]), static_cast<std::size_t>(count),
+            {Arg::of_buffer(b.x), Arg::of_buffer(systems), Arg::of_buffer(elements[s.kind]), Arg::of_buffer(d[s.kind]),
+             Arg::of_int(s.first), Arg::of_int(count)},
+            4}});
+      ++color[s.kind];
+      plan.graph.add_edge(systems_task, t);
+      stencil_tasks.push_back(t);
+    }
+    const StencilBlock main = blocks.empty() ? StencilBlock{-1, 0, 0} : blocks[it % blocks.size()];
+    const sched::TaskId combine = plan.add_task(
+        {fmt::format("it{}/combine", it + 1), "combine", it, -1},
+        {{"sosd_combine", static_cast<std::size_t>(n),
+          {Arg::of_buffer(b.x), Arg::of_buffer(b.adjacency_offsets), Arg::of_buffer(b.adjacency),
+           Arg::of_buffer(d[0]), Arg::of_buffer(d[1]), Arg::of_buffer(d[2]), Arg::of_int(main.kind),
+           Arg::of_int(main.first), Arg::of_int(main.end), Arg::of_int(0), Arg::of_int(n)},
+          9}});
+    for (sched::TaskId t : stencil_tasks) plan.graph.add_edge(t, combine);
+    if (stencil_tasks.empty()) plan.graph.add_edge(systems_task, combine);
+    last = add_ground_task(plan, combine, layout, b.x, it);
+  }
+  vertex::end_vertex_plan(plan, last, b, substep_dt);
+  if (ids != nullptr) *ids = b;
+  return plan;
+}
+
+}  // namespace atssim::solver::sosd

@@ -1,0 +1,28 @@
+#pragma once
+// Second-order Stencil Descent (Lan et al. 2023) in the hybrid Jacobi /
+// Gauss-Seidel form of the ATS paper (§5) as a substep plan: predict, then
+// per iteration the vertex systems, one task per stencil block (element
+// color of each kind; all blocks at once, Jacobi manner), and the combine
+// task in which the iteration's main block takes precedence; then the
+// velocity update. Every task is a range over independent items, so
+// `split` cuts them between devices exactly.
+#include "solver/substep_plan.hpp"
+#include "solver/vertex/vertex_plan.hpp"
+#include "solver/xpbd/xpbd_layout.hpp"
+
+namespace atssim::solver::sosd {
+
+// The stencil blocks in the order the main Gauss-Seidel block rotates
+// through them: stretch colors, bending colors, tetrahedron colors.
+struct StencilBlock {
+  int kind = 0;  // 0 stretch, 1 bending, 2 tetrahedron (vertex_layout codes)
+  int first = 0;
+  int end = 0;
+};
+std::vector<StencilBlock> stencil_blocks(const xpbd::XpbdLayout& layout);
+
+// Iteration `it` (0-based) uses block it mod blocks as its main block.
+SubstepPlan make_sosd_plan(const xpbd::XpbdLayout& layout, double substep_dt, int iterations,
+                           vertex::VertexBuffers* ids = nullptr);
+
+}  // namespace atssim::solver::sosd

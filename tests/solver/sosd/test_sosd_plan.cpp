@@ -1,0 +1,72 @@
+#include <catch2/catch.hpp>
+
+#include <set>
+
+#include "model/cloth_builder.hpp"
+#include "scene/scene_loader.hpp"
+#include "solver/sosd/sosd_plan.hpp"
+#include "support/scenes.hpp"
+
+using namespace atssim;
+using namespace atssim::solver;
+
+TEST_CASE("SOSD blocks are the element colors, and no two stencils of a block share a vertex") {
+  const auto m = model::build_model(scene::parse_scene(test::hanging_cloth_yaml(10, 1e4, 1e-3), "s.yaml", "."));
+  const auto layout = xpbd::make_xpbd_layout(m);
+  const auto blocks = sosd::stencil_blocks(layout);
+  REQUIRE(blocks.size() == layout.stretch_blocks.size() - 1 + layout.bend_blocks.size() - 1);
+  std::size_t stretch = 0, bend = 0;
+  for (const auto& b : blocks) {
+    std::set<int> seen;
+    for (int e = b.first; e < b.end; ++e) {
+      std::vector<int> v;
+      if (b.kind == 0) {
+        v = {layout.stretch[e].a, layout.stretch[e].b};
+        ++stretch;
+      } else {
+        REQUIRE(b.kind == 1);
+        v.assign(layout.bend[e].v, layout.bend[e].v + 4);
+        ++bend;
+      }
+      for (int i : v) {
+        if (layout.x[i].w == 0.0f) continue;  // pinned particles are never moved
+        CHECK(seen.insert(i).second);
+      }
+    }
+  }
+  CHECK(stretch == layout.stretch.size());  // every element is one stencil
+  CHECK(bend == layout.bend.size());
+}
+
+TEST_CASE("an SOSD iteration is vertex systems, every block at once, then one combine") {
+  const int iterations = 3;
+  const auto m = model::build_model(scene::parse_scene(test::hanging_cloth_yaml(10, 1e4, 1e-3), "s.yaml", "."));
+  const auto layout = xpbd::make_xpbd_layout(m);
+  const auto plan = sosd::make_sosd_plan(layout, 1.0 / 240.0, iterations);
+  const std::size_t blocks = sosd::stencil_blocks(layout).size();
+  const auto systems = plan.graph.tasks_of_kind("systems");
+  const auto combines = plan.graph.tasks_of_kind("combine");
+  REQUIRE(systems.size() == std::size_t(iterations));
+  REQUIRE(combines.size() == std::size_t(iterations));
+  CHECK(plan.graph.tasks_of_kind("stretch").size() + plan.graph.tasks_of_kind("bend").size() ==
+        iterations * blocks);
+  for (int it = 0; it < iterations; ++it) {
+    // The stencil tasks of one iteration follow its systems task only and all
+    // precede its combine: they may run side by side on any device.
+    std::size_t stencils = 0;
+    for (sched::TaskId t = 0; t < plan.graph.size(); ++t) {
+      const auto& task = plan.graph.task(t);
+      if (task.iteration != it || (task.kind != "stretch" && task.kind != "bend")) continue;
+      ++stencils;
+      REQUIRE(plan.graph.predecessors(t).size() == 1);
+      CHECK(plan.graph.predecessors(t).front().from == systems[it]);
+      REQUIRE(plan.graph.successors(t).size() == 1);
+      CHECK(plan.graph.successors(t).front().to == combines[it]);
+    }
+    CHECK(stencils == blocks);
+  }
+  // Every launch covers independent items: split may cut any of them.
+  for (const auto& launches : plan.launches) {
+    for (const auto& l : launches) CHECK(l.range_arg >= 0);
+  }
+}
