@@ -8,7 +8,7 @@
 
 using namespace atssim;
 
-TEST_CASE("vertex colors: no two particles of a color share an element; each movable particle once") {
+TEST_CASE("vertex colors: no two particles of a color share an element, and each movable particle has one") {
   const auto mesh = model::make_grid_mesh({{1.0, 1.0}, {12, 9}});
   std::vector<int> edges, stencils;
   for (const auto& e : model::unique_edges(mesh.triangles)) edges.insert(edges.end(), e.begin(), e.end());

@@ -107,7 +107,7 @@ TEST_CASE("Lamé parameters follow the textbook formulas") {
   CHECK(m.tets.energy[0] == model::TetEnergy::neo_hookean);
 }
 
-TEST_CASE("a solid adds tets and no cloth element sets; pins work as for cloth") {
+TEST_CASE("a solid adds tets and no cloth element sets, and pins work as for cloth") {
   // The box's bottom face (y = -0.25 before the transform) is not axis-aligned
   // after it, so pin by vertex index: the first (nx+1) vertices are one edge.
   const auto m = box_model(2, 2, 2, "    pins: {vertices: [0, 1, 2]}\n");
@@ -120,7 +120,7 @@ TEST_CASE("a solid adds tets and no cloth element sets; pins work as for cloth")
                     Catch::Contains("pinned vertex 8 is out of range"));
 }
 
-TEST_CASE("a tet mesh file builds with its volume; cloth and solids share one particle array") {
+TEST_CASE("a tet mesh file builds with its volume, and cloth and solids share one particle array") {
   test::TempDir dir;
   const std::string path = write_cube(dir, kCubeTets);
   dir.write("both.yaml",

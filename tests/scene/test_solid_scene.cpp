@@ -50,7 +50,7 @@ TEST_CASE("a solid box is read with its shape and material") {
   CHECK(o.material.solid_model == scene::SolidModel::stvk);
 }
 
-TEST_CASE("solids default to neo-Hookean and 1000 kg/m³; cloth stays the default type") {
+TEST_CASE("solids default to neo-Hookean and 1000 kg/m³, and cloth stays the default type") {
   const auto s = scene::parse_scene("objects:\n  - {type: solid, box: {}}\n  - grid: {}\n", "scene.yaml", ".");
   CHECK(s.objects[0].material.solid_model == scene::SolidModel::neo_hookean);
   CHECK(s.objects[0].material.density == 1000.0);
