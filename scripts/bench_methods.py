@@ -5,6 +5,7 @@ the relative energy error each method reaches in a fixed wall-time budget
 per substep (the speed/accuracy trade).
 
 usage: scripts/bench_methods.py [--resolution 64] [--frames 8] [--budget-ms 10]
+       scripts/bench_methods.py --scene scenes/pillows.yaml --methods vbd,sosd,jpgd
 Build first (scripts/test.sh). Prints one Markdown table.
 """
 import argparse
@@ -19,13 +20,13 @@ import numpy as np
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 BIN = os.path.join(ROOT, "build", "release", "atssim")
 SCENE = os.path.join(ROOT, "scenes", "hanging_cloth.yaml")
-METHODS = ["xpbd", "vbd", "jpgd"]
+METHODS = ["xpbd", "vbd", "sosd", "jpgd"]
+GAUSS_SEIDEL = {"xpbd", "vbd"}  # async relaxes Gauss-Seidel iterations only
 
 
-def frame_ms(method, devices, schedule, res, frames, out):
-    subprocess.run([BIN, "run", SCENE, "-o", out, "--frames", str(frames), "--devices", devices, "--schedule",
-                    schedule, "--set", f"solver.method={method}", "--set", f"objects.0.grid.resolution=[{res},{res}]",
-                    "--quiet"], check=True)
+def frame_ms(scene, sets, method, devices, schedule, frames, out):
+    subprocess.run([BIN, "run", scene, "-o", out, "--frames", str(frames), "--devices", devices, "--schedule",
+                    schedule, "--set", f"solver.method={method}", *sets, "--quiet"], check=True)
     with h5py.File(out, "r") as f:
         return float(np.median(f["timing/frame_ms"][2:]))
 
@@ -36,25 +37,29 @@ def main() -> int:
     ap.add_argument("--frames", type=int, default=8)
     ap.add_argument("--budget-ms", type=float, default=10.0, help="wall time per substep for the accuracy column")
     ap.add_argument("--iterations", type=int, default=128, help="largest k tried for the accuracy column")
+    ap.add_argument("--scene", default=SCENE, help="scene file (default: the hanging cloth, resized)")
+    ap.add_argument("--methods", default=",".join(METHODS), help="comma separated")
     args = ap.parse_args()
+    methods = args.methods.split(",")
+    # --resolution resizes the default scene's grid; other scenes run as written.
+    sets = ["--set", f"objects.0.grid.resolution=[{args.resolution},{args.resolution}]"] if args.scene == SCENE else []
     if not os.path.exists(BIN):
         print(f"{BIN} is missing: build first (scripts/test.sh)", file=sys.stderr)
         return 2
     os.environ.setdefault("POCL_CACHE_DIR", os.path.expanduser("~/.cache/atssim/pocl"))
-    res = args.resolution
     print(f"| method | one sub-device ms | whole device ms | best two-device ms (schedule) | vs sub-device | "
           f"vs whole | y within {args.budget_ms:g} ms/substep (k) |")
     print("|---|---|---|---|---|---|---|")
     with tempfile.TemporaryDirectory() as tmp:
         out = os.path.join(tmp, "out.h5")
         conv = os.path.join(tmp, "conv.h5")
-        subprocess.run([BIN, "converge", SCENE, "-o", conv, "--devices", "cpu/2", "--methods", ",".join(METHODS),
+        subprocess.run([BIN, "converge", args.scene, "-o", conv, "--devices", "cpu/2", "--methods", ",".join(methods),
                         "--schedules", "single,heft", "--iterations", str(args.iterations), "--frames-before", "10",
-                        "--set", f"objects.0.grid.resolution=[{res},{res}]"], check=True, stdout=subprocess.DEVNULL)
+                        *sets], check=True, stdout=subprocess.DEVNULL)
         with h5py.File(conv, "r") as f:
             c = f["convergence"]
             best = {}
-            for m in METHODS:
+            for m in methods:
                 choice = None
                 for sched in ["single", "heft"]:
                     g = c[f"{m}:{sched}"]
@@ -62,18 +67,19 @@ def main() -> int:
                         if t <= args.budget_ms and (choice is None or y < choice[0]):
                             choice = (y, int(k), sched)
                 best[m] = choice
-        for m in METHODS:
-            one = frame_ms(m, "cpu/2:0", "single", res, args.frames, out)
-            whole = frame_ms(m, "cpu", "single", res, args.frames, out)
-            schedules = ["split", "heft"] + (["async"] if m != "jpgd" else [])
-            two = {s: frame_ms(m, "cpu/2", s, res, args.frames, out) for s in schedules}
+        for m in methods:
+            one = frame_ms(args.scene, sets, m, "cpu/2:0", "single", args.frames, out)
+            whole = frame_ms(args.scene, sets, m, "cpu", "single", args.frames, out)
+            schedules = ["split", "heft"] + (["async"] if m in GAUSS_SEIDEL else [])
+            two = {s: frame_ms(args.scene, sets, m, "cpu/2", s, args.frames, out) for s in schedules}
             s_best = min(two, key=two.get)
             acc = best[m]
             acc_text = f"{acc[0]:.3g} (k={acc[1]}, {acc[2]})" if acc else "– (no k fits)"
             print(f"| {m} | {one:.1f} | {whole:.1f} | {two[s_best]:.1f} ({s_best}) | {one / two[s_best]:.2f}× | "
                   f"{whole / two[s_best]:.2f}× | {acc_text} |", flush=True)
     print()
-    print(f"hanging cloth {res}×{res}, 16 substeps, 8 iterations per substep for the frame times; "
+    what = f"hanging cloth {args.resolution}×{args.resolution}" if args.scene == SCENE else os.path.basename(args.scene)
+    print(f"{what}, the scene's substeps and iterations for the frame times; "
           f"accuracy from `atssim converge` (single and heft on cpu/2, k = 1, 2, 4, …, {args.iterations})")
     return 0
 

@@ -43,6 +43,10 @@ SubstepPlan make_sosd_plan(const xpbd::XpbdLayout& layout, double substep_dt, in
   const std::array<BufferId, 3> elements{b.stretch, b.bend, b.tets};
   constexpr std::array<const char*, 3> kKinds{"stretch", "bend", "tet"};
   const std::vector<StencilBlock> blocks = stencil_blocks(layout);
+  const std::array<int, 3> kind_count{static_cast<int>(layout.stretch.size()), static_cast<int>(layout.bend.size()),
+                                      static_cast<int>(layout.tets.size())};
+  std::array<int, 3> first_block{0, 0, 0};  // index in `blocks` of each kind's first color
+  for (int i = static_cast<int>(blocks.size()) - 1; i >= 0; --i) first_block[blocks[i].kind] = i;
   const float inv_h2 = static_cast<float>(1.0 / (substep_dt * substep_dt));
   using Arg = KernelArg;
   for (int it = 0; it < iterations; ++it) {
@@ -54,21 +58,37 @@ SubstepPlan make_sosd_plan(const xpbd::XpbdLayout& layout, double substep_dt, in
            Arg::of_buffer(systems), Arg::of_float(inv_h2), Arg::of_int(0), Arg::of_int(n)},
           9}});
     plan.graph.add_edge(last, systems_task);
-    std::vector<sched::TaskId> stencil_tasks;
-    std::array<int, 3> color{0, 0, 0};
-    for (const StencilBlock& s : blocks) {
-      const int count = s.end - s.first;
-      const sched::TaskId t = plan.add_task(
-          {fmt::format("it{}/{}/c{}", it + 1, kKinds[s.kind], color[s.kind]), kKinds[s.kind], it, color[s.kind]},
-          {{fmt::format("sosd_{}", kKinds[s.kind]), static_cast<std::size_t>(count),
-            {Arg::of_buffer(b.x), Arg::of_buffer(systems), Arg::of_buffer(elements[s.kind]), Arg::of_buffer(d[s.kind]),
-             Arg::of_int(s.first), Arg::of_int(count)},
-            4}});
-      ++color[s.kind];
-      plan.graph.add_edge(systems_task, t);
-      stencil_tasks.push_back(t);
-    }
+    // All stencils read the same x^k and vertex systems, so a block matters
+    // only as the main one: one task for it, and per kind one task for the
+    // rest (the Jacobi blocks: up to two element ranges around the main).
     const StencilBlock main = blocks.empty() ? StencilBlock{-1, 0, 0} : blocks[it % blocks.size()];
+    std::vector<sched::TaskId> stencil_tasks;
+    const auto launch = [&](int kind, int first, int end) {
+      return KernelLaunch{fmt::format("sosd_{}", kKinds[kind]), static_cast<std::size_t>(end - first),
+                          {Arg::of_buffer(b.x), Arg::of_buffer(systems), Arg::of_buffer(elements[kind]),
+                           Arg::of_buffer(d[kind]), Arg::of_int(first), Arg::of_int(end - first)},
+                          4};
+    };
+    if (main.kind >= 0) {
+      const int color = static_cast<int>(it % blocks.size()) - first_block[main.kind];
+      stencil_tasks.push_back(plan.add_task(
+          {fmt::format("it{}/main/{}/c{}", it + 1, kKinds[main.kind], color), "main", it, color},
+          {launch(main.kind, main.first, main.end)}));
+    }
+    for (int kind = 0; kind < 3; ++kind) {
+      if (kind_count[kind] == 0) continue;
+      std::vector<KernelLaunch> rest;
+      if (kind != main.kind) {
+        rest.push_back(launch(kind, 0, kind_count[kind]));
+      } else {
+        if (main.first > 0) rest.push_back(launch(kind, 0, main.first));
+        if (main.end < kind_count[kind]) rest.push_back(launch(kind, main.end, kind_count[kind]));
+      }
+      if (rest.empty()) continue;
+      stencil_tasks.push_back(
+          plan.add_task({fmt::format("it{}/{}", it + 1, kKinds[kind]), kKinds[kind], it, -1}, std::move(rest)));
+    }
+    for (sched::TaskId t : stencil_tasks) plan.graph.add_edge(systems_task, t);
     const sched::TaskId combine = plan.add_task(
         {fmt::format("it{}/combine", it + 1), "combine", it, -1},
         {{"sosd_combine", static_cast<std::size_t>(n),

@@ -1,11 +1,12 @@
 #pragma once
 // Second-order Stencil Descent (Lan et al. 2023) in the hybrid Jacobi /
 // Gauss-Seidel form of the ATS paper (§5) as a substep plan: predict, then
-// per iteration the vertex systems, one task per stencil block (element
-// color of each kind; all blocks at once, Jacobi manner), and the combine
-// task in which the iteration's main block takes precedence; then the
-// velocity update. Every task is a range over independent items, so
-// `split` cuts them between devices exactly.
+// per iteration the vertex systems, the stencil solves (one task for the
+// iteration's main Gauss-Seidel block, one per element kind for the Jacobi
+// rest; all read the same x^k, so they run side by side), and the combine
+// task in which the main block takes precedence; then the velocity update.
+// Every launch is a range over independent items, so `split` cuts them
+// between devices exactly.
 #include "solver/substep_plan.hpp"
 #include "solver/vertex/vertex_plan.hpp"
 #include "solver/xpbd/xpbd_layout.hpp"

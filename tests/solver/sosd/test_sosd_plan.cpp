@@ -38,32 +38,46 @@ TEST_CASE("SOSD blocks are the element colors, and no two stencils of a block sh
   CHECK(bend == layout.bend.size());
 }
 
-TEST_CASE("an SOSD iteration is vertex systems, every block at once, then one combine") {
+TEST_CASE("an SOSD iteration is vertex systems, the main block beside the Jacobi rest, then one combine") {
   const int iterations = 3;
   const auto m = model::build_model(scene::parse_scene(test::hanging_cloth_yaml(10, 1e4, 1e-3), "s.yaml", "."));
   const auto layout = xpbd::make_xpbd_layout(m);
   const auto plan = sosd::make_sosd_plan(layout, 1.0 / 240.0, iterations);
-  const std::size_t blocks = sosd::stencil_blocks(layout).size();
+  const auto blocks = sosd::stencil_blocks(layout);
   const auto systems = plan.graph.tasks_of_kind("systems");
   const auto combines = plan.graph.tasks_of_kind("combine");
   REQUIRE(systems.size() == std::size_t(iterations));
   REQUIRE(combines.size() == std::size_t(iterations));
-  CHECK(plan.graph.tasks_of_kind("stretch").size() + plan.graph.tasks_of_kind("bend").size() ==
-        iterations * blocks);
+  CHECK(plan.graph.tasks_of_kind("main").size() == std::size_t(iterations));
+  const int counts[2] = {static_cast<int>(layout.stretch.size()), static_cast<int>(layout.bend.size())};
   for (int it = 0; it < iterations; ++it) {
     // The stencil tasks of one iteration follow its systems task only and all
-    // precede its combine: they may run side by side on any device.
-    std::size_t stencils = 0;
+    // precede its combine: they may run side by side on any device. Together
+    // they solve every element exactly once.
+    std::vector<int> solved[2] = {std::vector<int>(counts[0], 0), std::vector<int>(counts[1], 0)};
     for (sched::TaskId t = 0; t < plan.graph.size(); ++t) {
       const auto& task = plan.graph.task(t);
-      if (task.iteration != it || (task.kind != "stretch" && task.kind != "bend")) continue;
-      ++stencils;
+      if (task.iteration != it || (task.kind != "stretch" && task.kind != "bend" && task.kind != "main")) continue;
       REQUIRE(plan.graph.predecessors(t).size() == 1);
       CHECK(plan.graph.predecessors(t).front().from == systems[it]);
       REQUIRE(plan.graph.successors(t).size() == 1);
       CHECK(plan.graph.successors(t).front().to == combines[it]);
+      for (const auto& l : plan.launches[t]) {
+        const int kind = l.kernel == "sosd_stretch" ? 0 : 1;
+        REQUIRE((l.kernel == "sosd_stretch" || l.kernel == "sosd_bend"));
+        const int first = l.args[l.range_arg].i32, count = l.args[l.range_arg + 1].i32;
+        for (int e = first; e < first + count; ++e) ++solved[kind][e];
+        if (task.kind == "main") {  // the iteration's main block, rotating through the blocks
+          const auto& b = blocks[it % blocks.size()];
+          CHECK(b.kind == kind);
+          CHECK(first == b.first);
+          CHECK(first + count == b.end);
+        }
+      }
     }
-    CHECK(stencils == blocks);
+    for (const auto& s : solved) {
+      for (int c : s) CHECK(c == 1);
+    }
   }
   // Every launch covers independent items: split may cut any of them.
   for (const auto& launches : plan.launches) {
