@@ -6,6 +6,7 @@
 #include "common/xpbd_types.h"
 #include "common/xpbd_distance.h"
 #include "common/xpbd_bending.h"
+#include "common/xpbd_tet.h"
 #include "common/particle_steps.cl"
 #include "async/merge.cl"
 
@@ -52,4 +53,29 @@ __kernel void xpbd_bend(__global float4* x, __global const ats_bend_c* c, __glob
   const ats_bend_step s = ats_xpbd_bend(p, w, con.K, con.scale, con.compliance, xyz(l4), dt);
   lambda[i] = (float4)(l4.x + s.dlambda.x, l4.y + s.dlambda.y, l4.z + s.dlambda.z, 0.0f);
   for (int j = 0; j < 4; ++j) x[con.v[j]] = add_xyz(q[j], s.dx[j]);
+}
+
+/* One StVK tet per work-item: its seven strain constraints in sequence
+ * (common/xpbd_tet.h); lambda holds ATS_TET_LAMBDA_STRIDE floats per tet. */
+__kernel void xpbd_tet(__global float4* x, __global const ats_tet_c* c, __global float* lambda, int first, int count,
+                       float dt, int reset) {
+  const int k = get_global_id(0);
+  if (k >= count) return;
+  const int i = first + k;
+  const ats_tet_c t = c[i];
+  ats_vec3 p[4];
+  float w[4];
+  float4 q[4];
+  for (int j = 0; j < 4; ++j) {
+    q[j] = x[t.v[j]];
+    p[j] = xyz(q[j]);
+    w[j] = q[j].w;
+  }
+  ats_mat3 dm_inv;
+  for (int r = 0; r < 3; ++r) dm_inv.r[r] = ats_v3(t.dm_inv[3 * r], t.dm_inv[3 * r + 1], t.dm_inv[3 * r + 2]);
+  float lam[ATS_TET_LAMBDA_STRIDE];
+  for (int j = 0; j < ATS_TET_LAMBDA_STRIDE; ++j) lam[j] = reset ? 0.0f : lambda[ATS_TET_LAMBDA_STRIDE * i + j];
+  ats_xpbd_tet(p, w, dm_inv, t.volume, t.mu, t.lambda, lam, dt);
+  for (int j = 0; j < ATS_TET_LAMBDA_STRIDE; ++j) lambda[ATS_TET_LAMBDA_STRIDE * i + j] = lam[j];
+  for (int j = 0; j < 4; ++j) x[t.v[j]] = (float4)(p[j].x, p[j].y, p[j].z, q[j].w);
 }

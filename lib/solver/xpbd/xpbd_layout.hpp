@@ -21,7 +21,7 @@ struct XpbdLayout {
   std::vector<int> stretch_blocks;         // offsets, blocks + 1 entries (empty = none)
   std::vector<ats_bend_c> bend;
   std::vector<int> bend_blocks;
-  std::vector<ats_tet_c> tets;             // solids (VBD, JPGD; XPBD rejects them for now)
+  std::vector<ats_tet_c> tets;             // solids (XPBD accepts StVK ones only)
   std::vector<int> tet_blocks;             // color offsets of `tets` (tets are grouped by color)
   Float4 gravity;
   bool has_ground = false;                 // a ground plane y = ground_y (collision task after each iteration)

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "common/xpbd_tet.h"
 #include "solver/collision_tasks.hpp"
 
 #include "util/error.hpp"
@@ -33,6 +34,18 @@ sched::TaskId add_blocks(SubstepPlan& plan, sched::TaskId last, const std::vecto
   return last;
 }
 
+// The strain constraints (common/xpbd_tet.h) minimise the StVK energy; solving
+// them for a neo-Hookean solid would silently change its material.
+void check_tets_are_stvk(const XpbdLayout& layout) {
+  for (const ats_tet_c& t : layout.tets) {
+    if (t.model != ATS_TET_STVK) {
+      throw input_error("solver.method xpbd simulates solids with material model: stvk only (its strain "
+                        "constraints are the StVK energy); set the solid's material.model to stvk, or use "
+                        "solver.method vbd or jpgd for neo_hookean");
+    }
+  }
+}
+
 }  // namespace
 
 SubstepPlan make_xpbd_plan(const XpbdLayout& layout, const XpbdSettings& settings, XpbdBuffers* ids) {
@@ -52,8 +65,10 @@ SubstepPlan make_xpbd_plan(const XpbdLayout& layout, const XpbdSettings& setting
     b.bend_lambda = plan.add_buffer("bend_lambda", std::vector<std::byte>(layout.bend.size() * 4 * sizeof(float)));
   }
   if (!layout.tets.empty()) {
-    throw input_error("xpbd has no tetrahedron constraints yet: use solver.method vbd or jpgd for solids "
-                      "(type: solid)");
+    check_tets_are_stvk(layout);
+    b.tet = plan.add_buffer("tet", bytes_of(layout.tets));
+    b.tet_lambda =
+        plan.add_buffer("tet_lambda", std::vector<std::byte>(layout.tets.size() * ATS_TET_LAMBDA_STRIDE * sizeof(float)));
   }
   plan.positions = b.x;
 
@@ -74,6 +89,9 @@ SubstepPlan make_xpbd_plan(const XpbdLayout& layout, const XpbdSettings& setting
     }
     if (b.bend >= 0) {
       last = add_blocks(plan, last, layout.bend_blocks, "bend", "xpbd_bend", b.x, b.bend, b.bend_lambda, dt, it);
+    }
+    if (b.tet >= 0) {
+      last = add_blocks(plan, last, layout.tet_blocks, "tet", "xpbd_tet", b.x, b.tet, b.tet_lambda, dt, it);
     }
     last = add_ground_task(plan, last, layout, b.x, it);
   }

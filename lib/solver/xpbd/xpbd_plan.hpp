@@ -1,8 +1,8 @@
 #pragma once
 // The XPBD substep as a task graph with kernel launches (paper Fig. 2):
 // predict -> per iteration: stretch color blocks, then bending color blocks,
-// in Gauss-Seidel order -> update velocity. Only the element sets the model
-// has produce tasks.
+// then tetrahedron (StVK strain) color blocks, in Gauss-Seidel order ->
+// update velocity. Only the element sets the model has produce tasks.
 #include "model/model.hpp"
 #include "solver/substep_plan.hpp"
 #include "solver/xpbd/xpbd_layout.hpp"
@@ -17,6 +17,7 @@ struct XpbdSettings {
 // Buffer ids inside an XPBD plan (those absent from the model are -1).
 struct XpbdBuffers {
   BufferId x = -1, v = -1, x_prev = -1, stretch = -1, stretch_lambda = -1, bend = -1, bend_lambda = -1;
+  BufferId tet = -1, tet_lambda = -1;
 };
 
 SubstepPlan make_xpbd_plan(const XpbdLayout& layout, const XpbdSettings& settings, XpbdBuffers* ids = nullptr);

@@ -1,14 +1,21 @@
 #include "solver/xpbd/xpbd_reference.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "common/xpbd_bending.h"
 #include "common/xpbd_distance.h"
+#include "common/xpbd_tet.h"
 
 namespace atssim::solver::xpbd {
 
 namespace {
 ats_vec3 xyz(const Float4& p) { return ats_v3(p.x, p.y, p.z); }
+ats_mat3 dm_inv_of(const ats_tet_c& t) {
+  ats_mat3 m;
+  for (int r = 0; r < 3; ++r) m.r[r] = ats_v3(t.dm_inv[3 * r], t.dm_inv[3 * r + 1], t.dm_inv[3 * r + 2]);
+  return m;
+}
 void add_xyz(Float4& p, ats_vec3 d) {
   p.x += d.x;
   p.y += d.y;
@@ -21,13 +28,15 @@ XpbdReference::XpbdReference(XpbdLayout layout, XpbdSettings settings)
       settings_(settings),
       x_prev_(layout_.x),
       stretch_lambda_(layout_.stretch.size(), 0.0f),
-      bend_lambda_(layout_.bend.size() * 3, 0.0f) {}
+      bend_lambda_(layout_.bend.size() * 3, 0.0f),
+      tet_lambda_(layout_.tets.size() * ATS_TET_LAMBDA_STRIDE, 0.0f) {}
 
 void XpbdReference::substep() {
   predict();
   for (int it = 0; it < settings_.iterations; ++it) {
     solve_stretch(it == 0);
     solve_bend(it == 0);
+    solve_tets(it == 0);
     if (layout_.has_ground) {
       for (Float4& p : layout_.x) {
         if (p.w > 0.0f && p.y < layout_.ground_y) p.y = layout_.ground_y;
@@ -93,6 +102,29 @@ void XpbdReference::solve_bend(bool reset) {
   }
 }
 
+void XpbdReference::solve_tets(bool reset) {
+  const float dt = static_cast<float>(settings_.substep_dt);
+  for (std::size_t i = 0; i < layout_.tets.size(); ++i) {
+    const ats_tet_c& t = layout_.tets[i];
+    ats_vec3 p[4];
+    float w[4];
+    for (int j = 0; j < 4; ++j) {
+      p[j] = xyz(layout_.x[t.v[j]]);
+      w[j] = layout_.x[t.v[j]].w;
+    }
+    const ats_mat3 dm_inv = dm_inv_of(t);
+    float* lam = &tet_lambda_[ATS_TET_LAMBDA_STRIDE * i];
+    if (reset) std::fill(lam, lam + ATS_TET_LAMBDA_STRIDE, 0.0f);
+    ats_xpbd_tet(p, w, dm_inv, t.volume, t.mu, t.lambda, lam, dt);
+    for (int j = 0; j < 4; ++j) {
+      Float4& q = layout_.x[t.v[j]];
+      q.x = p[j].x;
+      q.y = p[j].y;
+      q.z = p[j].z;
+    }
+  }
+}
+
 void XpbdReference::update_velocity() {
   const float inv_dt = 1.0f / static_cast<float>(settings_.substep_dt);
   for (std::size_t i = 0; i < layout_.x.size(); ++i) {
@@ -123,6 +155,17 @@ double XpbdReference::residual_rms() const {
                          cur.z + alpha * bend_lambda_[3 * i + 2]};
     for (double v : r) sum += v * v;
     count += 3;
+  }
+  for (std::size_t i = 0; i < layout_.tets.size(); ++i) {
+    const ats_tet_c& t = layout_.tets[i];
+    ats_vec3 p[4];
+    for (int j = 0; j < 4; ++j) p[j] = xyz(layout_.x[t.v[j]]);
+    for (int c = 0; c < ATS_TET_STRAIN_CONSTRAINTS; ++c) {
+      const double r = ats_xpbd_tet_residual(p, dm_inv_of(t), t.volume, t.mu, t.lambda,
+                                             tet_lambda_[ATS_TET_LAMBDA_STRIDE * i + c], dt, c);
+      sum += r * r;
+      ++count;
+    }
   }
   return count == 0 ? 0.0 : std::sqrt(sum / static_cast<double>(count));
 }

@@ -17,13 +17,15 @@ class XpbdReference {
   const XpbdLayout& state() const { return layout_; }
 
   // Root mean square of the XPBD residual C(x) + alpha~ lambda over all
-  // stretch constraints (and each bending component), after the last substep.
+  // stretch constraints (and each bending component and tet strain
+  // constraint), after the last substep.
   double residual_rms() const;
 
  private:
   void predict();
   void solve_stretch(bool reset);
   void solve_bend(bool reset);
+  void solve_tets(bool reset);
   void update_velocity();
 
   XpbdLayout layout_;
@@ -31,6 +33,7 @@ class XpbdReference {
   std::vector<Float4> x_prev_;
   std::vector<float> stretch_lambda_;
   std::vector<float> bend_lambda_;  // 3 per stencil
+  std::vector<float> tet_lambda_;   // ATS_TET_LAMBDA_STRIDE per tet
 };
 
 }  // namespace atssim::solver::xpbd
