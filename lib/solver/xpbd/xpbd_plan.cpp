@@ -41,7 +41,7 @@ void check_tets_are_stvk(const XpbdLayout& layout) {
     if (t.model != ATS_TET_STVK) {
       throw input_error("solver.method xpbd simulates solids with material model: stvk only (its strain "
                         "constraints are the StVK energy); set the solid's material.model to stvk, or use "
-                        "solver.method vbd or jpgd for neo_hookean");
+                        "solver.method vbd, sosd or jpgd for neo_hookean");
     }
   }
 }
