@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "app/execution.hpp"
+#include "app/simulation.hpp"
 #include "device/device_set.hpp"
 #include "device/plan_executor.hpp"
 #include "model/cloth_builder.hpp"
@@ -116,7 +117,7 @@ io::ConvergenceResult run_convergence(const ConvergeOptions& o) {
     io::ConvergenceTrace trace;
     trace.variant = v.name;
     for (int k : iteration_counts(o.max_iterations)) {
-      const solver::SubstepPlan plan = solver::make_method_plan(v.method, state, h, k, {scene.solver.chebyshev_rho, scene.solver.jacobi_step});
+      const solver::SubstepPlan plan = solver::make_method_plan(v.method, state, h, k, method_options(scene.solver));
       Execution e = prepare_execution(devices, plan, v.options);
       std::vector<double> times;
       std::vector<Float4> x;

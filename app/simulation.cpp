@@ -59,11 +59,15 @@ void release_simulation_state(model::Model& model) {
 
 void request_stop() { g_stop = true; }
 
+solver::MethodOptions method_options(const scene::SolverDesc& solver) {
+  return {solver.chebyshev_rho, solver.jacobi_step, solver.stencil_step};
+}
+
 solver::SubstepPlan substep_plan_for(const scene::SceneDesc& scene) {
   const auto& sim = scene.simulation;
   const model::Model model = model::build_model(scene);
   return solver::make_method_plan(scene.solver.method, solver::xpbd::make_xpbd_layout(model),
-                                  sim.frame_dt / sim.substeps, sim.iterations, {scene.solver.chebyshev_rho, scene.solver.jacobi_step});
+                                  sim.frame_dt / sim.substeps, sim.iterations, method_options(scene.solver));
 }
 
 RunResult run_simulation(const RunOptions& options, const std::function<void(const RunProgress&)>& progress) {
@@ -81,7 +85,7 @@ RunResult run_simulation(const RunOptions& options, const std::function<void(con
   release_simulation_state(model);
   solver::SubstepPlan plan =
       solver::make_method_plan(scene.solver.method, layout, settings.substep_dt, settings.iterations,
-                               {scene.solver.chebyshev_rho, scene.solver.jacobi_step});
+                               method_options(scene.solver));
   layout = {};
   ExecutionOptions exec_options;
   exec_options.mode = parse_schedule_mode(scene.solver.schedule);

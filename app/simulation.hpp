@@ -35,16 +35,21 @@ struct RunResult {
 // errors after the output file exists carry "N frames kept in FILE".
 RunResult run_simulation(const RunOptions& options, const std::function<void(const RunProgress&)>& progress = {});
 
-// The substep plan of a validated scene (model -> layout -> solver plan).
 }  // namespace atssim::app
 namespace atssim::scene {
 struct SceneDesc;
+struct SolverDesc;
 }
 namespace atssim::solver {
 struct SubstepPlan;
+struct MethodOptions;
 }
 namespace atssim::app {
+// The substep plan of a validated scene (model -> layout -> solver plan).
 solver::SubstepPlan substep_plan_for(const scene::SceneDesc& scene);
+
+// The scene's per-method settings (solver.chebyshev_rho, jacobi_step, stencil_step).
+solver::MethodOptions method_options(const scene::SolverDesc& solver);
 
 // Set from a signal handler: the run stops after the current frame, keeps
 // what it wrote and fails with "interrupted".

@@ -5,7 +5,7 @@ the relative energy error each method reaches in a fixed wall-time budget
 per substep (the speed/accuracy trade).
 
 usage: scripts/bench_methods.py [--resolution 64] [--frames 8] [--budget-ms 10]
-       scripts/bench_methods.py --scene scenes/pillows.yaml --methods vbd,sosd,jpgd
+       scripts/bench_methods.py --scene scenes/pillows.yaml --set objects.1.material.model=stvk ...
 Build first (scripts/test.sh). Prints one Markdown table.
 """
 import argparse
@@ -39,10 +39,13 @@ def main() -> int:
     ap.add_argument("--iterations", type=int, default=128, help="largest k tried for the accuracy column")
     ap.add_argument("--scene", default=SCENE, help="scene file (default: the hanging cloth, resized)")
     ap.add_argument("--methods", default=",".join(METHODS), help="comma separated")
+    ap.add_argument("--set", action="append", default=[], help="scene override KEY=VALUE for every run (repeatable)")
     args = ap.parse_args()
     methods = args.methods.split(",")
     # --resolution resizes the default scene's grid; other scenes run as written.
     sets = ["--set", f"objects.0.grid.resolution=[{args.resolution},{args.resolution}]"] if args.scene == SCENE else []
+    for kv in args.set:
+        sets += ["--set", kv]
     if not os.path.exists(BIN):
         print(f"{BIN} is missing: build first (scripts/test.sh)", file=sys.stderr)
         return 2

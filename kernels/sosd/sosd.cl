@@ -11,7 +11,8 @@
  *   3. sosd_combine: a vertex that belongs to a stencil of the iteration's
  *      main Gauss-Seidel block takes that stencil's displacement (no two
  *      stencils of a block share a vertex); every other vertex takes the
- *      mean of its stencils' displacements (the Jacobi blocks).
+ *      mean of its stencils' displacements (the Jacobi blocks); both scaled
+ *      by a step length (solver.stencil_step, below 1: see sosd_plan.hpp).
  * Every step reads only what the step before wrote, so any cut of a step
  * between devices computes the same result. */
 #pragma OPENCL FP_CONTRACT OFF /* the stretch energy's error-free transforms */
@@ -180,8 +181,8 @@ __kernel void sosd_tet(__global const float4* x, __global const float4* sys, __g
  * none. */
 __kernel void sosd_combine(__global float4* x, __global const int* adj_offsets, __global const int* adj,
                            __global const float4* d_stretch, __global const float4* d_bend,
-                           __global const float4* d_tet, int main_kind, int main_first, int main_end, int first,
-                           int count) {
+                           __global const float4* d_tet, int main_kind, int main_first, int main_end,
+                           float step, int first, int count) {
   const int k = get_global_id(0);
   if (k >= count) return;
   const int i = first + k;
@@ -194,13 +195,13 @@ __kernel void sosd_combine(__global float4* x, __global const int* adj_offsets, 
     const int e = code >> 4, kind = (code >> 2) & 3, slot = code & 3;
     const float4 dj = kind == 0 ? d_stretch[2 * e + slot] : kind == 1 ? d_bend[4 * e + slot] : d_tet[4 * e + slot];
     if (kind == main_kind && e >= main_first && e < main_end) {
-      x[i] = (float4)(p.x + dj.x, p.y + dj.y, p.z + dj.z, p.w);
+      x[i] = (float4)(p.x + step * dj.x, p.y + step * dj.y, p.z + step * dj.z, p.w);
       return;
     }
     sum += dj;
     ++n;
   }
   if (n == 0) return;
-  const float inv = 1.0f / (float)n;
+  const float inv = step / (float)n;
   x[i] = (float4)(p.x + sum.x * inv, p.y + sum.y * inv, p.z + sum.z * inv, p.w);
 }

@@ -106,6 +106,7 @@ struct SolverDesc {
   bool replay = false;              // async: run the schedule on one device, in schedule order
   double chebyshev_rho = 0.9;       // jpgd: spectral radius estimate of the Chebyshev acceleration (0 = off)
   double jacobi_step = 0.5;         // jpgd: step length on the block-Jacobi direction
+  double stencil_step = 0.7;        // sosd: step length on the combined stencil displacements
 };
 
 struct OutputDesc {

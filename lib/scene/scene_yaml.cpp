@@ -113,6 +113,7 @@ std::string to_resolved_yaml(const SceneDesc& scene) {
   out << YAML::Key << "replay" << YAML::Value << (solver.replay ? "true" : "false");
   out << YAML::Key << "chebyshev_rho" << YAML::Value << solver.chebyshev_rho;
   out << YAML::Key << "jacobi_step" << YAML::Value << solver.jacobi_step;
+  out << YAML::Key << "stencil_step" << YAML::Value << solver.stencil_step;
   out << YAML::EndMap;
   out << YAML::Key << "output" << YAML::Value << YAML::BeginMap << YAML::Key << "path" << YAML::Value
       << scene.output.path << YAML::Key << "stride" << YAML::Value << scene.output.stride << YAML::EndMap;

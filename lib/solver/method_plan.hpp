@@ -16,6 +16,7 @@ std::span<const std::string_view> method_names();
 struct MethodOptions {
   double chebyshev_rho = 0.9;  // JPGD: spectral radius estimate for the Chebyshev weights (0 = off)
   double jacobi_step = 0.5;    // JPGD: step length on the block-Jacobi direction
+  double stencil_step = 0.7;   // SOSD: step length on the combined stencil displacements
 };
 
 // Throws atssim::Error (input) for an unknown method, or a scene the method

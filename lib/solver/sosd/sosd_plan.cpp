@@ -26,7 +26,7 @@ std::vector<StencilBlock> stencil_blocks(const xpbd::XpbdLayout& layout) {
   return blocks;
 }
 
-SubstepPlan make_sosd_plan(const xpbd::XpbdLayout& layout, double substep_dt, int iterations,
+SubstepPlan make_sosd_plan(const xpbd::XpbdLayout& layout, double substep_dt, int iterations, double step,
                            vertex::VertexBuffers* ids) {
   const vertex::VertexLayout vertices = vertex::make_vertex_layout(layout);
   SubstepPlan plan;
@@ -94,8 +94,9 @@ SubstepPlan make_sosd_plan(const xpbd::XpbdLayout& layout, double substep_dt, in
         {{"sosd_combine", static_cast<std::size_t>(n),
           {Arg::of_buffer(b.x), Arg::of_buffer(b.adjacency_offsets), Arg::of_buffer(b.adjacency),
            Arg::of_buffer(d[0]), Arg::of_buffer(d[1]), Arg::of_buffer(d[2]), Arg::of_int(main.kind),
-           Arg::of_int(main.first), Arg::of_int(main.end), Arg::of_int(0), Arg::of_int(n)},
-          9}});
+           Arg::of_int(main.first), Arg::of_int(main.end), Arg::of_float(static_cast<float>(step)),
+           Arg::of_int(0), Arg::of_int(n)},
+          10}});
     for (sched::TaskId t : stencil_tasks) plan.graph.add_edge(t, combine);
     if (stencil_tasks.empty()) plan.graph.add_edge(systems_task, combine);
     last = add_ground_task(plan, combine, layout, b.x, it);

@@ -22,8 +22,13 @@ struct StencilBlock {
 };
 std::vector<StencilBlock> stencil_blocks(const xpbd::XpbdLayout& layout);
 
-// Iteration `it` (0-based) uses block it mod blocks as its main block.
+// Iteration `it` (0-based) uses block it mod blocks as its main block. Every
+// vertex moves by `step` (solver.stencil_step) times its displacement: the
+// main block's stencils share no vertex but do share elements with their
+// neighbours, which move in the same step, so a full step is a Jacobi step
+// over nearly every vertex (a stretch color is a matching) and overshoots on
+// stiff cloth (docs/accuracy.md).
 SubstepPlan make_sosd_plan(const xpbd::XpbdLayout& layout, double substep_dt, int iterations,
-                           vertex::VertexBuffers* ids = nullptr);
+                           double step = 0.7, vertex::VertexBuffers* ids = nullptr);
 
 }  // namespace atssim::solver::sosd
