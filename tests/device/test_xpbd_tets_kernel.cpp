@@ -11,9 +11,11 @@
 #include "model/cloth_builder.hpp"
 #include "scene/scene_loader.hpp"
 #include "solver/xpbd/xpbd_reference.hpp"
+#include "support/positions.hpp"
 
 using namespace atssim;
 using namespace atssim::solver::xpbd;
+using atssim::test::max_distance;
 
 namespace {
 
@@ -34,15 +36,6 @@ model::Model stvk_box(const std::string& gravity, const std::string& size, const
       "    material: {density: 1000, youngs_modulus: " + std::to_string(youngs) +
       ", poisson_ratio: 0.4, model: stvk}\n" + pins;
   return model::build_model(scene::parse_scene(yaml, "s.yaml", "."));
-}
-
-double max_distance(const std::vector<Float4>& a, const std::vector<Float4>& b) {
-  double worst = 0.0;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    worst = std::max({worst, double(std::abs(a[i].x - b[i].x)), double(std::abs(a[i].y - b[i].y)),
-                      double(std::abs(a[i].z - b[i].z))});
-  }
-  return worst;
 }
 
 }  // namespace

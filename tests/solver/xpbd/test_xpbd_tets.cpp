@@ -10,9 +10,11 @@
 #include "solver/xpbd/xpbd_plan.hpp"
 #include "solver/xpbd/xpbd_reference.hpp"
 #include "util/error.hpp"
+#include "support/positions.hpp"
 
 using namespace atssim;
 using namespace atssim::solver::xpbd;
+using atssim::test::max_distance;
 
 namespace {
 
@@ -27,15 +29,6 @@ model::Model soft_box(const std::string& gravity, const std::string& solid_model
       "    material: {density: 1000, youngs_modulus: 1.0e7, poisson_ratio: 0.3" + model_key + "}\n"
       "    pins: {boxes: [{min: [-1, 0.19, -1], max: [1, 0.21, 1]}]}\n";
   return model::build_model(scene::parse_scene(yaml, "s.yaml", "."));
-}
-
-double max_distance(const std::vector<Float4>& a, const std::vector<Float4>& b) {
-  double worst = 0.0;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    worst = std::max({worst, double(std::abs(a[i].x - b[i].x)), double(std::abs(a[i].y - b[i].y)),
-                      double(std::abs(a[i].z - b[i].z))});
-  }
-  return worst;
 }
 
 }  // namespace
