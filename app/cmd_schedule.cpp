@@ -120,6 +120,7 @@ Action add_schedule_command(CLI::App& cli) {
     if (!args->devices.empty()) overrides.push_back("devices=" + args->devices);
     if (!args->schedule.empty()) overrides.push_back("solver.schedule=" + args->schedule);
     const scene::SceneDesc scene = scene::load_scene_file(args->scene, overrides);
+    scene::check_method_support(scene, scene.solver.method);
     const ScheduleMode mode = parse_schedule_mode(scene.solver.schedule);
     const solver::SubstepPlan base = substep_plan_for(scene);
 

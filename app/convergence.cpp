@@ -78,6 +78,7 @@ io::ConvergenceResult run_convergence(const ConvergeOptions& o) {
   if (o.frames_before < 0) throw input_error("--frames-before must be ≥ 0");
   const scene::SceneDesc scene = scene::load_scene_file(o.scene_path, o.overrides);
   const std::vector<Variant> variants = variants_of(o);
+  for (const std::string& method : o.methods) scene::check_method_support(scene, method);
   const auto& sim = scene.simulation;
   const double h = sim.frame_dt / sim.substeps;
   const device::DeviceSet devices = device::DeviceSet::open(scene.devices);

@@ -73,6 +73,7 @@ solver::SubstepPlan substep_plan_for(const scene::SceneDesc& scene) {
 RunResult run_simulation(const RunOptions& options, const std::function<void(const RunProgress&)>& progress) {
   g_stop = false;
   const scene::SceneDesc scene = scene::load_scene_file(options.scene_path, options.overrides);
+  scene::check_method_support(scene, scene.solver.method);
   const device::DeviceSet devices = device::DeviceSet::open(scene.devices);
   const auto& sim = scene.simulation;
   const solver::xpbd::XpbdSettings settings{sim.frame_dt / sim.substeps, sim.iterations};

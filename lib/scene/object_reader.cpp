@@ -107,6 +107,7 @@ void read_solid_material(const YamlReader& r, MaterialDesc& m) {
   if (r.has("model")) {
     const YamlReader k = r.child("model");
     const std::string name = k.string();
+    m.model_where = k.where();
     if (name == "neo_hookean") {
       m.solid_model = SolidModel::neo_hookean;
     } else if (name == "stvk") {

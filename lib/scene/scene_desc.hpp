@@ -45,6 +45,7 @@ struct MaterialDesc {
   double youngs_modulus = 1.0e5;   // solids: Pa (> 0)
   double poisson_ratio = 0.3;      // solids: 0 ≤ ν < 0.5
   SolidModel solid_model = SolidModel::neo_hookean;
+  std::string model_where;         // "file:line" (or the --set) that chose solid_model; empty = default
 };
 
 struct BoxDesc {
@@ -99,6 +100,7 @@ struct ObjectDesc {
 
 struct SolverDesc {
   std::string method = "xpbd";
+  std::string method_where;         // "file:line" (or the --set) that chose the method; empty = default
   std::string schedule = "single";  // single | split | heft | async: how the substep uses the devices
   int async_depth = 2;              // async: iterations in flight at once (1 = serial Gauss-Seidel)
   std::string merge = "average_displacements";  // async: how a device merges another's result

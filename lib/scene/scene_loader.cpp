@@ -156,6 +156,7 @@ SceneDesc parse_scene(const std::string& yaml_text, const std::string& source_na
     if (solver.has("method")) {
       const YamlReader m = solver.child("method");
       scene.solver.method = m.string();
+      scene.solver.method_where = m.where();
       bool known = false;
       for (auto k : kMethods) known = known || scene.solver.method == k;
       if (!known) m.fail(fmt::format("unknown solver method '{}'", scene.solver.method), "available: xpbd, vbd, sosd, jpgd");
@@ -217,6 +218,29 @@ SceneDesc parse_scene(const std::string& yaml_text, const std::string& source_na
 
   scene.resolved_yaml = to_resolved_yaml(scene);
   return scene;
+}
+
+void check_method_support(const SceneDesc& scene, const std::string& method) {
+  for (const ObjectDesc& o : scene.objects) {
+    if (o.type != ObjectType::solid) continue;
+    const std::string& model_where = o.material.model_where;
+    if (o.material.solid_model == SolidModel::springs) {
+      throw input_error(fmt::format("{}: solid '{}' has model springs, which no solver simulates yet; use "
+                                    "neo_hookean or stvk",
+                                    model_where, o.name));
+    }
+    if (method == "xpbd" && o.material.solid_model == SolidModel::neo_hookean) {
+      // Blame the line that chose the model, else the one that chose xpbd,
+      // else the object (both defaults).
+      const std::string where = !model_where.empty()                ? model_where
+                                : !scene.solver.method_where.empty() ? scene.solver.method_where
+                                                                     : fmt::format("{}:{}", scene.source_path, o.source_line);
+      throw input_error(fmt::format("{}: solid '{}' is neo_hookean{}, and solver.method xpbd simulates solids as "
+                                    "StVK strain constraints only; set its material.model to stvk, or use "
+                                    "solver.method vbd, sosd or jpgd",
+                                    where, o.name, model_where.empty() ? " (the default)" : ""));
+    }
+  }
 }
 
 SceneDesc load_scene_file(const std::string& path, std::span<const std::string> overrides) {

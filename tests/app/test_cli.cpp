@@ -222,3 +222,31 @@ TEST_CASE("a split from a cost table of unequal devices drops the parts that rou
   CHECK(r.code == 0);
   CHECK(r.out.find("split fractions: 0.750 0.250") != std::string::npos);
 }
+
+TEST_CASE("a solid the method cannot simulate: one line naming the line that chose it, exit code 2") {
+  test::TempDir dir;
+  const std::string box = "  - name: box\n    type: solid\n    box: {size: [0.2, 0.2, 0.2], resolution: [1, 1, 1]}\n";
+  // neo-Hookean chosen on line 6, XPBD on line 8
+  const std::string scene = dir.write("s.yaml", "objects:\n" + box +
+                                                    "    material:\n      model: neo_hookean\n"
+                                                    "solver:\n  method: xpbd\n");
+  auto r = run_atssim(dir, "run " + scene + " -o " + dir.file("out.h5"));
+  CHECK(r.code == 2);
+  CHECK(lines(r.err) == 1);
+  CHECK(r.err.find(scene + ":6: solid 'box' is neo_hookean") != std::string::npos);
+  CHECK(r.err.find("model to stvk") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(dir.file("out.h5")));
+  // the default model: the line that chose xpbd is to blame
+  const std::string defaulted = dir.write("d.yaml", "objects:\n" + box + "solver:\n  method: xpbd\n");
+  r = run_atssim(dir, "run " + defaulted + " -o " + dir.file("out.h5"));
+  CHECK(r.code == 2);
+  CHECK(r.err.find(defaulted + ":6: solid 'box' is neo_hookean (the default)") != std::string::npos);
+  // the same scene runs with a method that simulates it
+  r = run_atssim(dir, "run " + scene + " -o " + dir.file("out.h5") + " --set solver.method=vbd --frames 1 --quiet");
+  INFO(r.err);
+  CHECK(r.code == 0);
+  // springs solids: no method yet
+  r = run_atssim(dir, "run " + scene + " -o " + dir.file("out.h5") + " --set objects.0.material.model=springs");
+  CHECK(r.code == 2);
+  CHECK(r.err.find("(--set objects.0.material.model=springs): solid 'box' has model springs") != std::string::npos);
+}
