@@ -60,7 +60,7 @@ void release_simulation_state(model::Model& model) {
 void request_stop() { g_stop = true; }
 
 solver::MethodOptions method_options(const scene::SolverDesc& solver) {
-  return {solver.chebyshev_rho, solver.jacobi_step, solver.stencil_step};
+  return {solver.chebyshev_rho, solver.jacobi_step, solver.stencil_step, solver.momentum};
 }
 
 solver::SubstepPlan substep_plan_for(const scene::SceneDesc& scene) {

@@ -1,6 +1,8 @@
 /* Block-Jacobi preconditioned gradient descent with Chebyshev acceleration
  * (Wang & Yang 2016; Wang 2015): every vertex at once takes the step
- * alpha H_ii^-1 f_i from x^k, then x^{k+1} = omega (x^k + step - x^{k-1}) + x^{k-1}.
+ * alpha H_ii^-1 f_i from x^k, then x^{k+1} = omega (x^k + step - x^{k-1}) + x^{k-1}
+ * + beta (x^k - x^{k-1}): Chebyshev weights omega (beta = 0), or heavy-ball
+ * momentum beta (omega = 1).
  * A full Jacobi step (alpha = 1) overshoots where stiff neighbours pull on
  * the same vertex, so alpha < 1 (default 0.5) keeps it a descent step.
  * Reads x^k and x^{k-1}, writes x^{k+1}: no vertex sees another's update of
@@ -16,7 +18,8 @@
 __kernel void jpgd_step(__global const float4* x, __global const float4* x_before, __global float4* x_next,
                         __global const float4* x_tilde, __global const int* adj_offsets, __global const int* adj,
                         __global const ats_distance_c* stretch, __global const ats_bend_c* bend,
-                        __global const ats_tet_c* tets, float inv_h2, float alpha, float omega, int first, int count) {
+                        __global const ats_tet_c* tets, float inv_h2, float alpha, float omega, float beta, int first,
+                        int count) {
   const int k = get_global_id(0);
   if (k >= count) return;
   const int i = first + k;
@@ -29,6 +32,6 @@ __kernel void jpgd_step(__global const float4* x, __global const float4* x_befor
   const ats_solve3 d = ats_m3_solve(s.h, s.f);
   const float3 stepped = (float3)(p.x + alpha * d.x.x, p.y + alpha * d.x.y, p.z + alpha * d.x.z);
   const float3 before = x_before[i].xyz;
-  const float3 next = omega * (stepped - before) + before;
+  const float3 next = omega * (stepped - before) + before + beta * ((float3)(p.x, p.y, p.z) - before);
   x_next[i] = (float4)(next, p.w);
 }

@@ -107,6 +107,7 @@ struct SolverDesc {
   bool async_latest = true;         // async: also merge the latest finished result, not only dependencies
   bool replay = false;              // async: run the schedule on one device, in schedule order
   double chebyshev_rho = 0.9;       // jpgd: spectral radius estimate of the Chebyshev acceleration (0 = off)
+  double momentum = 0.0;            // jpgd: heavy-ball momentum beta; > 0 replaces the Chebyshev acceleration
   double jacobi_step = 0.5;         // jpgd: step length on the block-Jacobi direction
   double stencil_step = 0.7;        // sosd: step length on the combined stencil displacements
 };

@@ -22,8 +22,9 @@ namespace fs = std::filesystem;
 constexpr std::array<std::string_view, 5> kRootKeys{"simulation", "objects", "solver", "output", "devices"};
 constexpr std::array<std::string_view, 7> kSimulationKeys{"fps", "dt", "substeps", "iterations", "frames",
                                                           "gravity", "ground"};
-constexpr std::array<std::string_view, 9> kSolverKeys{"method", "schedule", "async_depth", "merge", "async_fetch",
-                                                      "replay", "chebyshev_rho", "jacobi_step", "stencil_step"};
+constexpr std::array<std::string_view, 10> kSolverKeys{"method", "schedule", "async_depth", "merge", "async_fetch",
+                                                      "replay", "chebyshev_rho", "jacobi_step", "stencil_step",
+                                                      "momentum"};
 constexpr std::array<std::string_view, 4> kSchedules{"single", "split", "heft", "async"};
 constexpr std::array<std::string_view, 3> kMerges{"average_displacements", "average_positions", "main_precedence"};
 constexpr std::array<std::string_view, 2> kOutputKeys{"path", "stride"};
@@ -178,6 +179,10 @@ SceneDesc parse_scene(const std::string& yaml_text, const std::string& source_na
     }
     if (solver.has("jacobi_step")) {
       scene.solver.jacobi_step = solver.child("jacobi_step").number_in(0.0, 1.0, true, "a step length 0 < step ≤ 1");
+    }
+    if (solver.has("momentum")) {
+      scene.solver.momentum =
+          solver.child("momentum").number_in(0.0, 0.999, false, "a momentum 0 ≤ beta < 1 (0 = off, Chebyshev instead)");
     }
     if (solver.has("stencil_step")) {
       scene.solver.stencil_step = solver.child("stencil_step").number_in(0.0, 1.0, true, "a step length 0 < step ≤ 1");

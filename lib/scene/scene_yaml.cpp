@@ -112,6 +112,7 @@ std::string to_resolved_yaml(const SceneDesc& scene) {
   out << YAML::Key << "async_fetch" << YAML::Value << (solver.async_latest ? "latest" : "dependencies");
   out << YAML::Key << "replay" << YAML::Value << (solver.replay ? "true" : "false");
   out << YAML::Key << "chebyshev_rho" << YAML::Value << solver.chebyshev_rho;
+  out << YAML::Key << "momentum" << YAML::Value << solver.momentum;
   out << YAML::Key << "jacobi_step" << YAML::Value << solver.jacobi_step;
   out << YAML::Key << "stencil_step" << YAML::Value << solver.stencil_step;
   out << YAML::EndMap;

@@ -27,7 +27,7 @@ SubstepPlan make_method_plan(const std::string& method, const xpbd::XpbdLayout& 
   if (method == "xpbd") return xpbd::make_xpbd_plan(layout, {substep_dt, iterations});
   if (method == "vbd") return vbd::make_vbd_plan(layout, substep_dt, iterations);
   if (method == "sosd") return sosd::make_sosd_plan(layout, substep_dt, iterations, options.stencil_step);
-  if (method == "jpgd") return jpgd::make_jpgd_plan(layout, {substep_dt, iterations, options.chebyshev_rho, options.jacobi_step});
+  if (method == "jpgd") return jpgd::make_jpgd_plan(layout, {substep_dt, iterations, options.chebyshev_rho, options.jacobi_step, options.momentum});
   throw input_error(fmt::format("unknown method '{}'; available: xpbd, vbd, sosd, jpgd", method));
 }
 

@@ -17,6 +17,7 @@ struct MethodOptions {
   double chebyshev_rho = 0.9;  // JPGD: spectral radius estimate for the Chebyshev weights (0 = off)
   double jacobi_step = 0.5;    // JPGD: step length on the block-Jacobi direction
   double stencil_step = 0.7;   // SOSD: step length on the combined stencil displacements
+  double momentum = 0.0;       // JPGD: heavy-ball momentum; > 0 replaces Chebyshev
 };
 
 // Throws atssim::Error (input) for an unknown method, or a scene the method

@@ -156,7 +156,8 @@ TEST_CASE("conflicting or missing settings are rejected", "[scene]") {
 TEST_CASE("per-method step settings are read, range-checked and written back") {
   const auto s = scene::parse_scene(kGood, "scene.yaml", ".",
                                     std::vector<std::string>{"solver.method=sosd", "solver.stencil_step=0.4",
-                                                             "solver.jacobi_step=0.25", "solver.chebyshev_rho=0.5"});
+                                                             "solver.jacobi_step=0.25", "solver.chebyshev_rho=0.5",
+                                                             "solver.momentum=0.6"});
   CHECK(s.solver.method == "sosd");
   CHECK(s.solver.stencil_step == 0.4);
   CHECK(s.solver.jacobi_step == 0.25);
@@ -164,6 +165,8 @@ TEST_CASE("per-method step settings are read, range-checked and written back") {
   const auto again = scene::parse_scene(s.resolved_yaml, "resolved.yaml", ".");
   CHECK(again.solver.stencil_step == 0.4);
   CHECK(again.solver.jacobi_step == 0.25);
+  CHECK(again.solver.momentum == 0.6);
+  CHECK(error_of(kGood, {"solver.momentum=1"}).find("momentum") != std::string::npos);
   for (const char* bad : {"solver.stencil_step=0", "solver.stencil_step=1.5", "solver.jacobi_step=-1"}) {
     INFO(bad);
     CHECK(error_of(kGood, {bad}).find("step length") != std::string::npos);

@@ -31,7 +31,9 @@ SubstepPlan make_jpgd_plan(const xpbd::XpbdLayout& layout, const JpgdSettings& s
   const BufferId rotation[3] = {b.x, plan.add_buffer("x_1", bytes_of(layout.x)),
                                 plan.add_buffer("x_2", bytes_of(layout.x))};
   const float inv_h2 = static_cast<float>(1.0 / (settings.substep_dt * settings.substep_dt));
-  const std::vector<double> omega = chebyshev_weights(settings.iterations, settings.chebyshev_rho);
+  const bool heavy_ball = settings.momentum > 0.0;
+  const std::vector<double> omega = chebyshev_weights(settings.iterations, heavy_ball ? 0.0 : settings.chebyshev_rho);
+  const float beta = heavy_ball ? static_cast<float>(settings.momentum) : 0.0f;
   using Arg = KernelArg;
   for (int it = 0; it < settings.iterations; ++it) {
     const BufferId current = rotation[it % 3];
@@ -44,8 +46,8 @@ SubstepPlan make_jpgd_plan(const xpbd::XpbdLayout& layout, const JpgdSettings& s
            Arg::of_buffer(b.adjacency_offsets), Arg::of_buffer(b.adjacency), Arg::of_buffer(b.stretch),
            Arg::of_buffer(b.bend), Arg::of_buffer(b.tets), Arg::of_float(inv_h2),
            Arg::of_float(static_cast<float>(settings.step)), Arg::of_float(static_cast<float>(omega[it])),
-           Arg::of_int(0), Arg::of_int(n)},
-          12}});
+           Arg::of_float(it == 0 ? 0.0f : beta), Arg::of_int(0), Arg::of_int(n)},
+          13}});
     plan.graph.add_edge(last, t);
     last = add_ground_task(plan, t, layout, next, it);
   }

@@ -18,6 +18,9 @@ struct JpgdSettings {
   // Step length on the block-Jacobi direction (Wang & Yang 2016 use a fixed
   // step): 1 overshoots on stiff cloth, 0.5 descends.
   double step = 0.5;
+  // Heavy-ball momentum (Polyak): x^{k+1} = x^k + step d + beta (x^k - x^{k-1}).
+  // beta > 0 replaces the Chebyshev weights; 0 keeps them.
+  double momentum = 0.0;
 };
 
 // Chebyshev weights omega_1 .. omega_n: 1, 2/(2 - rho^2), 4/(4 - rho^2 omega_{k-1}).
