@@ -83,16 +83,21 @@ io::ConvergenceResult run_convergence(const ConvergeOptions& o) {
   const double h = sim.frame_dt / sim.substeps;
   const device::DeviceSet devices = device::DeviceSet::open(scene.devices);
 
-  // The state after `frames_before` frames of serial XPBD on the first device.
+  // The state after `frames_before` frames of the scene's own method
+  // (solver.method), on one device.
+  scene::check_method_support(scene, scene.solver.method);
   const model::Model model = model::build_model(scene);
   solver::xpbd::XpbdLayout state = solver::xpbd::make_xpbd_layout(model);
   {
-    solver::xpbd::XpbdBuffers ids;
-    const solver::SubstepPlan plan = solver::xpbd::make_xpbd_plan(state, {h, sim.iterations}, &ids);
+    const solver::SubstepPlan plan =
+        solver::make_method_plan(scene.solver.method, state, h, sim.iterations, method_options(scene.solver));
+    const auto velocities = std::find_if(plan.buffers.begin(), plan.buffers.end(),
+                                         [](const solver::BufferSpec& b) { return b.name == "v"; });
+    if (velocities == plan.buffers.end()) throw runtime_error("converge: the method's plan has no velocity buffer 'v'");
     device::PlanExecutor executor(devices, plan);
     executor.enqueue_substeps(o.frames_before * sim.substeps);
-    state.x = as_float4(executor.read(ids.x));
-    state.v = as_float4(executor.read(ids.v));
+    state.x = as_float4(executor.read(plan.positions));
+    state.v = as_float4(executor.read(static_cast<solver::BufferId>(velocities - plan.buffers.begin())));
   }
 
   io::ConvergenceResult result;
@@ -103,8 +108,15 @@ io::ConvergenceResult run_convergence(const ConvergeOptions& o) {
   result.substep_dt = h;
   const std::vector<Float4> predicted = solver::energy::predicted_positions(state, h);
   {
+    // E0 at x~, held above the ground as every method's collision task does
+    // (a feasible start: E* <= E0 then holds with the ground bound too).
     solver::xpbd::XpbdLayout at_start = state;
     at_start.x = predicted;
+    if (state.has_ground) {
+      for (Float4& p : at_start.x) {
+        if (p.w > 0.0f) p.y = std::max(p.y, state.ground_y);
+      }
+    }
     result.energy_start = solver::energy::incremental_potential(at_start, predicted, h);
   }
   const solver::newton::NewtonResult newton = solver::newton::newton_reference(state, predicted, h);

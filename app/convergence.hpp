@@ -19,7 +19,7 @@ struct ConvergeOptions {
   std::vector<std::string> schedules{"single"};  // single, split, heft, async
   std::vector<std::string> merges{"average_displacements", "average_positions", "main_precedence"};
   int max_iterations = 64;     // k = 1, 2, 4, …, max (and max itself)
-  int frames_before = 10;      // simulated first, serially, to reach a moving state
+  int frames_before = 10;      // simulated first (the scene's solver.method, one device) to reach a moving state
   int timing_repeats = 3;      // substeps timed per point; the median counts
 };
 

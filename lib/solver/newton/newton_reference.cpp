@@ -1,5 +1,6 @@
 #include "solver/newton/newton_reference.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -19,35 +20,60 @@ constexpr double kEnergyRounding = 1e-13;
 struct Point {
   Eigen::VectorXd x;
   double energy = 0.0;
-  Eigen::VectorXd gradient;  // free coordinates
+  Eigen::VectorXd gradient;  // full, 3 per particle
 };
 
-Point evaluate(const energy::IncrementalPotential& p, const FreeDofs& dofs, Eigen::VectorXd x) {
+Point evaluate(const energy::IncrementalPotential& p, Eigen::VectorXd x) {
   Point out;
   out.energy = energy::total_energy(p, x);
-  out.gradient = restrict_to_free(dofs, energy::gradient(p, x));
+  out.gradient = energy::gradient(p, x);
   out.x = std::move(x);
   return out;
 }
 
-// Backtracking from the full Newton step; false when no step length works.
+// The ground bound y >= ground on every free particle (a projection).
+void project_to_ground(const energy::IncrementalPotential& p, const NewtonSettings& s, Eigen::VectorXd& x) {
+  if (!s.has_ground) return;
+  for (int i = 0; i < p.particle_count(); ++i) {
+    if (p.is_free(i) && x[3 * i + 1] < s.ground_y) x[3 * i + 1] = s.ground_y;
+  }
+}
+
+// The coordinates the ground holds: at the bound, with E pushing them down.
+// Newton then moves the others (an active-set projected Newton method,
+// Bertsekas 1982); the bound's KKT conditions hold where they stay fixed.
+FreeDofs step_dofs(const energy::IncrementalPotential& p, const NewtonSettings& s, const Point& at) {
+  if (!s.has_ground) return free_dofs(p);
+  std::vector<char> fixed(at.x.size(), 0);
+  const double tolerance = 1e-12 * std::max(1.0, std::abs(s.ground_y));
+  for (int i = 0; i < p.particle_count(); ++i) {
+    const int y = 3 * i + 1;
+    fixed[y] = at.x[y] <= s.ground_y + tolerance && at.gradient[y] > 0.0;
+  }
+  return free_dofs(p, fixed);
+}
+
+// Backtracking from the full Newton step, projected onto the ground bound;
+// false when no step length works.
 bool line_search(const energy::IncrementalPotential& p, const FreeDofs& dofs, const NewtonSettings& s, const Point& at,
                  const Eigen::VectorXd& direction, Point& next) {
-  const double slope = at.gradient.dot(direction);
-  if (!(slope < 0.0)) return false;
+  const Eigen::VectorXd g = restrict_to_free(dofs, at.gradient);
+  if (!(g.dot(direction) < 0.0)) return false;
   double step = 1.0;
   for (int b = 0; b <= s.max_backtracks; ++b, step *= 0.5) {
     Eigen::VectorXd x = at.x;
     add_free(dofs, step * direction, x);
+    project_to_ground(p, s, x);
     const double e = energy::total_energy(p, x);
     if (!std::isfinite(e)) continue;
-    if (e <= at.energy + s.armijo * step * slope) {
-      next = evaluate(p, dofs, std::move(x));
+    const double slope = at.gradient.dot(x - at.x);  // the projected step's first-order decrease
+    if (e <= at.energy + s.armijo * slope) {
+      next = evaluate(p, std::move(x));
       return true;
     }
     if (e - at.energy <= kEnergyRounding * std::abs(at.energy)) {
-      Point trial = evaluate(p, dofs, std::move(x));
-      if (trial.gradient.norm() < at.gradient.norm()) {
+      Point trial = evaluate(p, std::move(x));
+      if (restrict_to_free(step_dofs(p, s, trial), trial.gradient).norm() < g.norm()) {
         next = std::move(trial);
         return true;
       }
@@ -74,33 +100,44 @@ std::string_view to_string(NewtonStatus status) {
 
 NewtonResult newton_reference(const energy::IncrementalPotential& problem, const Eigen::VectorXd& x0,
                               const NewtonSettings& settings) {
-  const FreeDofs dofs = free_dofs(problem);
-  Point at = evaluate(problem, dofs, x0);
-  const double initial_norm = at.gradient.norm();
+  Eigen::VectorXd start = x0;
+  project_to_ground(problem, settings, start);
+  Point at = evaluate(problem, std::move(start));
+  // The gradient over the coordinates a step may move (the projected gradient).
+  const auto step_gradient_norm = [&](const Point& p) {
+    return restrict_to_free(step_dofs(problem, settings, p), p.gradient).norm();
+  };
+  const double initial_norm = step_gradient_norm(at);
   NewtonResult result;
   auto finish = [&](NewtonStatus status) {
     result.status = status;
     result.energy = at.energy;
-    result.gradient_norm = at.gradient.norm();
+    result.gradient_norm = step_gradient_norm(at);
     result.relative_gradient = initial_norm > 0.0 ? result.gradient_norm / initial_norm : 0.0;
     result.x = std::move(at.x);
     return result;
   };
   auto converged = [&] {
-    const double norm = at.gradient.norm();
+    const double norm = step_gradient_norm(at);
     return norm <= settings.absolute_tolerance || norm < settings.relative_tolerance * initial_norm;
   };
   if (converged()) return finish(NewtonStatus::converged);
 
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
+  std::vector<int> pattern;  // the free set the solver's pattern was analysed for
   for (int it = 0; it < settings.max_iterations; ++it) {
+    const FreeDofs dofs = step_dofs(problem, settings, at);
     const Eigen::SparseMatrix<double> H =
         free_matrix(dofs, energy::hessian_triplets(problem, at.x, settings.project_psd));
-    // Every element emits all its entries, so the pattern never changes.
-    if (it == 0) solver.analyzePattern(H);
+    // Every element emits all its entries, so the pattern changes only with
+    // the free set (ground contact).
+    if (dofs.slot != pattern) {
+      solver.analyzePattern(H);
+      pattern = dofs.slot;
+    }
     solver.factorize(H);
     if (solver.info() != Eigen::Success) return finish(NewtonStatus::factorization_failed);
-    const Eigen::VectorXd direction = solver.solve(-at.gradient);
+    const Eigen::VectorXd direction = solver.solve(-restrict_to_free(dofs, at.gradient));
     Point next;
     if (!line_search(problem, dofs, settings, at, direction, next)) return finish(NewtonStatus::line_search_failed);
     at = std::move(next);
@@ -113,7 +150,12 @@ NewtonResult newton_reference(const energy::IncrementalPotential& problem, const
 NewtonResult newton_reference(const xpbd::XpbdLayout& layout, const std::vector<xpbd::Float4>& predicted, double h,
                               const NewtonSettings& settings) {
   const energy::IncrementalPotential problem = energy::make_incremental_potential(layout, predicted, h);
-  return newton_reference(problem, problem.predicted, settings);
+  NewtonSettings s = settings;
+  if (layout.has_ground) {
+    s.has_ground = true;
+    s.ground_y = layout.ground_y;
+  }
+  return newton_reference(problem, problem.predicted, s);
 }
 
 }  // namespace atssim::solver::newton

@@ -36,13 +36,17 @@ struct NewtonSettings {
   bool project_psd = true;            // per-element PSD projection of the Hessian
   double armijo = 1e-4;               // sufficient decrease: E(x + a d) <= E + armijo a grad.d
   int max_backtracks = 50;            // step halvings before giving up
+  // The ground plane as a bound y >= ground_y on free particles (projected
+  // Newton with an active set), as every solver's collision task enforces.
+  bool has_ground = false;
+  double ground_y = 0.0;
 };
 
 struct NewtonResult {
   Eigen::VectorXd x;               // x*, 3 per particle; pinned particles as in x0
   double energy = 0.0;             // E(x*)
   int iterations = 0;              // Newton steps taken
-  double gradient_norm = 0.0;      // |grad E(x*)| over the free coordinates
+  double gradient_norm = 0.0;      // |grad E(x*)| over the free coordinates (those the ground does not hold)
   double relative_gradient = 0.0;  // gradient_norm / |grad E(x0)| (0 when x0 is the minimum)
   NewtonStatus status = NewtonStatus::iteration_limit;
 };
@@ -52,7 +56,8 @@ NewtonResult newton_reference(const energy::IncrementalPotential& problem, const
                               const NewtonSettings& settings = {});
 
 // The usual call: the substep of `layout` with predicted positions x~ and
-// step h, started at x0 = x~. Throws atssim::Error (input) if a constraint
+// step h, started at x0 = x~ (projected onto the ground; the layout's ground
+// plane bounds the minimisation). Throws atssim::Error (input) if a constraint
 // has compliance 0 (no finite energy) or a tet has mu <= 0 or lambda < 0.
 NewtonResult newton_reference(const xpbd::XpbdLayout& layout, const std::vector<xpbd::Float4>& predicted, double h,
                               const NewtonSettings& settings = {});

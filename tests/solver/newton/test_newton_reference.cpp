@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <sstream>
 
 #include "solver/energy/incremental_potential.hpp"
@@ -37,6 +38,38 @@ TEST_CASE("Newton finds the closed-form minimum of a particle on a spring", "[ne
   INFO("iterations " << r.iterations << " relative gradient " << r.relative_gradient);
   CHECK((r.x.segment<3>(3) - expected).norm() <= 1e-12);
   CHECK(r.x.segment<3>(0).norm() == 0.0);  // pinned stays
+}
+
+TEST_CASE("with a ground plane Newton finds the bound-constrained minimum of a particle on a spring", "[newton]") {
+  // As above, with x~ below the ground y = -0.2: the minimum sits on the
+  // ground, and in the xz plane on the ray to x~'s footprint at distance s with
+  // m/h^2 (s - s~) + k (r - L) s / r = 0, r = |(s, 0.2)| (found by bisection).
+  xpbd::XpbdLayout layout;
+  const float w = 100.0f;
+  layout.x = {{0, 0, 0, 0}, {0.3f, -0.4f, 0.1f, w}};
+  layout.v = {{}, {}};
+  layout.stretch = {{0, 1, 0.25f, 1e-3f}};
+  layout.has_ground = true;
+  layout.ground_y = -0.2f;
+  const double h = 0.01;
+  const auto r = newton::newton_reference(layout, layout.x, h);
+  REQUIRE(r.status == newton::NewtonStatus::converged);
+  const double m_h2 = 1.0 / double(w) / (h * h), k = 1.0 / double(1e-3f), L = double(0.25f);
+  const Eigen::Vector2d foot(0.3f, 0.1f);
+  const double height = -double(-0.2f), s_tilde = foot.norm();
+  const auto force = [&](double s) {
+    const double radius = std::hypot(s, height);
+    return m_h2 * (s - s_tilde) + k * (radius - L) * s / radius;
+  };
+  double lo = 0.0, hi = s_tilde;  // force(0) < 0 < force(s~)
+  for (int i = 0; i < 200; ++i) (force(0.5 * (lo + hi)) < 0 ? lo : hi) = 0.5 * (lo + hi);
+  const Eigen::Vector2d xz = 0.5 * (lo + hi) * foot.normalized();
+  CHECK(r.x[4] == double(-0.2f));  // on the ground, not below it
+  CHECK(std::abs(r.x[3] - xz.x()) <= 1e-12);
+  CHECK(std::abs(r.x[5] - xz.y()) <= 1e-12);
+  // KKT: the ground holds the particle up (E would fall by moving it down).
+  const energy::IncrementalPotential problem = energy::make_incremental_potential(layout, layout.x, h);
+  CHECK(energy::gradient(problem, r.x)[4] > 0.0);
 }
 
 TEST_CASE("Newton converges on a moving cloth and bounds XPBD's energy from below", "[newton]") {
