@@ -38,4 +38,19 @@ ATS_FN ats_solve3 ats_m3_solve(ats_mat3 h, ats_vec3 b) {
   return s;
 }
 
+/* A vertex step d = H^-1 f that would cross the ground y = ground, redone
+ * with y held at the ground: the 2x2 system in x, z of the same quadratic model with
+ * dy = ground - y, so a vertex in contact takes the exact minimiser of its
+ * block under the bound y >= ground (projecting the free step afterwards
+ * would not: H couples y with x and z). */
+ATS_FN ats_vec3 ats_vertex_step_above_ground(ats_mat3 h, ats_vec3 f, ats_vec3 d, ats_real y, ats_real ground) {
+  const ats_real dy = ground - y;
+  const ats_real bx = f.x - h.r[0].y * dy, bz = f.z - h.r[2].y * dy;
+  const ats_real a = h.r[0].x, b = h.r[0].z, c = h.r[2].x, e = h.r[2].z;
+  const ats_real det = a * e - b * c;
+  const ats_real scale = fmax(fmax(fabs(a), fabs(e)), fmax(fabs(b), fabs(c)));
+  if (!(fabs(det) > (ats_real)1e-6 * scale * scale)) return ats_v3(d.x, dy, d.z);
+  return ats_v3((e * bx - b * bz) / det, dy, (a * bz - c * bx) / det);
+}
+
 #endif

@@ -18,8 +18,8 @@
 __kernel void jpgd_step(__global const float4* x, __global const float4* x_before, __global float4* x_next,
                         __global const float4* x_tilde, __global const int* adj_offsets, __global const int* adj,
                         __global const ats_distance_c* stretch, __global const ats_bend_c* bend,
-                        __global const ats_tet_c* tets, float inv_h2, float alpha, float omega, float beta, int first,
-                        int count) {
+                        __global const ats_tet_c* tets, float inv_h2, float alpha, float omega, float beta,
+                        int has_ground, float ground, int first, int count) {
   const int k = get_global_id(0);
   if (k >= count) return;
   const int i = first + k;
@@ -30,7 +30,12 @@ __kernel void jpgd_step(__global const float4* x, __global const float4* x_befor
   }
   const vertex_system s = gather_vertex_system(i, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend, tets);
   const ats_solve3 d = ats_m3_solve(s.h, s.f);
-  const float3 stepped = (float3)(p.x + alpha * d.x.x, p.y + alpha * d.x.y, p.z + alpha * d.x.z);
+  ats_vec3 step = ats_scale(d.x, alpha);
+  if (d.ok && has_ground && p.y + step.y < ground) {
+    step = ats_scale(ats_vertex_step_above_ground(s.h, s.f, d.x, p.y, ground), alpha);
+    step.y = ground - p.y;  /* the bound itself, not alpha of the way to it */
+  }
+  const float3 stepped = (float3)(p.x + step.x, p.y + step.y, p.z + step.z);
   const float3 before = x_before[i].xyz;
   const float3 next = omega * (stepped - before) + before + beta * ((float3)(p.x, p.y, p.z) - before);
   x_next[i] = (float4)(next, p.w);

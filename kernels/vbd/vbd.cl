@@ -14,7 +14,7 @@
 __kernel void vbd_solve(__global float4* x, __global const float4* x_tilde, __global const int* adj_offsets,
                         __global const int* adj, __global const ats_distance_c* stretch,
                         __global const ats_bend_c* bend, __global const ats_tet_c* tets, __global const int* order,
-                        float inv_h2, int first, int count) {
+                        float inv_h2, int has_ground, float ground, int first, int count) {
   const int k = get_global_id(0);
   if (k >= count) return;
   const int i = order[first + k];
@@ -22,5 +22,7 @@ __kernel void vbd_solve(__global float4* x, __global const float4* x_tilde, __gl
   const ats_solve3 d = ats_m3_solve(s.h, s.f);
   if (!d.ok) return;
   const float4 p = x[i];
-  x[i] = (float4)(p.x + d.x.x, p.y + d.x.y, p.z + d.x.z, p.w);
+  ats_vec3 step = d.x;
+  if (has_ground && p.y + step.y < ground) step = ats_vertex_step_above_ground(s.h, s.f, step, p.y, ground);
+  x[i] = (float4)(p.x + step.x, p.y + step.y, p.z + step.z, p.w);
 }

@@ -46,8 +46,9 @@ SubstepPlan make_jpgd_plan(const xpbd::XpbdLayout& layout, const JpgdSettings& s
            Arg::of_buffer(b.adjacency_offsets), Arg::of_buffer(b.adjacency), Arg::of_buffer(b.stretch),
            Arg::of_buffer(b.bend), Arg::of_buffer(b.tets), Arg::of_float(inv_h2),
            Arg::of_float(static_cast<float>(settings.step)), Arg::of_float(static_cast<float>(omega[it])),
-           Arg::of_float(it == 0 ? 0.0f : beta), Arg::of_int(0), Arg::of_int(n)},
-          13}});
+           Arg::of_float(it == 0 ? 0.0f : beta), Arg::of_int(layout.has_ground ? 1 : 0),
+           Arg::of_float(layout.ground_y), Arg::of_int(0), Arg::of_int(n)},
+          15}});
     plan.graph.add_edge(last, t);
     last = add_ground_task(plan, t, layout, next, it);
   }

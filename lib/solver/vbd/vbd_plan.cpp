@@ -24,8 +24,9 @@ SubstepPlan make_vbd_plan(const xpbd::XpbdLayout& layout, double substep_dt, int
           {{"vbd_solve", static_cast<std::size_t>(count),
             {Arg::of_buffer(b.x), Arg::of_buffer(b.x_tilde), Arg::of_buffer(b.adjacency_offsets),
              Arg::of_buffer(b.adjacency), Arg::of_buffer(b.stretch), Arg::of_buffer(b.bend), Arg::of_buffer(b.tets),
-             Arg::of_buffer(b.order), Arg::of_float(inv_h2), Arg::of_int(first), Arg::of_int(count)},
-            9}});
+             Arg::of_buffer(b.order), Arg::of_float(inv_h2), Arg::of_int(layout.has_ground ? 1 : 0),
+             Arg::of_float(layout.ground_y), Arg::of_int(first), Arg::of_int(count)},
+            11}});
       plan.graph.add_edge(last, t);
       last = t;
     }
