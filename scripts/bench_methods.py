@@ -37,6 +37,7 @@ def main() -> int:
     ap.add_argument("--frames", type=int, default=8)
     ap.add_argument("--budget-ms", type=float, default=10.0, help="wall time per substep for the accuracy column")
     ap.add_argument("--iterations", type=int, default=128, help="largest k tried for the accuracy column")
+    ap.add_argument("--frames-before", type=int, default=10, help="frames simulated before the accuracy substep")
     ap.add_argument("--scene", default=SCENE, help="scene file (default: the hanging cloth, resized)")
     ap.add_argument("--methods", default=",".join(METHODS), help="comma separated")
     ap.add_argument("--set", action="append", default=[], help="scene override KEY=VALUE for every run (repeatable)")
@@ -57,7 +58,7 @@ def main() -> int:
         out = os.path.join(tmp, "out.h5")
         conv = os.path.join(tmp, "conv.h5")
         subprocess.run([BIN, "converge", args.scene, "-o", conv, "--devices", "cpu/2", "--methods", ",".join(methods),
-                        "--schedules", "single,heft", "--iterations", str(args.iterations), "--frames-before", "10",
+                        "--schedules", "single,heft", "--iterations", str(args.iterations), "--frames-before", str(args.frames_before),
                         *sets], check=True, stdout=subprocess.DEVNULL)
         with h5py.File(conv, "r") as f:
             c = f["convergence"]
