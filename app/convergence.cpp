@@ -66,6 +66,11 @@ std::vector<Variant> variants_of(const ConvergeOptions& o) {
       }
     }
   }
+  if (out.empty()) {
+    throw input_error(
+        "--schedules async applies to Gauss-Seidel methods only (xpbd, vbd), and --methods names none: add "
+        "single, split or heft to --schedules");
+  }
   return out;
 }
 

@@ -49,6 +49,11 @@ TEST_CASE("converge rejects unknown schedules and infinitely stiff scenes") {
   o.scene_path = dir.write("cloth.yaml", test::hanging_cloth_yaml(6));
   o.schedules = {"sometimes"};
   CHECK_THROWS_AS(app::run_convergence(o), Error);
+  // async with Jacobi methods only: nothing to run, said instead of an empty file
+  o.schedules = {"async"};
+  o.methods = {"sosd", "jpgd"};
+  CHECK_THROWS_WITH(app::run_convergence(o), Catch::Contains("Gauss-Seidel methods only"));
+  o.methods = {"xpbd"};
   o.schedules = {"single"};
   o.scene_path = dir.write("stiff.yaml",
                            "objects:\n  - grid: {size: [1, 1], resolution: [6, 6]}\n"
