@@ -181,8 +181,9 @@ __kernel void sosd_tet(__global const float4* x, __global const float4* sys, __g
  * none. */
 __kernel void sosd_combine(__global float4* x, __global const int* adj_offsets, __global const int* adj,
                            __global const float4* d_stretch, __global const float4* d_bend,
-                           __global const float4* d_tet, int main_kind, int main_first, int main_end,
-                           float step, int first, int count) {
+                           __global const float4* d_tet, __global const float4* sys, int main_kind,
+                           int main_first, int main_end, float step, int has_ground, float ground, int first,
+                           int count) {
   const int k = get_global_id(0);
   if (k >= count) return;
   const int i = first + k;
@@ -190,18 +191,29 @@ __kernel void sosd_combine(__global float4* x, __global const int* adj_offsets, 
   if (p.w == 0.0f) return;
   float4 sum = (float4)(0.0f);
   int n = 0;
+  int has_main = 0;
+  float4 main = (float4)(0.0f);
   for (int j = adj_offsets[i]; j < adj_offsets[i + 1]; ++j) {
     const int code = adj[j];
     const int e = code >> 4, kind = (code >> 2) & 3, slot = code & 3;
     const float4 dj = kind == 0 ? d_stretch[2 * e + slot] : kind == 1 ? d_bend[4 * e + slot] : d_tet[4 * e + slot];
     if (kind == main_kind && e >= main_first && e < main_end) {
-      x[i] = (float4)(p.x + step * dj.x, p.y + step * dj.y, p.z + step * dj.z, p.w);
-      return;
+      has_main = 1;
+      main = dj;
     }
     sum += dj;
     ++n;
   }
   if (n == 0) return;
-  const float inv = step / (float)n;
-  x[i] = (float4)(p.x + sum.x * inv, p.y + sum.y * inv, p.z + sum.z * inv, p.w);
+  float4 dx = step * (has_main ? main : sum / (float)n);
+  if (has_ground && p.y + dx.y < ground) {
+    /* a vertex pushed into the ground takes its own block's step with y
+     * held there (as VBD does), not a projection of the stencils' step */
+    const ats_mat3 h = sosd_block(sys, i);
+    const ats_vec3 f = vs_xyz(sys[4 * i]);
+    const ats_solve3 free_step = ats_m3_solve(h, f);
+    const ats_vec3 s = ats_vertex_step_above_ground(h, f, free_step.x, p.y, ground);
+    dx = (float4)(step * s.x, ground - p.y, step * s.z, 0.0f);
+  }
+  x[i] = (float4)(p.x + dx.x, p.y + dx.y, p.z + dx.z, p.w);
 }

@@ -93,10 +93,11 @@ SubstepPlan make_sosd_plan(const xpbd::XpbdLayout& layout, double substep_dt, in
         {fmt::format("it{}/combine", it + 1), "combine", it, -1},
         {{"sosd_combine", static_cast<std::size_t>(n),
           {Arg::of_buffer(b.x), Arg::of_buffer(b.adjacency_offsets), Arg::of_buffer(b.adjacency),
-           Arg::of_buffer(d[0]), Arg::of_buffer(d[1]), Arg::of_buffer(d[2]), Arg::of_int(main.kind),
-           Arg::of_int(main.first), Arg::of_int(main.end), Arg::of_float(static_cast<float>(step)),
-           Arg::of_int(0), Arg::of_int(n)},
-          10}});
+           Arg::of_buffer(d[0]), Arg::of_buffer(d[1]), Arg::of_buffer(d[2]), Arg::of_buffer(systems),
+           Arg::of_int(main.kind), Arg::of_int(main.first), Arg::of_int(main.end),
+           Arg::of_float(static_cast<float>(step)), Arg::of_int(layout.has_ground ? 1 : 0),
+           Arg::of_float(layout.ground_y), Arg::of_int(0), Arg::of_int(n)},
+          13}});
     for (sched::TaskId t : stencil_tasks) plan.graph.add_edge(t, combine);
     if (stencil_tasks.empty()) plan.graph.add_edge(systems_task, combine);
     last = add_ground_task(plan, combine, layout, b.x, it);
