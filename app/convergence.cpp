@@ -22,7 +22,7 @@ namespace atssim::app {
 
 namespace {
 
-using solver::xpbd::Float4;
+using solver::Float4;
 
 std::vector<Float4> as_float4(const std::vector<std::byte>& raw) {
   std::vector<Float4> out(raw.size() / sizeof(Float4));
@@ -92,7 +92,7 @@ io::ConvergenceResult run_convergence(const ConvergeOptions& o) {
   // (solver.method), on one device.
   scene::check_method_support(scene, scene.solver.method);
   const model::Model model = model::build_model(scene);
-  solver::xpbd::XpbdLayout state = solver::xpbd::make_xpbd_layout(model);
+  solver::SimLayout state = solver::make_sim_layout(model);
   {
     const solver::SubstepPlan plan =
         solver::make_method_plan(scene.solver.method, state, h, sim.iterations, method_options(scene.solver));
@@ -115,7 +115,7 @@ io::ConvergenceResult run_convergence(const ConvergeOptions& o) {
   {
     // E0 at x~, held above the ground as every method's collision task does
     // (a feasible start: E* <= E0 then holds with the ground bound too).
-    solver::xpbd::XpbdLayout at_start = state;
+    solver::SimLayout at_start = state;
     at_start.x = predicted;
     if (state.has_ground) {
       for (Float4& p : at_start.x) {
@@ -150,7 +150,7 @@ io::ConvergenceResult run_convergence(const ConvergeOptions& o) {
         x = as_float4(e.executor->read(e.plan->positions));
       }
       std::nth_element(times.begin(), times.begin() + times.size() / 2, times.end());
-      solver::xpbd::XpbdLayout after = state;
+      solver::SimLayout after = state;
       after.x = x;
       const double energy = solver::energy::incremental_potential(after, predicted, h);
       trace.iterations.push_back(k);

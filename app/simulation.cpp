@@ -66,7 +66,7 @@ solver::MethodOptions method_options(const scene::SolverDesc& solver) {
 solver::SubstepPlan substep_plan_for(const scene::SceneDesc& scene) {
   const auto& sim = scene.simulation;
   const model::Model model = model::build_model(scene);
-  return solver::make_method_plan(scene.solver.method, solver::xpbd::make_xpbd_layout(model),
+  return solver::make_method_plan(scene.solver.method, solver::make_sim_layout(model),
                                   sim.frame_dt / sim.substeps, sim.iterations, method_options(scene.solver));
 }
 
@@ -82,7 +82,7 @@ RunResult run_simulation(const RunOptions& options, const std::function<void(con
   // is one stage's worth, not the sum (docs/benchmarks.md: bytes per vertex).
   model::Model model = model::build_model(scene);
   const std::size_t particles = model.particles.size();
-  solver::xpbd::XpbdLayout layout = solver::xpbd::make_xpbd_layout(model);
+  solver::SimLayout layout = solver::make_sim_layout(model);
   release_simulation_state(model);
   solver::SubstepPlan plan =
       solver::make_method_plan(scene.solver.method, layout, settings.substep_dt, settings.iterations,

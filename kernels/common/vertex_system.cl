@@ -11,7 +11,7 @@
 #include "common/energy_stretch.h"
 #include "common/energy_tet_neohookean.h"
 #include "common/energy_tet_stvk.h"
-#include "common/xpbd_types.h"
+#include "common/element_types.h"
 
 typedef struct {
   ats_vec3 f;

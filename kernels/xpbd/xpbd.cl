@@ -3,7 +3,7 @@
  * Each constraint kernel works on one color block, elements
  * [first, first + count) of its array, that share no movable particle. */
 #include "common/ats_math.h"
-#include "common/xpbd_types.h"
+#include "common/element_types.h"
 #include "common/xpbd_distance.h"
 #include "common/xpbd_bending.h"
 #include "common/xpbd_tet.h"

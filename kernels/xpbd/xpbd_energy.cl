@@ -12,7 +12,7 @@
 #pragma OPENCL FP_CONTRACT OFF
 
 #include "common/ats_math.h"
-#include "common/xpbd_types.h"
+#include "common/element_types.h"
 #include "common/energy_inertia.h"
 #include "common/energy_stretch.h"
 #include "common/energy_bending.h"

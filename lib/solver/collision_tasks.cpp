@@ -4,7 +4,7 @@
 
 namespace atssim::solver {
 
-sched::TaskId add_ground_task(SubstepPlan& plan, sched::TaskId last, const xpbd::XpbdLayout& layout,
+sched::TaskId add_ground_task(SubstepPlan& plan, sched::TaskId last, const SimLayout& layout,
                               BufferId positions, int iteration) {
   if (!layout.has_ground) return last;
   const int n = static_cast<int>(layout.x.size());

@@ -22,7 +22,7 @@ std::span<const std::string_view> method_names() { return kMethods; }
 // one combine step per iteration; its stencil solves are Jacobi sweeps.
 bool is_gauss_seidel(const std::string& method) { return method == "xpbd" || method == "vbd"; }
 
-SubstepPlan make_method_plan(const std::string& method, const xpbd::XpbdLayout& layout, double substep_dt,
+SubstepPlan make_method_plan(const std::string& method, const SimLayout& layout, double substep_dt,
                              int iterations, const MethodOptions& options) {
   if (method == "xpbd") return xpbd::make_xpbd_plan(layout, {substep_dt, iterations});
   if (method == "vbd") return vbd::make_vbd_plan(layout, substep_dt, iterations);

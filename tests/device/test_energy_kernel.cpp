@@ -38,11 +38,11 @@ TEST_CASE("the device energy kernels equal the host incremental potential on a m
   // Stiff springs (1e4) near rest length: the case where a naive float
   // |xa - xb| - L loses most of its digits.
   const double h = 1.0 / 240.0;
-  const xpbd::XpbdLayout start = test::moving_cloth(16, 1e4, 1e-2, h);
+  const SimLayout start = test::moving_cloth(16, 1e4, 1e-2, h);
   const auto predicted = energy::predicted_positions(start, h);
   xpbd::XpbdReference step(start, {h, 8});  // one substep on: x away from x~
   step.substep();
-  const xpbd::XpbdLayout& state = step.state();
+  const SimLayout& state = step.state();
 
   energy::EnergyBuffers ids;
   const SubstepPlan plan = energy::make_energy_plan(start, predicted, h, &ids);
@@ -84,10 +84,10 @@ TEST_CASE("the device energy kernels equal the host incremental potential on a m
 TEST_CASE("the device energy kernels equal the host incremental potential on a moving soft box", "[energy][tet]") {
   const std::string model = GENERATE("neo_hookean", "stvk");
   const double h = 1.0 / 240.0;
-  const xpbd::XpbdLayout start = test::moving_soft_box(4, model, 5, 0.05);
+  const SimLayout start = test::moving_soft_box(4, model, 5, 0.05);
   const auto predicted = energy::predicted_positions(start, h);
-  xpbd::XpbdLayout state = start;  // evaluate another deformed state than x0
-  const xpbd::XpbdLayout other = test::moving_soft_box(4, model, 6, 0.08);
+  SimLayout state = start;  // evaluate another deformed state than x0
+  const SimLayout other = test::moving_soft_box(4, model, 6, 0.08);
   state.x = other.x;
 
   energy::EnergyBuffers ids;

@@ -11,6 +11,7 @@
 #include "support/scenes.hpp"
 
 using namespace atssim;
+using namespace atssim::solver;
 using namespace atssim::solver::xpbd;
 
 namespace {
@@ -31,11 +32,11 @@ TEST_CASE("the OpenCL kernels and the host reference agree to 1e-5 after one sub
   const char* svm = GENERATE("coarse", "fine");
   const auto m = model::build_model(scene::parse_scene(test::hanging_cloth_yaml(16, 1e4, 1e-2), "s.yaml", "."));
   const XpbdSettings settings{1.0 / 240.0, 8};
-  const XpbdLayout layout = make_xpbd_layout(m);
+  const SimLayout layout = make_sim_layout(m);
   XpbdBuffers ids;
   const auto plan = make_xpbd_plan(layout, settings, &ids);
   // Start from a disturbed, moving state so every term does work.
-  XpbdLayout start = layout;
+  SimLayout start = layout;
   for (std::size_t i = 0; i < start.v.size(); ++i) {
     start.v[i] = {0.3f * std::sin(float(i)), 0.2f * std::cos(0.7f * float(i)), 0.1f, 0.0f};
   }
@@ -74,7 +75,7 @@ TEST_CASE("without constraints the OpenCL XPBD reproduces discrete free fall to 
   const auto m = model::build_model(scene::parse_scene(yaml, "s.yaml", "."));
   const double h = 1.0 / 960.0;
   XpbdBuffers ids;
-  const auto plan = make_xpbd_plan(make_xpbd_layout(m), {h, 8}, &ids);
+  const auto plan = make_xpbd_plan(make_sim_layout(m), {h, 8}, &ids);
   CHECK(plan.graph.size() == 2);  // predict and update velocity only
   const auto devices = device::DeviceSet::open("cpu");
   device::PlanExecutor exec(devices, plan);
@@ -92,7 +93,7 @@ TEST_CASE("without constraints the OpenCL XPBD reproduces discrete free fall to 
 TEST_CASE("pinned particles never move on the device") {
   const auto m = model::build_model(scene::parse_scene(test::hanging_cloth_yaml(12), "s.yaml", "."));
   XpbdBuffers ids;
-  const auto plan = make_xpbd_plan(make_xpbd_layout(m), {1.0 / 240.0, 8}, &ids);
+  const auto plan = make_xpbd_plan(make_sim_layout(m), {1.0 / 240.0, 8}, &ids);
   const auto devices = device::DeviceSet::open("cpu");
   device::PlanExecutor exec(devices, plan);
   exec.enqueue_substeps(40);

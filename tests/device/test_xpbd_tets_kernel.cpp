@@ -14,6 +14,7 @@
 #include "support/positions.hpp"
 
 using namespace atssim;
+using namespace atssim::solver;
 using namespace atssim::solver::xpbd;
 using atssim::test::max_distance;
 
@@ -46,7 +47,7 @@ TEST_CASE("a rest StVK box of many tets stays at rest to 1e-6 on the device with
   const double youngs = GENERATE(5.0e4, 1.0e7);
   const std::string pins = GENERATE(std::string(""), std::string("    pins: {vertices: [0, 1, 2]}\n"));
   const auto m = stvk_box("[0, 0, 0]", "[0.4, 0.4, 0.4]", "[4, 4, 4]", youngs, pins);
-  const XpbdLayout layout = make_xpbd_layout(m);
+  const SimLayout layout = make_sim_layout(m);
   REQUIRE(layout.tets.size() == 6 * 64);
   XpbdBuffers ids;
   const auto plan = make_xpbd_plan(layout, {1.0 / 960.0, 10}, &ids);
@@ -65,7 +66,7 @@ TEST_CASE("the xpbd_tet kernel and the host reference agree to 1e-5 on a moving 
   const auto m = stvk_box("[0, -9.81, 0]", "[0.2, 1.0, 0.2]", "[2, 6, 2]", 1.0e5,
                           "    pins: {vertices: [0, 1, 2, 3]}\n");
   const XpbdSettings settings{1.0 / 240.0, 8};
-  XpbdLayout start = make_xpbd_layout(m);
+  SimLayout start = make_sim_layout(m);
   // A disturbed, moving state so that every constraint does work.
   for (std::size_t i = 0; i < start.v.size(); ++i) {
     if (start.x[i].w == 0.0f) continue;
@@ -87,7 +88,7 @@ TEST_CASE("the xpbd_tet kernel and the host reference agree to 1e-5 on a moving 
   const double dv = max_distance(gpu_v, ref.state().v);
   // How far the tets moved the particles away from free flight: the kernel
   // must have done real work for the comparison to mean anything.
-  XpbdLayout free = start;
+  SimLayout free = start;
   free.tets.clear();
   free.tet_blocks.clear();
   XpbdReference unconstrained(free, settings);

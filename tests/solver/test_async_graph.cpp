@@ -15,7 +15,7 @@ namespace {
 
 solver::SubstepPlan serial_plan(int iterations) {
   const auto m = model::build_model(scene::parse_scene(test::hanging_cloth_yaml(10, 1e4, 1e-3, iterations), "s.yaml", "."));
-  return solver::xpbd::make_xpbd_plan(solver::xpbd::make_xpbd_layout(m), {1.0 / 240.0, iterations});
+  return solver::xpbd::make_xpbd_plan(solver::make_sim_layout(m), {1.0 / 240.0, iterations});
 }
 
 // Whether `to` is reachable from `from`.

@@ -14,7 +14,7 @@ namespace {
 
 solver::SubstepPlan cloth_plan() {
   const auto m = model::build_model(scene::parse_scene(test::hanging_cloth_yaml(40), "s.yaml", "."));
-  return solver::xpbd::make_xpbd_plan(solver::xpbd::make_xpbd_layout(m), {1.0 / 240.0, 2});
+  return solver::xpbd::make_xpbd_plan(solver::make_sim_layout(m), {1.0 / 240.0, 2});
 }
 
 // (kernel, first element) -> count, over every launch of the plan.

@@ -4,12 +4,12 @@
 #include <cmath>
 #include <vector>
 
-#include "solver/xpbd/xpbd_layout.hpp"
+#include "solver/layout/sim_layout.hpp"
 
 namespace atssim::test {
 
 // The largest coordinate difference between two particle arrays (xyz).
-inline double max_distance(const std::vector<solver::xpbd::Float4>& a, const std::vector<solver::xpbd::Float4>& b) {
+inline double max_distance(const std::vector<solver::Float4>& a, const std::vector<solver::Float4>& b) {
   double worst = 0.0;
   for (std::size_t i = 0; i < a.size(); ++i) {
     worst = std::max({worst, double(std::abs(a[i].x - b[i].x)), double(std::abs(a[i].y - b[i].y)),

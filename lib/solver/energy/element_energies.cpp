@@ -10,17 +10,17 @@
 namespace atssim::solver::energy {
 
 namespace {
-ats_vec3 xyz(const xpbd::Float4& p) { return ats_v3(p.x, p.y, p.z); }
+ats_vec3 xyz(const Float4& p) { return ats_v3(p.x, p.y, p.z); }
 }  // namespace
 
-std::vector<float> element_energies(const xpbd::XpbdLayout& layout, const std::vector<xpbd::Float4>& predicted,
+std::vector<float> element_energies(const SimLayout& layout, const std::vector<Float4>& predicted,
                                     double h) {
   const EnergyOutput where = energy_output(layout);
   std::vector<float> out(where.size, 0.0f);
   // As the kernel gets it: 1/h^2 rounded to float once.
   const float inv_h2 = static_cast<float>(1.0 / (h * h));
   for (std::size_t i = 0; i < layout.x.size(); ++i) {
-    const xpbd::Float4& p = layout.x[i];
+    const Float4& p = layout.x[i];
     if (p.w > 0.0f) out[where.inertia_first + i] = ats_inertia_energy(xyz(p), xyz(predicted[i]), 1.0f / p.w, inv_h2);
   }
   for (std::size_t i = 0; i < layout.stretch.size(); ++i) {

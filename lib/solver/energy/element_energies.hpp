@@ -4,11 +4,11 @@
 // Tests compare the device against it element by element.
 #include <vector>
 
-#include "solver/xpbd/xpbd_layout.hpp"
+#include "solver/layout/sim_layout.hpp"
 
 namespace atssim::solver::energy {
 
-std::vector<float> element_energies(const xpbd::XpbdLayout& layout, const std::vector<xpbd::Float4>& predicted,
+std::vector<float> element_energies(const SimLayout& layout, const std::vector<Float4>& predicted,
                                     double h);
 
 }  // namespace atssim::solver::energy

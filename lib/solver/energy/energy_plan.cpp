@@ -24,7 +24,7 @@ KernelLaunch element_launch(const char* kernel, BufferId x, BufferId elements, B
 
 }  // namespace
 
-EnergyOutput energy_output(const xpbd::XpbdLayout& layout) {
+EnergyOutput energy_output(const SimLayout& layout) {
   EnergyOutput o;
   o.inertia_first = 0;
   o.stretch_first = static_cast<int>(layout.x.size());
@@ -34,7 +34,7 @@ EnergyOutput energy_output(const xpbd::XpbdLayout& layout) {
   return o;
 }
 
-SubstepPlan make_energy_plan(const xpbd::XpbdLayout& layout, const std::vector<xpbd::Float4>& predicted, double h,
+SubstepPlan make_energy_plan(const SimLayout& layout, const std::vector<Float4>& predicted, double h,
                              EnergyBuffers* ids) {
   if (predicted.size() != layout.x.size()) {
     throw input_error(

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "solver/substep_plan.hpp"
-#include "solver/xpbd/xpbd_layout.hpp"
+#include "solver/layout/sim_layout.hpp"
 
 namespace atssim::solver::energy {
 
@@ -27,12 +27,12 @@ struct EnergyOutput {
   int size = 0;
 };
 
-EnergyOutput energy_output(const xpbd::XpbdLayout& layout);
+EnergyOutput energy_output(const SimLayout& layout);
 
 // Throws atssim::Error (input) when a constraint has compliance 0 (no finite
 // energy), a tet has mu <= 0 or lambda < 0, or predicted and the layout
 // differ in size.
-SubstepPlan make_energy_plan(const xpbd::XpbdLayout& layout, const std::vector<xpbd::Float4>& predicted, double h,
+SubstepPlan make_energy_plan(const SimLayout& layout, const std::vector<Float4>& predicted, double h,
                              EnergyBuffers* ids = nullptr);
 
 }  // namespace atssim::solver::energy

@@ -24,12 +24,12 @@ void check(const std::vector<Constraint>& constraints, const char* kind) {
 
 }  // namespace
 
-void require_finite_stiffness(const xpbd::XpbdLayout& layout) {
+void require_finite_stiffness(const SimLayout& layout) {
   check(layout.stretch, "stretch");
   check(layout.bend, "bend");
 }
 
-void require_valid_tets(const xpbd::XpbdLayout& layout) {
+void require_valid_tets(const SimLayout& layout) {
   for (std::size_t i = 0; i < layout.tets.size(); ++i) {
     const ats_tet_c& t = layout.tets[i];
     // Negated comparisons so that NaN fails them too.

@@ -8,8 +8,8 @@
 
 namespace atssim::solver::energy {
 
-IncrementalPotential make_incremental_potential(const xpbd::XpbdLayout& layout,
-                                                const std::vector<xpbd::Float4>& predicted, double h) {
+IncrementalPotential make_incremental_potential(const SimLayout& layout,
+                                                const std::vector<Float4>& predicted, double h) {
   if (predicted.size() != layout.x.size()) {
     throw input_error(fmt::format("incremental potential: {} predicted positions for {} particles", predicted.size(),
                                   layout.x.size()));
@@ -55,13 +55,13 @@ IncrementalPotential make_incremental_potential(const xpbd::XpbdLayout& layout,
   return p;
 }
 
-Eigen::VectorXd positions_of(const std::vector<xpbd::Float4>& x) {
+Eigen::VectorXd positions_of(const std::vector<Float4>& x) {
   Eigen::VectorXd out(3 * static_cast<Eigen::Index>(x.size()));
   for (std::size_t i = 0; i < x.size(); ++i) out.segment<3>(3 * static_cast<Eigen::Index>(i)) << x[i].x, x[i].y, x[i].z;
   return out;
 }
 
-double incremental_potential(const xpbd::XpbdLayout& layout, const std::vector<xpbd::Float4>& predicted, double h) {
+double incremental_potential(const SimLayout& layout, const std::vector<Float4>& predicted, double h) {
   return total_energy(make_incremental_potential(layout, predicted, h), positions_of(layout.x));
 }
 

@@ -14,7 +14,7 @@
 
 #include <Eigen/Core>
 
-#include "solver/xpbd/xpbd_layout.hpp"
+#include "solver/layout/sim_layout.hpp"
 
 namespace atssim::solver::energy {
 
@@ -58,13 +58,13 @@ struct IncrementalPotential {
 // infinitely stiff constraint has no finite energy, so converging needs
 // finite stiffness. Also when a tet has mu <= 0, lambda < 0 or an unknown
 // model, and when predicted and the layout differ in size.
-IncrementalPotential make_incremental_potential(const xpbd::XpbdLayout& layout,
-                                                const std::vector<xpbd::Float4>& predicted, double h);
+IncrementalPotential make_incremental_potential(const SimLayout& layout,
+                                                const std::vector<Float4>& predicted, double h);
 
 // xyz of float4 positions as one vector of 3 n doubles.
-Eigen::VectorXd positions_of(const std::vector<xpbd::Float4>& x);
+Eigen::VectorXd positions_of(const std::vector<Float4>& x);
 
 // E at the layout's positions (layout.x), in double; masses from layout.x[i].w.
-double incremental_potential(const xpbd::XpbdLayout& layout, const std::vector<xpbd::Float4>& predicted, double h);
+double incremental_potential(const SimLayout& layout, const std::vector<Float4>& predicted, double h);
 
 }  // namespace atssim::solver::energy

@@ -2,13 +2,13 @@
 
 namespace atssim::solver::energy {
 
-std::vector<xpbd::Float4> predicted_positions(const xpbd::XpbdLayout& layout, double h) {
+std::vector<Float4> predicted_positions(const SimLayout& layout, double h) {
   // Same float operations in the same order as XpbdReference::predict.
   const float dt = static_cast<float>(h);
-  const xpbd::Float4 g = layout.gravity;
-  std::vector<xpbd::Float4> out = layout.x;
+  const Float4 g = layout.gravity;
+  std::vector<Float4> out = layout.x;
   for (std::size_t i = 0; i < out.size(); ++i) {
-    xpbd::Float4& p = out[i];
+    Float4& p = out[i];
     if (p.w == 0.0f) continue;
     const float vx = layout.v[i].x + dt * g.x;
     const float vy = layout.v[i].y + dt * g.y;

@@ -5,10 +5,10 @@
 // same x~. Pinned particles (w = 0) stay where they are.
 #include <vector>
 
-#include "solver/xpbd/xpbd_layout.hpp"
+#include "solver/layout/sim_layout.hpp"
 
 namespace atssim::solver::energy {
 
-std::vector<xpbd::Float4> predicted_positions(const xpbd::XpbdLayout& layout, double h);
+std::vector<Float4> predicted_positions(const SimLayout& layout, double h);
 
 }  // namespace atssim::solver::energy

@@ -20,7 +20,7 @@ std::vector<double> chebyshev_weights(int iterations, double rho) {
   return omega;
 }
 
-SubstepPlan make_jpgd_plan(const xpbd::XpbdLayout& layout, const JpgdSettings& settings, vertex::VertexBuffers* ids) {
+SubstepPlan make_jpgd_plan(const SimLayout& layout, const JpgdSettings& settings, vertex::VertexBuffers* ids) {
   const vertex::VertexLayout vertices = vertex::make_vertex_layout(layout);
   SubstepPlan plan;
   plan.program = "jpgd";

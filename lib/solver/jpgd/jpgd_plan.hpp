@@ -5,7 +5,7 @@
 // one synchronisation per iteration), then the velocity update.
 #include "solver/substep_plan.hpp"
 #include "solver/vertex/vertex_plan.hpp"
-#include "solver/xpbd/xpbd_layout.hpp"
+#include "solver/layout/sim_layout.hpp"
 
 namespace atssim::solver::jpgd {
 
@@ -26,7 +26,7 @@ struct JpgdSettings {
 // Chebyshev weights omega_1 .. omega_n: 1, 2/(2 - rho^2), 4/(4 - rho^2 omega_{k-1}).
 std::vector<double> chebyshev_weights(int iterations, double rho);
 
-SubstepPlan make_jpgd_plan(const xpbd::XpbdLayout& layout, const JpgdSettings& settings,
+SubstepPlan make_jpgd_plan(const SimLayout& layout, const JpgdSettings& settings,
                            vertex::VertexBuffers* ids = nullptr);
 
 }  // namespace atssim::solver::jpgd

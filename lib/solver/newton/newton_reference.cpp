@@ -147,7 +147,7 @@ NewtonResult newton_reference(const energy::IncrementalPotential& problem, const
   return finish(NewtonStatus::iteration_limit);
 }
 
-NewtonResult newton_reference(const xpbd::XpbdLayout& layout, const std::vector<xpbd::Float4>& predicted, double h,
+NewtonResult newton_reference(const SimLayout& layout, const std::vector<Float4>& predicted, double h,
                               const NewtonSettings& settings) {
   const energy::IncrementalPotential problem = energy::make_incremental_potential(layout, predicted, h);
   NewtonSettings s = settings;

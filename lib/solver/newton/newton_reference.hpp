@@ -16,7 +16,7 @@
 #include <Eigen/Core>
 
 #include "solver/energy/incremental_potential.hpp"
-#include "solver/xpbd/xpbd_layout.hpp"
+#include "solver/layout/sim_layout.hpp"
 
 namespace atssim::solver::newton {
 
@@ -59,7 +59,7 @@ NewtonResult newton_reference(const energy::IncrementalPotential& problem, const
 // step h, started at x0 = x~ (projected onto the ground; the layout's ground
 // plane bounds the minimisation). Throws atssim::Error (input) if a constraint
 // has compliance 0 (no finite energy) or a tet has mu <= 0 or lambda < 0.
-NewtonResult newton_reference(const xpbd::XpbdLayout& layout, const std::vector<xpbd::Float4>& predicted, double h,
+NewtonResult newton_reference(const SimLayout& layout, const std::vector<Float4>& predicted, double h,
                               const NewtonSettings& settings = {});
 
 }  // namespace atssim::solver::newton

@@ -18,7 +18,7 @@ void append_blocks(std::vector<StencilBlock>& out, int kind, const std::vector<i
 
 }  // namespace
 
-std::vector<StencilBlock> stencil_blocks(const xpbd::XpbdLayout& layout) {
+std::vector<StencilBlock> stencil_blocks(const SimLayout& layout) {
   std::vector<StencilBlock> blocks;
   append_blocks(blocks, 0, layout.stretch_blocks);
   append_blocks(blocks, 1, layout.bend_blocks);
@@ -26,7 +26,7 @@ std::vector<StencilBlock> stencil_blocks(const xpbd::XpbdLayout& layout) {
   return blocks;
 }
 
-SubstepPlan make_sosd_plan(const xpbd::XpbdLayout& layout, double substep_dt, int iterations, double step,
+SubstepPlan make_sosd_plan(const SimLayout& layout, double substep_dt, int iterations, double step,
                            vertex::VertexBuffers* ids) {
   const vertex::VertexLayout vertices = vertex::make_vertex_layout(layout);
   SubstepPlan plan;

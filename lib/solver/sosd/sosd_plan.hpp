@@ -9,7 +9,7 @@
 // between devices exactly.
 #include "solver/substep_plan.hpp"
 #include "solver/vertex/vertex_plan.hpp"
-#include "solver/xpbd/xpbd_layout.hpp"
+#include "solver/layout/sim_layout.hpp"
 
 namespace atssim::solver::sosd {
 
@@ -20,7 +20,7 @@ struct StencilBlock {
   int first = 0;
   int end = 0;
 };
-std::vector<StencilBlock> stencil_blocks(const xpbd::XpbdLayout& layout);
+std::vector<StencilBlock> stencil_blocks(const SimLayout& layout);
 
 // Iteration `it` (0-based) uses block it mod blocks as its main block. Every
 // vertex moves by `step` (solver.stencil_step) times its displacement: the
@@ -28,7 +28,7 @@ std::vector<StencilBlock> stencil_blocks(const xpbd::XpbdLayout& layout);
 // neighbours, which move in the same step, so a full step is a Jacobi step
 // over nearly every vertex (a stretch color is a matching) and overshoots on
 // stiff cloth (docs/accuracy.md).
-SubstepPlan make_sosd_plan(const xpbd::XpbdLayout& layout, double substep_dt, int iterations,
+SubstepPlan make_sosd_plan(const SimLayout& layout, double substep_dt, int iterations,
                            double step = 0.7, vertex::VertexBuffers* ids = nullptr);
 
 }  // namespace atssim::solver::sosd

@@ -6,7 +6,7 @@
 
 namespace atssim::solver::vbd {
 
-SubstepPlan make_vbd_plan(const xpbd::XpbdLayout& layout, double substep_dt, int iterations,
+SubstepPlan make_vbd_plan(const SimLayout& layout, double substep_dt, int iterations,
                           vertex::VertexBuffers* ids) {
   const vertex::VertexLayout vertices = vertex::make_vertex_layout(layout);
   SubstepPlan plan;

@@ -5,11 +5,11 @@
 // then the velocity update.
 #include "solver/substep_plan.hpp"
 #include "solver/vertex/vertex_plan.hpp"
-#include "solver/xpbd/xpbd_layout.hpp"
+#include "solver/layout/sim_layout.hpp"
 
 namespace atssim::solver::vbd {
 
-SubstepPlan make_vbd_plan(const xpbd::XpbdLayout& layout, double substep_dt, int iterations,
+SubstepPlan make_vbd_plan(const SimLayout& layout, double substep_dt, int iterations,
                           vertex::VertexBuffers* ids = nullptr);
 
 }  // namespace atssim::solver::vbd

@@ -5,7 +5,7 @@
 
 namespace atssim::solver::vertex {
 
-VertexLayout make_vertex_layout(const xpbd::XpbdLayout& layout) {
+VertexLayout make_vertex_layout(const SimLayout& layout) {
   const int n = static_cast<int>(layout.x.size());
   std::vector<int> stretch_vertices, bend_vertices, tet_vertices;
   for (const auto& c : layout.stretch) stretch_vertices.insert(stretch_vertices.end(), {c.a, c.b});

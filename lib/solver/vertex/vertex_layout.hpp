@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "graph/color_blocks.hpp"
-#include "solver/xpbd/xpbd_layout.hpp"
+#include "solver/layout/sim_layout.hpp"
 
 namespace atssim::solver::vertex {
 
@@ -15,7 +15,7 @@ struct VertexLayout {
   graph::ColorBlocks colors;           // movable particles only
 };
 
-VertexLayout make_vertex_layout(const xpbd::XpbdLayout& layout);
+VertexLayout make_vertex_layout(const SimLayout& layout);
 
 // Entry code of kernels/common/vertex_system.cl.
 inline int adjacency_code(int element, int kind, int slot) { return element << 4 | kind << 2 | slot; }

@@ -6,7 +6,7 @@ namespace atssim::solver::vertex {
 
 using Arg = KernelArg;
 
-sched::TaskId begin_vertex_plan(SubstepPlan& plan, const xpbd::XpbdLayout& layout, const VertexLayout& vertices,
+sched::TaskId begin_vertex_plan(SubstepPlan& plan, const SimLayout& layout, const VertexLayout& vertices,
                                 double substep_dt, VertexBuffers& b) {
   energy::require_finite_stiffness(layout);
   const int n = static_cast<int>(layout.x.size());

@@ -4,7 +4,7 @@
 // velocity update; VBD and JPGD put their iterations in between.
 #include "solver/substep_plan.hpp"
 #include "solver/vertex/vertex_layout.hpp"
-#include "solver/xpbd/xpbd_layout.hpp"
+#include "solver/layout/sim_layout.hpp"
 
 namespace atssim::solver::vertex {
 
@@ -16,7 +16,7 @@ struct VertexBuffers {
 // Adds the buffers and the predict task; returns predict's id. Throws
 // atssim::Error (input) when a constraint is infinitely stiff (compliance
 // 0): these methods minimise an energy, which then does not exist.
-sched::TaskId begin_vertex_plan(SubstepPlan& plan, const xpbd::XpbdLayout& layout, const VertexLayout& vertices,
+sched::TaskId begin_vertex_plan(SubstepPlan& plan, const SimLayout& layout, const VertexLayout& vertices,
                                 double substep_dt, VertexBuffers& ids);
 
 // Adds the velocity update after `last`.

@@ -36,7 +36,7 @@ sched::TaskId add_blocks(SubstepPlan& plan, sched::TaskId last, const std::vecto
 
 // The strain constraints (common/xpbd_tet.h) minimise the StVK energy; solving
 // them for a neo-Hookean solid would silently change its material.
-void check_tets_are_stvk(const XpbdLayout& layout) {
+void check_tets_are_stvk(const SimLayout& layout) {
   for (const ats_tet_c& t : layout.tets) {
     if (t.model != ATS_TET_STVK) {
       throw input_error("solver.method xpbd simulates solids with material model: stvk only (its strain "
@@ -48,7 +48,7 @@ void check_tets_are_stvk(const XpbdLayout& layout) {
 
 }  // namespace
 
-SubstepPlan make_xpbd_plan(const XpbdLayout& layout, const XpbdSettings& settings, XpbdBuffers* ids) {
+SubstepPlan make_xpbd_plan(const SimLayout& layout, const XpbdSettings& settings, XpbdBuffers* ids) {
   SubstepPlan plan;
   plan.program = "xpbd";
   plan.particle_count = static_cast<int>(layout.x.size());

@@ -5,7 +5,7 @@
 // update velocity. Only the element sets the model has produce tasks.
 #include "model/model.hpp"
 #include "solver/substep_plan.hpp"
-#include "solver/xpbd/xpbd_layout.hpp"
+#include "solver/layout/sim_layout.hpp"
 
 namespace atssim::solver::xpbd {
 
@@ -20,6 +20,6 @@ struct XpbdBuffers {
   BufferId tet = -1, tet_lambda = -1;
 };
 
-SubstepPlan make_xpbd_plan(const XpbdLayout& layout, const XpbdSettings& settings, XpbdBuffers* ids = nullptr);
+SubstepPlan make_xpbd_plan(const SimLayout& layout, const XpbdSettings& settings, XpbdBuffers* ids = nullptr);
 
 }  // namespace atssim::solver::xpbd

@@ -23,7 +23,7 @@ void add_xyz(Float4& p, ats_vec3 d) {
 }
 }  // namespace
 
-XpbdReference::XpbdReference(XpbdLayout layout, XpbdSettings settings)
+XpbdReference::XpbdReference(SimLayout layout, XpbdSettings settings)
     : layout_(std::move(layout)),
       settings_(settings),
       x_prev_(layout_.x),

@@ -4,17 +4,17 @@
 // against it.
 #include <vector>
 
-#include "solver/xpbd/xpbd_layout.hpp"
+#include "solver/layout/sim_layout.hpp"
 #include "solver/xpbd/xpbd_plan.hpp"
 
 namespace atssim::solver::xpbd {
 
 class XpbdReference {
  public:
-  XpbdReference(XpbdLayout layout, XpbdSettings settings);
+  XpbdReference(SimLayout layout, XpbdSettings settings);
 
   void substep();
-  const XpbdLayout& state() const { return layout_; }
+  const SimLayout& state() const { return layout_; }
 
   // Root mean square of the XPBD residual C(x) + alpha~ lambda over all
   // stretch constraints (and each bending component and tet strain
@@ -28,7 +28,7 @@ class XpbdReference {
   void solve_tets(bool reset);
   void update_velocity();
 
-  XpbdLayout layout_;
+  SimLayout layout_;
   XpbdSettings settings_;
   std::vector<Float4> x_prev_;
   std::vector<float> stretch_lambda_;

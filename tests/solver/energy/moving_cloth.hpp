@@ -11,11 +11,11 @@
 
 namespace atssim::test {
 
-inline solver::xpbd::XpbdLayout moving_cloth(int resolution, double stretch_stiffness, double bend_stiffness, double h,
+inline solver::SimLayout moving_cloth(int resolution, double stretch_stiffness, double bend_stiffness, double h,
                                              int substeps = 5) {
   const auto m = model::build_model(
       scene::parse_scene(hanging_cloth_yaml(resolution, stretch_stiffness, bend_stiffness), "s.yaml", "."));
-  solver::xpbd::XpbdLayout start = solver::xpbd::make_xpbd_layout(m);
+  solver::SimLayout start = solver::make_sim_layout(m);
   for (std::size_t i = 0; i < start.v.size(); ++i) {
     if (start.x[i].w == 0.0f) continue;
     const float t = static_cast<float>(i);

@@ -9,7 +9,7 @@
 
 #include "model/cloth_builder.hpp"
 #include "scene/scene_loader.hpp"
-#include "solver/xpbd/xpbd_layout.hpp"
+#include "solver/layout/sim_layout.hpp"
 
 namespace atssim::test {
 
@@ -33,12 +33,12 @@ inline std::string soft_box_yaml(int cells, double youngs_modulus, double poisso
 }
 
 // strain: amplitude of the smooth displacement relative to the box size.
-inline solver::xpbd::XpbdLayout moving_soft_box(int cells, const std::string& model = "neo_hookean", unsigned seed = 1,
+inline solver::SimLayout moving_soft_box(int cells, const std::string& model = "neo_hookean", unsigned seed = 1,
                                                 double strain = 0.05, double youngs_modulus = 1e4,
                                                 double poisson_ratio = 0.3) {
   const auto m =
       model::build_model(scene::parse_scene(soft_box_yaml(cells, youngs_modulus, poisson_ratio, model), "s.yaml", "."));
-  solver::xpbd::XpbdLayout layout = solver::xpbd::make_xpbd_layout(m);
+  solver::SimLayout layout = solver::make_sim_layout(m);
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
   const float a = static_cast<float>(0.2 * strain);

@@ -19,8 +19,8 @@ namespace {
 constexpr double kH = 1.0 / 240.0;
 
 // E straight from its definition (He et al. 2025 Eq. 1), plain Eigen.
-double energy_by_definition(const xpbd::XpbdLayout& layout, const std::vector<xpbd::Float4>& predicted, double h) {
-  auto p = [](const xpbd::Float4& f) { return Eigen::Vector3d(f.x, f.y, f.z); };
+double energy_by_definition(const SimLayout& layout, const std::vector<Float4>& predicted, double h) {
+  auto p = [](const Float4& f) { return Eigen::Vector3d(f.x, f.y, f.z); };
   double e = 0.0;
   for (std::size_t i = 0; i < layout.x.size(); ++i) {
     if (layout.x[i].w > 0.0f)
@@ -41,7 +41,7 @@ double energy_by_definition(const xpbd::XpbdLayout& layout, const std::vector<xp
 }  // namespace
 
 TEST_CASE("predicted positions equal the XPBD predict step bit for bit", "[energy]") {
-  const xpbd::XpbdLayout start = test::moving_cloth(8, 1e3, 1e-3, kH);
+  const SimLayout start = test::moving_cloth(8, 1e3, 1e-3, kH);
   xpbd::XpbdReference predict_only(start, {kH, 0});  // no iterations: predict, then update velocity
   predict_only.substep();
   const auto predicted = predicted_positions(start, kH);
@@ -57,7 +57,7 @@ TEST_CASE("predicted positions equal the XPBD predict step bit for bit", "[energ
 }
 
 TEST_CASE("the incremental potential of a layout equals its definition", "[energy]") {
-  const xpbd::XpbdLayout start = test::moving_cloth(8, 1e3, 1e-3, kH);
+  const SimLayout start = test::moving_cloth(8, 1e3, 1e-3, kH);
   const auto predicted = predicted_positions(start, kH);
   xpbd::XpbdReference ref(start, {kH, 4});
   ref.substep();
@@ -72,7 +72,7 @@ TEST_CASE("the incremental potential of a layout equals its definition", "[energ
 }
 
 TEST_CASE("the assembled gradient and Hessian match finite differences on a moving cloth", "[energy]") {
-  const xpbd::XpbdLayout start = test::moving_cloth(5, 1e3, 1e-3, kH);
+  const SimLayout start = test::moving_cloth(5, 1e3, 1e-3, kH);
   const auto predicted = predicted_positions(start, kH);
   const IncrementalPotential p = make_incremental_potential(start, predicted, kH);
   const Eigen::VectorXd x = positions_of(start.x);
@@ -101,7 +101,7 @@ TEST_CASE("the assembled gradient and Hessian match finite differences on a movi
 
 TEST_CASE("the projected Hessian plus M/h^2 is positive definite", "[energy]") {
   // Compress the cloth so many springs are shorter than their rest length.
-  xpbd::XpbdLayout state = test::moving_cloth(5, 1e3, 1e-3, kH);
+  SimLayout state = test::moving_cloth(5, 1e3, 1e-3, kH);
   const auto predicted = predicted_positions(state, kH);
   for (auto& q : state.x) {
     q.x *= 0.8f;
@@ -129,7 +129,7 @@ TEST_CASE("the projected Hessian plus M/h^2 is positive definite", "[energy]") {
 }
 
 TEST_CASE("a constraint with compliance 0 has no incremental potential", "[energy]") {
-  xpbd::XpbdLayout state = test::moving_cloth(4, 1e3, 1e-3, kH);
+  SimLayout state = test::moving_cloth(4, 1e3, 1e-3, kH);
   const auto predicted = predicted_positions(state, kH);
   SECTION("stretch") { state.stretch[3].compliance = 0.0f; }
   SECTION("bend") { state.bend[1].compliance = 0.0f; }
@@ -139,7 +139,7 @@ TEST_CASE("a constraint with compliance 0 has no incremental potential", "[energ
 }
 
 TEST_CASE("the energy plan is one task of program xpbd_energy covering every particle and constraint", "[energy]") {
-  const xpbd::XpbdLayout state = test::moving_cloth(4, 1e3, 1e-3, kH);
+  const SimLayout state = test::moving_cloth(4, 1e3, 1e-3, kH);
   EnergyBuffers ids;
   const SubstepPlan plan = make_energy_plan(state, predicted_positions(state, kH), kH, &ids);
   CHECK(plan.program == "xpbd_energy");

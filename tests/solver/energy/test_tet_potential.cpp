@@ -44,7 +44,7 @@ Eigen::MatrixXd elastic_hessian(const IncrementalPotential& p, const Eigen::Vect
 
 TEST_CASE("a soft box becomes tet terms of the incremental potential with its top face pinned", "[energy][tet]") {
   const std::string model = GENERATE("neo_hookean", "stvk");
-  const xpbd::XpbdLayout box = test::moving_soft_box(2, model);
+  const SimLayout box = test::moving_soft_box(2, model);
   const IncrementalPotential p = make_incremental_potential(box, predicted_positions(box, kH), kH);
   CHECK(p.tets.size() == 48);  // 2^3 cells, 6 tets each
   CHECK(p.stretch.empty());
@@ -61,7 +61,7 @@ TEST_CASE("a soft box becomes tet terms of the incremental potential with its to
 TEST_CASE("a soft box at rest and at its predicted positions has zero energy and zero gradient", "[energy][tet]") {
   const std::string model = GENERATE("neo_hookean", "stvk");
   const auto m = model::build_model(scene::parse_scene(test::soft_box_yaml(2, 1e4, 0.3, model), "s.yaml", "."));
-  const xpbd::XpbdLayout rest = xpbd::make_xpbd_layout(m);
+  const SimLayout rest = make_sim_layout(m);
   const IncrementalPotential p = make_incremental_potential(rest, rest.x, kH);  // x~ = x: no inertia either
   const Eigen::VectorXd x = positions_of(rest.x);
   const EnergyTerms e = energy_terms(p, x);
@@ -75,7 +75,7 @@ TEST_CASE("a soft box at rest and at its predicted positions has zero energy and
 }
 
 TEST_CASE("a deformed, moving soft box has inertia and tet energy, and E is their sum", "[energy][tet]") {
-  const xpbd::XpbdLayout box = test::moving_soft_box(2);
+  const SimLayout box = test::moving_soft_box(2);
   const auto predicted = predicted_positions(box, kH);
   const IncrementalPotential p = make_incremental_potential(box, predicted, kH);
   const EnergyTerms e = energy_terms(p, positions_of(box.x));
@@ -89,7 +89,7 @@ TEST_CASE("a deformed, moving soft box has inertia and tet energy, and E is thei
 TEST_CASE("the soft box gradient matches central finite differences", "[energy][tet]") {
   const std::string model = GENERATE("neo_hookean", "stvk");
   const unsigned seed = GENERATE(1u, 2u, 3u);
-  const xpbd::XpbdLayout box = test::moving_soft_box(2, model, seed, 0.1);
+  const SimLayout box = test::moving_soft_box(2, model, seed, 0.1);
   const IncrementalPotential p = make_incremental_potential(box, predicted_positions(box, kH), kH);
   const Eigen::VectorXd x = positions_of(box.x);
   const Eigen::VectorXd g = gradient(p, x);
@@ -106,7 +106,7 @@ TEST_CASE("the soft box gradient matches central finite differences", "[energy][
 TEST_CASE("the assembled soft box Hessian matches finite differences of the gradient", "[energy][tet]") {
   const std::string model = GENERATE("neo_hookean", "stvk");
   const unsigned seed = GENERATE(1u, 2u, 3u);
-  const xpbd::XpbdLayout box = test::moving_soft_box(2, model, seed, 0.1);
+  const SimLayout box = test::moving_soft_box(2, model, seed, 0.1);
   const IncrementalPotential p = make_incremental_potential(box, predicted_positions(box, kH), kH);
   const Eigen::VectorXd x = positions_of(box.x);
   const Eigen::MatrixXd H = dense_hessian(p, x, false);
@@ -124,7 +124,7 @@ TEST_CASE("the assembled soft box Hessian matches finite differences of the grad
 
 TEST_CASE("the projected soft box Hessian is PSD, the exact one is not under compression", "[energy][tet]") {
   const std::string model = GENERATE("neo_hookean", "stvk");
-  xpbd::XpbdLayout box = test::moving_soft_box(2, model, 4, 0.1);
+  SimLayout box = test::moving_soft_box(2, model, 4, 0.1);
   const auto predicted = predicted_positions(box, kH);
   for (auto& q : box.x) {  // squash it to 40 % of its height around its centre
     if (q.w > 0.0f) q.y *= 0.4f;
@@ -144,7 +144,7 @@ TEST_CASE("the projected soft box Hessian is PSD, the exact one is not under com
   }
   // Projection leaves an element that is already PSD alone: at rest nothing changes.
   const auto m = model::build_model(scene::parse_scene(test::soft_box_yaml(2, 1e4, 0.3, model), "s.yaml", "."));
-  const xpbd::XpbdLayout rest = xpbd::make_xpbd_layout(m);
+  const SimLayout rest = make_sim_layout(m);
   const IncrementalPotential q = make_incremental_potential(rest, rest.x, kH);
   const Eigen::VectorXd xr = positions_of(rest.x);
   const Eigen::MatrixXd exact = dense_hessian(q, xr, false);
@@ -152,7 +152,7 @@ TEST_CASE("the projected soft box Hessian is PSD, the exact one is not under com
 }
 
 TEST_CASE("a tet without positive shear modulus or with negative lambda is rejected", "[energy][tet]") {
-  xpbd::XpbdLayout box = test::moving_soft_box(1);
+  SimLayout box = test::moving_soft_box(1);
   const auto predicted = predicted_positions(box, kH);
   SECTION("mu = 0") { box.tets[2].mu = 0.0f; }
   SECTION("mu < 0") { box.tets[2].mu = -1.0f; }
@@ -164,14 +164,14 @@ TEST_CASE("a tet without positive shear modulus or with negative lambda is rejec
 }
 
 TEST_CASE("a tet of unknown energy model is rejected", "[energy][tet]") {
-  xpbd::XpbdLayout box = test::moving_soft_box(1);
+  SimLayout box = test::moving_soft_box(1);
   box.tets[0].model = 7;
   CHECK_THROWS_WITH(make_incremental_potential(box, predicted_positions(box, kH), kH),
                     Catch::Contains("energy model 7"));
 }
 
 TEST_CASE("the energy plan of a soft box has one energy_tet launch covering every tet", "[energy][tet]") {
-  const xpbd::XpbdLayout box = test::moving_soft_box(2);
+  const SimLayout box = test::moving_soft_box(2);
   EnergyBuffers ids;
   const SubstepPlan plan = make_energy_plan(box, predicted_positions(box, kH), kH, &ids);
   REQUIRE(ids.tets >= 0);

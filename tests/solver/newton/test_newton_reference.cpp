@@ -22,12 +22,12 @@ constexpr double kH = 1.0 / 240.0;
 TEST_CASE("Newton finds the closed-form minimum of a particle on a spring", "[newton]") {
   // A free particle of mass m on a spring to a pinned one at the origin: the
   // minimum lies on the ray to x~ at radius r with m/h^2 (r - r~) + k (r - L) = 0.
-  xpbd::XpbdLayout layout;
+  SimLayout layout;
   const float w = 100.0f;  // inverse mass
   layout.x = {{0, 0, 0, 0}, {0.3f, -0.4f, 0.1f, w}};
   layout.v = {{}, {}};
   layout.stretch = {{0, 1, 0.25f, 1e-3f}};
-  const std::vector<xpbd::Float4> predicted = layout.x;
+  const std::vector<Float4> predicted = layout.x;
   const double h = 0.01;
   const auto r = newton::newton_reference(layout, predicted, h);
   REQUIRE(r.status == newton::NewtonStatus::converged);
@@ -44,7 +44,7 @@ TEST_CASE("with a ground plane Newton finds the bound-constrained minimum of a p
   // As above, with x~ below the ground y = -0.2: the minimum sits on the
   // ground, and in the xz plane on the ray to x~'s footprint at distance s with
   // m/h^2 (s - s~) + k (r - L) s / r = 0, r = |(s, 0.2)| (found by bisection).
-  xpbd::XpbdLayout layout;
+  SimLayout layout;
   const float w = 100.0f;
   layout.x = {{0, 0, 0, 0}, {0.3f, -0.4f, 0.1f, w}};
   layout.v = {{}, {}};
@@ -73,7 +73,7 @@ TEST_CASE("with a ground plane Newton finds the bound-constrained minimum of a p
 }
 
 TEST_CASE("Newton converges on a moving cloth and bounds XPBD's energy from below", "[newton]") {
-  const xpbd::XpbdLayout start = test::moving_cloth(10, 1e3, 1e-3, kH);
+  const SimLayout start = test::moving_cloth(10, 1e3, 1e-3, kH);
   const auto predicted = energy::predicted_positions(start, kH);
   const energy::IncrementalPotential problem = energy::make_incremental_potential(start, predicted, kH);
 
@@ -103,7 +103,7 @@ TEST_CASE("Newton converges on a moving cloth and bounds XPBD's energy from belo
 }
 
 TEST_CASE("Newton refuses an infinitely stiff constraint", "[newton]") {
-  xpbd::XpbdLayout start = test::moving_cloth(4, 1e3, 1e-3, kH);
+  SimLayout start = test::moving_cloth(4, 1e3, 1e-3, kH);
   start.stretch[0].compliance = 0.0f;
   const auto predicted = energy::predicted_positions(start, kH);
   CHECK_THROWS_WITH(newton::newton_reference(start, predicted, kH), Catch::Contains("finite stiffness"));

@@ -25,7 +25,7 @@ TEST_CASE("Newton converges on one substep of a moving soft box and lowers E bel
   // deformed, by elasticity (the line search and the projection matter).
   const std::string model = GENERATE("neo_hookean", "stvk");
   const auto [youngs, h, strain] = GENERATE(table<double, double, double>({{1e4, kH, 0.1}, {1e6, 1.0 / 30.0, 0.3}}));
-  const xpbd::XpbdLayout start = test::moving_soft_box(2, model, 1, strain, youngs);
+  const SimLayout start = test::moving_soft_box(2, model, 1, strain, youngs);
   const auto predicted = energy::predicted_positions(start, h);
   const energy::IncrementalPotential problem = energy::make_incremental_potential(start, predicted, h);
   REQUIRE(problem.tets.size() == 48);
@@ -52,7 +52,7 @@ TEST_CASE("Newton converges on one substep of a moving soft box and lowers E bel
 TEST_CASE("Newton with the exact tet Hessian converges near rest as well", "[newton][tet]") {
   // Close to rest the tet Hessians are PSD, so skipping the projection
   // changes nothing but the cost: Newton must still converge.
-  const xpbd::XpbdLayout start = test::moving_soft_box(2, "neo_hookean", 2, 0.01);
+  const SimLayout start = test::moving_soft_box(2, "neo_hookean", 2, 0.01);
   const auto predicted = energy::predicted_positions(start, kH);
   newton::NewtonSettings settings;
   settings.project_psd = false;
@@ -64,7 +64,7 @@ TEST_CASE("Newton with the exact tet Hessian converges near rest as well", "[new
 }
 
 TEST_CASE("Newton refuses a tet with a negative Lame lambda", "[newton][tet]") {
-  xpbd::XpbdLayout start = test::moving_soft_box(1);
+  SimLayout start = test::moving_soft_box(1);
   start.tets[0].lambda = -5.0f;
   const auto predicted = energy::predicted_positions(start, kH);
   CHECK_THROWS_WITH(newton::newton_reference(start, predicted, kH), Catch::Contains("lambda >= 0"));

@@ -12,7 +12,7 @@ using namespace atssim::solver;
 
 TEST_CASE("SOSD blocks are the element colors, and no two stencils of a block share a vertex") {
   const auto m = model::build_model(scene::parse_scene(test::hanging_cloth_yaml(10, 1e4, 1e-3), "s.yaml", "."));
-  const auto layout = xpbd::make_xpbd_layout(m);
+  const auto layout = make_sim_layout(m);
   const auto blocks = sosd::stencil_blocks(layout);
   REQUIRE(blocks.size() == layout.stretch_blocks.size() - 1 + layout.bend_blocks.size() - 1);
   std::size_t stretch = 0, bend = 0;
@@ -41,7 +41,7 @@ TEST_CASE("SOSD blocks are the element colors, and no two stencils of a block sh
 TEST_CASE("an SOSD iteration is vertex systems, the main block beside the Jacobi rest, then one combine") {
   const int iterations = 3;
   const auto m = model::build_model(scene::parse_scene(test::hanging_cloth_yaml(10, 1e4, 1e-3), "s.yaml", "."));
-  const auto layout = xpbd::make_xpbd_layout(m);
+  const auto layout = make_sim_layout(m);
   const auto plan = sosd::make_sosd_plan(layout, 1.0 / 240.0, iterations);
   const auto blocks = sosd::stencil_blocks(layout);
   const auto systems = plan.graph.tasks_of_kind("systems");

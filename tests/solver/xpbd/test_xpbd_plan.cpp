@@ -6,6 +6,7 @@
 #include "support/scenes.hpp"
 
 using namespace atssim;
+using namespace atssim::solver;
 using namespace atssim::solver::xpbd;
 
 namespace {
@@ -13,7 +14,7 @@ namespace {
 solver::SubstepPlan plan_for(double stretch, double bend, int iterations) {
   const auto m = model::build_model(
       scene::parse_scene(test::hanging_cloth_yaml(10, stretch, bend, iterations), "s.yaml", "."));
-  return make_xpbd_plan(make_xpbd_layout(m), {1.0 / 240.0, iterations});
+  return make_xpbd_plan(make_sim_layout(m), {1.0 / 240.0, iterations});
 }
 
 }  // namespace
@@ -28,7 +29,7 @@ TEST_CASE("a scene with bending stiffness 0 has no bending task") {
 TEST_CASE("the XPBD substep graph is predict, iterations of color blocks, update velocity") {
   const int iterations = 3;
   const auto m = model::build_model(scene::parse_scene(test::hanging_cloth_yaml(10, 1e4, 1e-3), "s.yaml", "."));
-  const auto layout = make_xpbd_layout(m);
+  const auto layout = make_sim_layout(m);
   const auto plan = make_xpbd_plan(layout, {1.0 / 240.0, iterations});
   const int stretch_blocks = static_cast<int>(layout.stretch_blocks.size()) - 1;
   const int bend_blocks = static_cast<int>(layout.bend_blocks.size()) - 1;

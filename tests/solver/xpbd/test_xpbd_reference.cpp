@@ -6,6 +6,7 @@
 #include "support/scenes.hpp"
 
 using namespace atssim;
+using namespace atssim::solver;
 using namespace atssim::solver::xpbd;
 
 namespace {
@@ -23,7 +24,7 @@ model::Model free_particles() {
 TEST_CASE("without constraints the host XPBD reproduces discrete free fall exactly") {
   const model::Model m = free_particles();
   const double h = 1.0 / 960.0;
-  XpbdReference ref(make_xpbd_layout(m), {h, 4});
+  XpbdReference ref(make_sim_layout(m), {h, 4});
   const int n = 16;
   for (int s = 0; s < n; ++s) ref.substep();
   // Semi-implicit Euler: v_k = v0 + k h g, x_n = x0 + h * sum v_k = x0 + h^2 g n(n+1)/2.
@@ -40,7 +41,7 @@ TEST_CASE("the hanging cloth's XPBD residual falls as iterations rise") {
   const auto m = model::build_model(scene::parse_scene(test::hanging_cloth_yaml(12, 1e3, 1e-3), "s.yaml", "."));
   double previous = 1e30;
   for (int iterations : {1, 2, 4, 8, 16, 32}) {
-    XpbdReference ref(make_xpbd_layout(m), {1.0 / 240.0, iterations});
+    XpbdReference ref(make_sim_layout(m), {1.0 / 240.0, iterations});
     // A few substeps first, so the cloth is moving and stretched.
     for (int s = 0; s < 5; ++s) ref.substep();
     const double r = ref.residual_rms();
@@ -52,7 +53,7 @@ TEST_CASE("the hanging cloth's XPBD residual falls as iterations rise") {
 
 TEST_CASE("pinned particles never move in the host reference") {
   const auto m = model::build_model(scene::parse_scene(test::hanging_cloth_yaml(8), "s.yaml", "."));
-  XpbdReference ref(make_xpbd_layout(m), {1.0 / 240.0, 8});
+  XpbdReference ref(make_sim_layout(m), {1.0 / 240.0, 8});
   for (int s = 0; s < 20; ++s) ref.substep();
   for (std::size_t i = 0; i < m.particles.size(); ++i) {
     if (m.particles.inv_mass[i] != 0.0) continue;
@@ -74,7 +75,7 @@ TEST_CASE("a stiff stretched spring is restored to its rest length") {
   m.stretch.edges = {{0, 1}};
   m.stretch.rest_length = {1.0};
   m.stretch.compliance = {0.0};
-  XpbdReference ref(make_xpbd_layout(m), {0.01, 1});
+  XpbdReference ref(make_sim_layout(m), {0.01, 1});
   ref.substep();
   CHECK(ref.state().x[1].x == Approx(1.0).margin(1e-6));
   CHECK(ref.state().x[0].x == 0.0f);

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "common/tet_kinematics.h"
-#include "common/xpbd_types.h"
+#include "common/element_types.h"
 #include "model/cloth_builder.hpp"
 #include "scene/scene_loader.hpp"
 #include "solver/xpbd/xpbd_plan.hpp"
@@ -13,6 +13,7 @@
 #include "support/positions.hpp"
 
 using namespace atssim;
+using namespace atssim::solver;
 using namespace atssim::solver::xpbd;
 using atssim::test::max_distance;
 
@@ -34,7 +35,7 @@ model::Model soft_box(const std::string& gravity, const std::string& solid_model
 }  // namespace
 
 TEST_CASE("XPBD refuses neo-Hookean solids (the default model) and says to use stvk, vbd or jpgd") {
-  const XpbdLayout layout = make_xpbd_layout(soft_box("[0, -9.81, 0]"));
+  const SimLayout layout = make_sim_layout(soft_box("[0, -9.81, 0]"));
   REQUIRE_FALSE(layout.tets.empty());
   CHECK(layout.tets.front().model == ATS_TET_NEO_HOOKEAN);  // the scene default is unchanged
   try {
@@ -51,7 +52,7 @@ TEST_CASE("XPBD refuses neo-Hookean solids (the default model) and says to use s
 
 TEST_CASE("an XPBD StVK solid sweeps every tet color block once per iteration") {
   const int iterations = 3;
-  const XpbdLayout layout = make_xpbd_layout(soft_box("[0, -9.81, 0]", "stvk"));
+  const SimLayout layout = make_sim_layout(soft_box("[0, -9.81, 0]", "stvk"));
   XpbdBuffers ids;
   const auto plan = make_xpbd_plan(layout, {1.0 / 240.0, iterations}, &ids);
   const int blocks = static_cast<int>(layout.tet_blocks.size()) - 1;
@@ -72,7 +73,7 @@ TEST_CASE("an XPBD StVK solid sweeps every tet color block once per iteration") 
 }
 
 TEST_CASE("the host XPBD keeps a pinned StVK bar at rest without gravity") {
-  const XpbdLayout layout = make_xpbd_layout(soft_box("[0, 0, 0]", "stvk"));
+  const SimLayout layout = make_sim_layout(soft_box("[0, 0, 0]", "stvk"));
   XpbdReference ref(layout, {1.0 / 240.0, 10});
   for (int s = 0; s < 20; ++s) ref.substep();
   const double drift = max_distance(ref.state().x, layout.x);
@@ -84,7 +85,7 @@ TEST_CASE("the host XPBD residual of a falling StVK bar falls as iterations rise
   const auto m = soft_box("[0, -9.81, 0]", "stvk");
   double previous = 1e30;
   for (int iterations : {1, 4, 16, 64}) {
-    XpbdReference ref(make_xpbd_layout(m), {1.0 / 240.0, iterations});
+    XpbdReference ref(make_sim_layout(m), {1.0 / 240.0, iterations});
     for (int s = 0; s < 5; ++s) ref.substep();
     const double r = ref.residual_rms();
     INFO("iterations " << iterations << " residual " << r);
@@ -95,7 +96,7 @@ TEST_CASE("the host XPBD residual of a falling StVK bar falls as iterations rise
 
 TEST_CASE("the rest tets of the layout have F = I") {
   const auto m = soft_box("[0, 0, 0]");
-  const XpbdLayout l = make_xpbd_layout(m);
+  const SimLayout l = make_sim_layout(m);
   double worst = 0.0;
   for (const auto& t : l.tets) {
     ats_mat3 dm;

@@ -1,8 +1,8 @@
-#include "solver/xpbd/xpbd_layout.hpp"
+#include "solver/layout/sim_layout.hpp"
 
 #include "util/error.hpp"
 
-namespace atssim::solver::xpbd {
+namespace atssim::solver {
 
 namespace {
 
@@ -16,9 +16,9 @@ graph::ColorBlocks color(const std::vector<Element>& elements, const std::vector
 
 }  // namespace
 
-XpbdLayout make_xpbd_layout(const model::Model& model) {
+SimLayout make_sim_layout(const model::Model& model) {
   const auto& p = model.particles;
-  XpbdLayout out;
+  SimLayout out;
   out.x.resize(p.size());
   out.v.resize(p.size());
   std::vector<char> movable(p.size());
@@ -78,4 +78,4 @@ XpbdLayout make_xpbd_layout(const model::Model& model) {
   return out;
 }
 
-}  // namespace atssim::solver::xpbd
+}  // namespace atssim::solver

@@ -1,20 +1,21 @@
 #pragma once
-// The XPBD device layout of a Model: float4 particle arrays (w = inverse
-// mass) and constraint arrays ordered by color block. Shared by the OpenCL
-// plan and the host reference, so both sweep the same order.
+// The device layout of a Model that every method reads: float4 particle
+// arrays (w = inverse mass) and element arrays ordered by color block.
+// Shared by the OpenCL plans and the host references, so both sweep the
+// same order.
 #include <vector>
 
-#include "common/xpbd_types.h"
+#include "common/element_types.h"
 #include "graph/color_blocks.hpp"
 #include "model/model.hpp"
 
-namespace atssim::solver::xpbd {
+namespace atssim::solver {
 
 struct alignas(16) Float4 {
   float x = 0.0f, y = 0.0f, z = 0.0f, w = 0.0f;
 };
 
-struct XpbdLayout {
+struct SimLayout {
   std::vector<Float4> x;                   // positions, w = inverse mass
   std::vector<Float4> v;                   // velocities, w unused
   std::vector<ats_distance_c> stretch;     // grouped by color
@@ -28,6 +29,6 @@ struct XpbdLayout {
   float ground_y = 0.0f;
 };
 
-XpbdLayout make_xpbd_layout(const model::Model& model);
+SimLayout make_sim_layout(const model::Model& model);
 
-}  // namespace atssim::solver::xpbd
+}  // namespace atssim::solver

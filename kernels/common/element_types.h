@@ -1,6 +1,7 @@
-/* Device layouts of the XPBD element sets, shared by kernels and host. */
-#ifndef ATS_XPBD_TYPES_H
-#define ATS_XPBD_TYPES_H
+/* Device layouts of the element sets every method reads, shared by kernels
+ * and host. */
+#ifndef ATS_ELEMENT_TYPES_H
+#define ATS_ELEMENT_TYPES_H
 
 /* Distance (stretch) constraint: 16 bytes. */
 typedef struct {
