@@ -1,9 +1,9 @@
 // `atssim run SCENE`: simulate and write HDF5.
-#include <csignal>
 #include <unistd.h>
+#include <csignal>
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include "app/commands.hpp"
 #include "app/simulation.hpp"
@@ -18,6 +18,7 @@ struct RunArgs {
   int frames = 0;
   std::string devices;
   std::string schedule;
+  std::string executor;
   std::vector<std::string> sets;
   bool quiet = false;
   std::string svm;
@@ -42,6 +43,9 @@ Action add_run_command(CLI::App& cli, const std::string& command_line) {
   cmd->add_option("--devices", args->devices, "Device spec: default, cpu, gpu, N, cpu/2 (see atssim devices)");
   cmd->add_option("--schedule", args->schedule,
                   "How the substep uses the devices: single, split (blocks divided by device speed), heft, async");
+  cmd->add_option("--executor", args->executor,
+                  "How devices run the schedule: auto (fused where SVM atomics allow), fused, events")
+      ->check(CLI::IsMember({"auto", "fused", "events"}));
   cmd->add_option("--set", args->sets, "Override a scene key, e.g. --set simulation.substeps=32 (repeatable)");
   cmd->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
   cmd->add_option("--svm", args->svm, "Shared virtual memory: auto (fine grain when offered) or coarse")
@@ -56,11 +60,13 @@ Action add_run_command(CLI::App& cli, const std::string& command_line) {
     if (args->frames > 0) options.overrides.push_back("simulation.frames=" + std::to_string(args->frames));
     if (!args->devices.empty()) options.overrides.push_back("devices=" + args->devices);
     if (!args->schedule.empty()) options.overrides.push_back("solver.schedule=" + args->schedule);
+    if (!args->executor.empty()) options.overrides.push_back("solver.executor=" + args->executor);
 
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
     const bool show_progress = !args->quiet && isatty(STDERR_FILENO);
-    const RunResult r = run_simulation(options, show_progress ? print_progress : std::function<void(const RunProgress&)>{});
+    const RunResult r =
+        run_simulation(options, show_progress ? print_progress : std::function<void(const RunProgress&)>{});
     if (!args->quiet) {
       fmt::print("wrote {}: {} frames ({} simulated), {} particles, {:.2f} ms/frame on {}\n", r.output_path,
                  r.frames_written, r.frames_simulated, r.particles, r.mean_frame_ms, r.device);

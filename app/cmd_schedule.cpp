@@ -1,26 +1,30 @@
 // `atssim schedule SCENE`: the substep's task graph and its predicted
 // schedule, without simulating: as a table, JSON, Graphviz dot, or the cost
 // table as CSV (which --costs reads back).
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include "app/commands.hpp"
 #include "app/execution.hpp"
 #include "app/simulation.hpp"
 #include "device/device_set.hpp"
 #include "io/cost_file.hpp"
+#include "plan/substep_plan.hpp"
 #include "scene/scene_loader.hpp"
-#include "solver/substep_plan.hpp"
 
 namespace atssim::app {
 
 namespace {
 
 struct ScheduleArgs {
-  std::string scene, devices, schedule, costs;
+  std::string scene, devices, schedule, executor, costs;
   std::vector<std::string> sets;
   bool json = false, dot = false, csv = false;
 };
+
+std::string kind_name(const sched::Task& task) {
+  return task.kind == sched::kMixedKind ? "mixed" : std::string(plan::to_string(plan::kind_of(task)));
+}
 
 std::string json_escape(const std::string& s) {
   std::string out;
@@ -33,9 +37,10 @@ std::string json_escape(const std::string& s) {
 
 void print_table(const PlannedSchedule& p, const std::string& mode) {
   const auto& g = p.plan.graph;
-  fmt::print("substep: {} tasks, {} edges; schedule '{}' on {} device(s); predicted makespan {:.4f} ms; {} "
-             "cross-device waits\n",
-             g.size(), g.edge_count(), mode, p.costs.devices, p.schedule.makespan_ms, p.waits.size());
+  fmt::print(
+      "substep: {} tasks, {} edges; schedule '{}' on {} device(s); predicted makespan {:.4f} ms; {} "
+      "cross-device waits\n",
+      g.size(), g.edge_count(), mode, p.costs.devices, p.schedule.makespan_ms, p.waits.size());
   if (mode == "split" && !p.split_fractions.empty()) {
     fmt::print("split fractions:");
     for (double f : p.split_fractions) fmt::print(" {:.3f}", f);
@@ -46,7 +51,7 @@ void print_table(const PlannedSchedule& p, const std::string& mode) {
   for (sched::TaskId t = 0; t < g.size(); ++t) {
     const auto& task = g.task(t);
     const auto& slot = p.schedule.slot(t);
-    fmt::print("{:>5}  {:<24} {:<16} {:>4} {:>5}  {:>6}  {:>10.4f}  {:>10.4f}\n", t, task.name, task.kind,
+    fmt::print("{:>5}  {:<24} {:<16} {:>4} {:>5}  {:>6}  {:>10.4f}  {:>10.4f}\n", t, task.name, kind_name(task),
                task.iteration, task.block, p.schedule.device_of(t), slot.start_ms, slot.finish_ms);
   }
 }
@@ -60,10 +65,11 @@ void print_json(const PlannedSchedule& p, const std::string& mode) {
     const auto& slot = p.schedule.slot(t);
     std::string costs;
     for (std::size_t d = 0; d < p.costs.devices; ++d) costs += fmt::format("{}{:.6f}", d ? ", " : "", p.costs.at(t, d));
-    fmt::print("    {{\"id\": {}, \"name\": \"{}\", \"kind\": \"{}\", \"iteration\": {}, \"block\": {}, \"device\": {}, "
-               "\"start_ms\": {:.6f}, \"finish_ms\": {:.6f}, \"cost_ms\": [{}]}}{}\n",
-               t, json_escape(task.name), task.kind, task.iteration, task.block, p.schedule.device_of(t),
-               slot.start_ms, slot.finish_ms, costs, t + 1 < g.size() ? "," : "");
+    fmt::print(
+        "    {{\"id\": {}, \"name\": \"{}\", \"kind\": \"{}\", \"iteration\": {}, \"block\": {}, \"device\": {}, "
+        "\"start_ms\": {:.6f}, \"finish_ms\": {:.6f}, \"cost_ms\": [{}]}}{}\n",
+        t, json_escape(task.name), kind_name(task), task.iteration, task.block, p.schedule.device_of(t), slot.start_ms,
+        slot.finish_ms, costs, t + 1 < g.size() ? "," : "");
   }
   fmt::print("  ],\n  \"edges\": [");
   bool first = true;
@@ -108,6 +114,8 @@ Action add_schedule_command(CLI::App& cli) {
   cmd->add_option("scene", args->scene, "Scene file (YAML)")->required();
   cmd->add_option("--devices", args->devices, "Device spec to profile, e.g. cpu/2 (see atssim devices)");
   cmd->add_option("--schedule", args->schedule, "single, split or heft (default: the scene's solver.schedule)");
+  cmd->add_option("--executor", args->executor, "auto, fused or events (default: the scene's solver.executor)")
+      ->check(CLI::IsMember({"auto", "fused", "events"}));
   cmd->add_option("--costs", args->costs, "Cost table CSV (as --csv prints it) instead of profiling the devices");
   cmd->add_option("--set", args->sets, "Override a scene key (repeatable)");
   auto* json = cmd->add_flag("--json", args->json, "Print JSON");
@@ -119,10 +127,11 @@ Action add_schedule_command(CLI::App& cli) {
     std::vector<std::string> overrides = args->sets;
     if (!args->devices.empty()) overrides.push_back("devices=" + args->devices);
     if (!args->schedule.empty()) overrides.push_back("solver.schedule=" + args->schedule);
+    if (!args->executor.empty()) overrides.push_back("solver.executor=" + args->executor);
     const scene::SceneDesc scene = scene::load_scene_file(args->scene, overrides);
     scene::check_method_support(scene, scene.solver.method);
     const ScheduleMode mode = parse_schedule_mode(scene.solver.schedule);
-    const solver::SubstepPlan base = substep_plan_for(scene);
+    const plan::SubstepPlan base = substep_plan_for(scene);
 
     PlannedSchedule planned;
     if (!args->costs.empty()) {
@@ -133,12 +142,10 @@ Action add_schedule_command(CLI::App& cli) {
       planned = schedule_from_costs(base, mode, file.costs, file.latency_ms);
     } else {
       const device::DeviceSet devices = device::DeviceSet::open(scene.devices);
-      ExecutionOptions options;
-      options.mode = mode;
-      Execution e = prepare_execution(devices, base, options);
-      planned.plan = *e.plan;
-      planned.costs = e.costs;
-      planned.links = e.links;
+      Execution e = prepare_execution(devices, base, execution_options(scene));
+      planned.plan = e.plan();
+      planned.costs = e.costs.costs();
+      planned.links = e.costs.links();
       planned.schedule = e.schedule;
       planned.waits = e.waits;
       planned.split_fractions = e.split_fractions;
@@ -150,7 +157,8 @@ Action add_schedule_command(CLI::App& cli) {
       print_dot(planned, mode_name);
     } else if (args->csv) {
       const std::size_t n = planned.links.devices;
-      fmt::print("{}", io::format_cost_file(planned.plan.graph, planned.costs, n > 1 ? planned.links.latency_ms[1] : 0.0));
+      fmt::print("{}",
+                 io::format_cost_file(planned.plan.graph, planned.costs, n > 1 ? planned.links.latency_ms[1] : 0.0));
     } else {
       print_table(planned, mode_name);
     }

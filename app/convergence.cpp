@@ -13,9 +13,8 @@
 #include "scene/scene_loader.hpp"
 #include "solver/energy/incremental_potential.hpp"
 #include "solver/energy/predicted_positions.hpp"
-#include "solver/newton/newton_reference.hpp"
 #include "solver/method_plan.hpp"
-#include "solver/xpbd/xpbd_plan.hpp"
+#include "solver/newton/newton_reference.hpp"
 #include "util/error.hpp"
 
 namespace atssim::app {
@@ -23,12 +22,6 @@ namespace atssim::app {
 namespace {
 
 using solver::Float4;
-
-std::vector<Float4> as_float4(const std::vector<std::byte>& raw) {
-  std::vector<Float4> out(raw.size() / sizeof(Float4));
-  std::memcpy(out.data(), raw.data(), out.size() * sizeof(Float4));
-  return out;
-}
 
 std::vector<int> iteration_counts(int max) {
   std::vector<int> ks;
@@ -45,14 +38,15 @@ struct Variant {
 
 // Every method × schedule (× merge strategy for async); async only for
 // Gauss-Seidel methods (a Jacobi method's iterations have nothing to relax).
-std::vector<Variant> variants_of(const ConvergeOptions& o) {
+std::vector<Variant> variants_of(const ConvergeOptions& o, const ExecutionOptions& base) {
   std::vector<Variant> out;
   for (const std::string& method : o.methods) {
     bool known = false;
     for (auto m : solver::method_names()) known = known || m == method;
-    if (!known) throw input_error(fmt::format("--methods: unknown method '{}'; available: xpbd, vbd, sosd, jpgd", method));
+    if (!known)
+      throw input_error(fmt::format("--methods: unknown method '{}'; available: xpbd, vbd, sosd, jpgd", method));
     for (const std::string& s : o.schedules) {
-      ExecutionOptions e;
+      ExecutionOptions e = base;
       e.mode = parse_schedule_mode(s);
       e.profile_repetitions = 3;
       if (e.mode != ScheduleMode::async) {
@@ -61,7 +55,7 @@ std::vector<Variant> variants_of(const ConvergeOptions& o) {
       }
       if (!solver::is_gauss_seidel(method)) continue;
       for (const std::string& m : o.merges) {
-        e.merge = solver::parse_merge_strategy(m);
+        e.merge = plan::parse_merge_strategy(m);
         out.push_back({method + "/async/" + m, method, e});
       }
     }
@@ -82,7 +76,7 @@ io::ConvergenceResult run_convergence(const ConvergeOptions& o) {
   }
   if (o.frames_before < 0) throw input_error("--frames-before must be ≥ 0");
   const scene::SceneDesc scene = scene::load_scene_file(o.scene_path, o.overrides);
-  const std::vector<Variant> variants = variants_of(o);
+  const std::vector<Variant> variants = variants_of(o, execution_options(scene));
   for (const std::string& method : o.methods) scene::check_method_support(scene, method);
   const auto& sim = scene.simulation;
   const double h = sim.frame_dt / sim.substeps;
@@ -94,15 +88,12 @@ io::ConvergenceResult run_convergence(const ConvergeOptions& o) {
   const model::Model model = model::build_model(scene);
   solver::SimLayout state = solver::make_sim_layout(model);
   {
-    const solver::SubstepPlan plan =
-        solver::make_method_plan(scene.solver.method, state, h, sim.iterations, method_options(scene.solver));
-    const auto velocities = std::find_if(plan.buffers.begin(), plan.buffers.end(),
-                                         [](const solver::BufferSpec& b) { return b.name == "v"; });
-    if (velocities == plan.buffers.end()) throw runtime_error("converge: the method's plan has no velocity buffer 'v'");
-    device::PlanExecutor executor(devices, plan);
-    executor.enqueue_substeps(o.frames_before * sim.substeps);
-    state.x = as_float4(executor.read(plan.positions));
-    state.v = as_float4(executor.read(static_cast<solver::BufferId>(velocities - plan.buffers.begin())));
+    device::PlanExecutor executor(
+        devices, solver::make_method_plan(scene.solver.method, state, h, sim.iterations, method_options(scene.solver)));
+    executor.run_substeps(o.frames_before * sim.substeps);
+    const plan::PlanState reached = executor.read_state();
+    state.x = plan::values_of<Float4>(reached.positions);
+    state.v = plan::values_of<Float4>(reached.velocities);
   }
 
   io::ConvergenceResult result;
@@ -135,19 +126,16 @@ io::ConvergenceResult run_convergence(const ConvergeOptions& o) {
     io::ConvergenceTrace trace;
     trace.variant = v.name;
     for (int k : iteration_counts(o.max_iterations)) {
-      const solver::SubstepPlan plan = solver::make_method_plan(v.method, state, h, k, method_options(scene.solver));
-      Execution e = prepare_execution(devices, plan, v.options);
+      Execution e = prepare_execution(
+          devices, solver::make_method_plan(v.method, state, h, k, method_options(scene.solver)), v.options);
+      const plan::PlanState start{plan::bytes_of(state.x), plan::bytes_of(state.v)};
       std::vector<double> times;
       std::vector<Float4> x;
       for (int r = 0; r < std::max(1, o.timing_repeats); ++r) {
-        for (std::size_t b = 0; b < e.plan->buffers.size(); ++b) {
-          e.executor->write(static_cast<solver::BufferId>(b), e.plan->buffers[b].initial);
-        }
-        e.executor->enqueue_substeps(1, true);
-        double makespan = 0.0;
-        for (const auto& t : e.executor->recorded()) makespan = std::max(makespan, t.finish_ms);
-        times.push_back(makespan);
-        x = as_float4(e.executor->read(e.plan->positions));
+        e.executor->reset(start);
+        e.executor->run_substeps(1, true);
+        times.push_back(measure_frame(e).makespan_ms);
+        x = plan::values_of<Float4>(e.executor->read_state().positions);
       }
       std::nth_element(times.begin(), times.begin() + times.size() / 2, times.end());
       solver::SimLayout after = state;

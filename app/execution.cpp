@@ -7,13 +7,14 @@
 
 #include <fmt/format.h>
 
+#include "plan/async_graph.hpp"
+#include "plan/split_plan.hpp"
+#include "scene/scene_desc.hpp"
 #include "sched/cost_refit.hpp"
 #include "sched/fixed_assignment.hpp"
 #include "sched/gauss_seidel_rank.hpp"
 #include "sched/heft.hpp"
 #include "sched/sync_map.hpp"
-#include "solver/async_graph.hpp"
-#include "solver/plan_split.hpp"
 #include "util/error.hpp"
 
 namespace atssim::app {
@@ -25,8 +26,9 @@ sched::DeviceLinks measure_links(device::PlanExecutor& executor) {
   sched::DeviceLinks links = sched::DeviceLinks::unified_memory(n, 0.0);
   for (std::size_t a = 0; a < n; ++a) {
     for (std::size_t b = 0; b < n; ++b) {
-      if (a != b) links.set_link(static_cast<sched::DeviceId>(a), static_cast<sched::DeviceId>(b),
-                                 executor.measure_latency_ms(a, b), 0.0);
+      if (a != b)
+        links.set_link(static_cast<sched::DeviceId>(a), static_cast<sched::DeviceId>(b),
+                       executor.measure_latency_ms(a, b), 0.0);
     }
   }
   return links;
@@ -47,67 +49,97 @@ std::vector<double> speed_fractions(const sched::CostTable& costs) {
 }
 
 void make_schedule(Execution& e, const ExecutionOptions& options, bool choose_devices) {
-  const auto& graph = e.plan->graph;
+  const auto& graph = e.plan().graph;
   if (e.mode == ScheduleMode::async && options.replay) return;  // the replay order is fixed
   if (choose_devices && e.mode == ScheduleMode::heft) {
-    e.schedule = sched::schedule_heft(graph, e.costs, e.links);
+    e.schedule = sched::schedule_heft(graph, e.costs.costs(), e.costs.links());
     for (sched::TaskId t = 0; t < graph.size(); ++t) e.assignment[t] = e.schedule.device_of(t);
-    e.planned = e.costs;
+    e.costs.plan_made();
   } else {
-    e.schedule = sched::schedule_fixed(graph, e.costs, e.links, e.assignment);
+    e.schedule = sched::schedule_fixed(graph, e.costs.costs(), e.costs.links(), e.assignment);
   }
-  (void)options;
   e.waits = e.schedule.cross_device_waits(graph);
   e.executor->run_schedule(e.schedule, e.waits);
 }
 
-// Largest relative change of a device's total cost for the whole substep:
-// single tasks are noisy (a few µs), a device's total is what HEFT balances.
-double total_drift(const sched::CostTable& planned, const sched::CostTable& now) {
-  double worst = 0.0;
-  for (std::size_t d = 0; d < planned.devices; ++d) {
-    double a = 0.0, b = 0.0;
-    for (std::size_t t = 0; t < planned.tasks; ++t) {
-      a += planned.at(static_cast<sched::TaskId>(t), d);
-      b += now.at(static_cast<sched::TaskId>(t), d);
-    }
-    if (a > 0.0) worst = std::max(worst, std::abs(b - a) / a);
-  }
-  return worst;
+device::ExecutorOptions executor_options(const ExecutionOptions& o) {
+  device::ExecutorOptions x;
+  x.kind = o.executor;
+  x.svm = o.svm;
+  x.wait_timeout_s = o.wait_timeout_s;
+  return x;
 }
 
-// The event-hop latency the idle probe measures is a lower bound: under load
-// pocl wakes a waiting queue later. For every cross-device wait that held its
-// consumer back (the producer finished after the consumer's queue was free),
-// the delay from the producer's end to the consumer's start is one sample; the
-// median per device pair moves the link halfway, like the task costs.
-void refit_latency(Execution& e, const std::vector<device::TaskTiming>& timings) {
-  if (e.waits.empty()) return;
-  const std::size_t n = e.executor->device_count();
-  std::vector<const device::TaskTiming*> of_task(e.plan->graph.size(), nullptr);
-  std::vector<double> queue_free(e.plan->graph.size(), 0.0);  // when the consumer's queue was free
-  std::vector<double> last_end(n, 0.0);
-  for (const auto& t : timings) {
-    of_task[t.task] = &t;
-    queue_free[t.task] = last_end[t.device];
-    last_end[t.device] = t.finish_ms;
+// Asynchronous Gauss-Seidel: HEFT with the Gauss-Seidel rank places the
+// blocks of the relaxed graph (§4.1.2, §4.2.1), the sync map decides the
+// merges (§4.2.2), and the merges become tasks of the plan that runs.
+Execution prepare_async(const device::DeviceSet& devices, const plan::SubstepPlan& base,
+                        const ExecutionOptions& options) {
+  const std::size_t n = devices.size();
+  Execution e;
+  e.mode = ScheduleMode::async;
+  const plan::SubstepPlan graph_plan = plan::async_graph(base, options.async_depth);
+  const auto& graph = graph_plan.graph;
+
+  sched::CostTable costs;
+  sched::DeviceLinks hop;
+  {
+    device::PlanExecutor probe(devices, base, executor_options(options));
+    costs = options.placement_costs ? *options.placement_costs
+                                    : probe.profile(std::max(2, options.profile_repetitions / 2));
+    hop = measure_links(probe);
   }
-  std::vector<std::vector<double>> samples(n * n);
-  for (const sched::Wait& w : e.waits) {
-    const auto* p = of_task[w.producer];
-    const auto* c = of_task[w.consumer];
-    if (p == nullptr || c == nullptr || p->finish_ms < queue_free[w.consumer]) continue;
-    samples[w.producer_device * n + w.consumer_device].push_back(std::max(c->start_ms - p->finish_ms, 0.0));
+  if (costs.tasks != graph.size() || costs.devices != n) {
+    throw Error(fmt::format("async: placement costs for {} tasks on {} devices, the plan has {} on {}", costs.tasks,
+                            costs.devices, graph.size(), n));
   }
-  for (std::size_t a = 0; a < n; ++a) {
-    for (std::size_t b = 0; b < n; ++b) {
-      auto& s = samples[a * n + b];
-      if (a == b || s.size() < 3) continue;
-      std::nth_element(s.begin(), s.begin() + s.size() / 2, s.end());
-      double& latency = e.links.latency_ms[a * n + b];
-      latency += 0.5 * (s[s.size() / 2] - latency);
+  // The main device keeps the stream: the fastest one runs the tasks outside
+  // the iterations (predict, the velocity update), which read and write the
+  // state no other device has.
+  std::vector<double> total(n, 0.0);
+  for (sched::TaskId t = 0; t < graph.size(); ++t) {
+    for (std::size_t d = 0; d < n; ++d) total[d] += costs.at(t, d);
+  }
+  e.main_device = static_cast<sched::DeviceId>(std::min_element(total.begin(), total.end()) - total.begin());
+  sched::TaskId predict = 0;
+  for (sched::TaskId t = 0; t < graph.size(); ++t) {
+    if (graph.task(t).iteration >= 0) continue;
+    if (plan::kind_of(graph.task(t)) == plan::TaskKind::predict) predict = t;
+    for (std::size_t d = 0; d < n; ++d) {
+      if (d != e.main_device) costs.at(t, d) = sched::kCannotRun;
     }
   }
+  // A hop now also publishes and merges a whole copy of the positions:
+  // about two particle sweeps, priced like the predict step.
+  sched::DeviceLinks links = hop;
+  for (std::size_t i = 0; i < links.latency_ms.size(); ++i) {
+    if (i % (n + 1) != 0) links.latency_ms[i] += 2.0 * costs.at(predict, e.main_device);
+  }
+  // Every Gauss-Seidel kind keeps its order across iterations (§4.1.2).
+  std::vector<std::vector<sched::TaskId>> orders;
+  std::vector<int> kinds;
+  for (const sched::Task& t : graph.tasks()) {
+    if (plan::traits(plan::kind_of(t)).gauss_seidel && std::find(kinds.begin(), kinds.end(), t.kind) == kinds.end()) {
+      kinds.push_back(t.kind);
+    }
+  }
+  for (int kind : kinds) orders.push_back(sched::gauss_seidel_order(graph, kind));
+  sched::HeftOptions heft;
+  heft.priority = sched::gauss_seidel_rank(graph, costs, links, orders);
+  const sched::Schedule placed = sched::schedule_heft(graph, costs, links, heft);
+  const sched::SyncMap map = sched::build_sync_map(graph, placed, hop, e.main_device, {options.async_latest});
+  plan::AsyncPlan async = plan::make_async_plan(graph_plan, placed, map, options.merge);
+  e.async_slots = async.slots;
+  e.async_merges = map.merges.size();
+
+  e.assignment = std::move(async.device);
+  e.executor = std::make_unique<device::PlanExecutor>(devices, std::move(async.plan), executor_options(options));
+  e.costs = sched::CostModel(e.executor->profile(options.profile_repetitions), hop, options.reschedule_drift);
+  e.schedule = sched::schedule_fixed(e.plan().graph, e.costs.costs(), e.costs.links(), e.assignment);
+  e.waits = e.schedule.cross_device_waits(e.plan().graph);
+  e.executor->run_schedule(e.schedule, e.waits);
+  if (options.replay) replay_on_one_device(e);
+  return e;
 }
 
 }  // namespace
@@ -122,136 +154,74 @@ ScheduleMode parse_schedule_mode(const std::string& text) {
 
 std::string to_string(ScheduleMode mode) {
   switch (mode) {
-    case ScheduleMode::single: return "single";
-    case ScheduleMode::split: return "split";
-    case ScheduleMode::heft: return "heft";
-    case ScheduleMode::async: return "async";
+    case ScheduleMode::single:
+      return "single";
+    case ScheduleMode::split:
+      return "split";
+    case ScheduleMode::heft:
+      return "heft";
+    case ScheduleMode::async:
+      return "async";
   }
   return "?";
 }
 
-namespace {
-
-// Asynchronous Gauss-Seidel: HEFT with the Gauss-Seidel rank places the
-// blocks of the relaxed graph (§4.1.2, §4.2.1), the sync map decides the
-// merges (§4.2.2), and the merges become tasks of the plan that runs.
-Execution prepare_async(const device::DeviceSet& devices, const solver::SubstepPlan& base,
-                        const ExecutionOptions& options) {
-  const std::size_t n = devices.size();
-  Execution e;
-  e.mode = ScheduleMode::async;
-  const device::ExecutorOptions exec_options{options.svm, 0, 64};
-  const solver::SubstepPlan graph_plan = solver::async_graph(base, options.async_depth);
-  const auto& graph = graph_plan.graph;
-
-  sched::CostTable costs;
-  sched::DeviceLinks hop;
-  {
-    device::PlanExecutor probe(devices, base, exec_options);
-    costs = options.placement_costs ? *options.placement_costs
-                                    : probe.profile(std::max(2, options.profile_repetitions / 2));
-    hop = measure_links(probe);
-  }
-  if (costs.tasks != graph.size() || costs.devices != n) {
-    throw Error(fmt::format("async: placement costs for {} tasks on {} devices, the plan has {} on {}", costs.tasks,
-                            costs.devices, graph.size(), n));
-  }
-  // The main device keeps the stream: the fastest one runs predict and the
-  // velocity update, which read and write the state no other device has.
-  std::vector<double> total(n, 0.0);
-  for (sched::TaskId t = 0; t < graph.size(); ++t) {
-    for (std::size_t d = 0; d < n; ++d) total[d] += costs.at(t, d);
-  }
-  e.main_device = static_cast<sched::DeviceId>(std::min_element(total.begin(), total.end()) - total.begin());
-  sched::TaskId predict = 0;
-  for (sched::TaskId t = 0; t < graph.size(); ++t) {
-    if (graph.task(t).iteration >= 0) continue;
-    if (graph.task(t).kind == "predict") predict = t;
-    for (std::size_t d = 0; d < n; ++d) {
-      if (d != e.main_device) costs.at(t, d) = sched::kCannotRun;
-    }
-  }
-  // A hop now also publishes and merges a whole copy of the positions:
-  // about two particle sweeps, priced like the predict step.
-  sched::DeviceLinks links = hop;
-  for (std::size_t i = 0; i < links.latency_ms.size(); ++i) {
-    if (i % (n + 1) != 0) links.latency_ms[i] += 2.0 * costs.at(predict, e.main_device);
-  }
-  std::vector<std::vector<sched::TaskId>> orders;
-  for (const std::string kind : {"stretch", "bend"}) {
-    auto order = sched::gauss_seidel_order(graph, kind);
-    if (!order.empty()) orders.push_back(std::move(order));
-  }
-  sched::HeftOptions heft;
-  heft.priority = sched::gauss_seidel_rank(graph, costs, links, orders);
-  const sched::Schedule placed = sched::schedule_heft(graph, costs, links, heft);
-  const sched::SyncMap map = sched::build_sync_map(graph, placed, hop, e.main_device, {options.async_latest});
-  solver::AsyncPlan async = solver::make_async_plan(graph_plan, placed, map, options.merge);
-  e.async_slots = async.slots;
-  e.async_merges = map.merges.size();
-
-  e.plan = std::make_unique<solver::SubstepPlan>(std::move(async.plan));
-  e.assignment = std::move(async.device);
-  e.executor = std::make_unique<device::PlanExecutor>(devices, *e.plan, exec_options);
-  e.profiled = e.executor->profile(options.profile_repetitions);
-  e.costs = e.profiled;
-  e.planned = e.profiled;
-  e.links = hop;
-  e.schedule = sched::schedule_fixed(e.plan->graph, e.costs, e.links, e.assignment);
-  e.waits = e.schedule.cross_device_waits(e.plan->graph);
-  e.executor->run_schedule(e.schedule, e.waits);
-  if (options.replay) replay_on_one_device(e);
-  return e;
+ExecutionOptions execution_options(const scene::SceneDesc& scene) {
+  ExecutionOptions o;
+  o.mode = parse_schedule_mode(scene.solver.schedule);
+  o.executor = device::parse_executor_kind(scene.solver.executor);
+  o.wait_timeout_s = scene.solver.wait_timeout_s;
+  o.async_depth = scene.solver.async_depth;
+  o.merge = plan::parse_merge_strategy(scene.solver.merge);
+  o.async_latest = scene.solver.async_latest;
+  o.replay = scene.solver.replay;
+  return o;
 }
 
-}  // namespace
-
-Execution prepare_execution(const device::DeviceSet& devices, const solver::SubstepPlan& base,
-                            const ExecutionOptions& options) {
+Execution prepare_execution(const device::DeviceSet& devices, plan::SubstepPlan base, const ExecutionOptions& options) {
   const std::size_t n = devices.size();
   if (options.mode != ScheduleMode::single && n < 2) {
-    throw input_error(fmt::format("schedule '{}' needs at least two devices, but the device spec selects one; "
-                                  "use e.g. --devices cpu/2 (the CPU split into two sub-devices)",
-                                  to_string(options.mode)));
+    throw input_error(
+        fmt::format("schedule '{}' needs at least two devices, but the device spec selects one; "
+                    "use e.g. --devices cpu/2 (the CPU split into two sub-devices)",
+                    to_string(options.mode)));
   }
   if (options.mode == ScheduleMode::async) return prepare_async(devices, base, options);
   Execution e;
   e.mode = options.mode;
-  const device::ExecutorOptions exec_options{options.svm, 0, 64};
   std::vector<double> fractions(1, 1.0);
   if (options.mode == ScheduleMode::split) {
     // Measure each device's speed on the whole plan, then cut every block by it.
-    device::PlanExecutor probe(devices, base, exec_options);
+    device::PlanExecutor probe(devices, base, executor_options(options));
     fractions = speed_fractions(probe.profile(std::max(2, options.profile_repetitions / 2)));
   } else if (options.mode == ScheduleMode::heft) {
     fractions.assign(n, 1.0 / static_cast<double>(n));  // equal parts; HEFT places them
   }
   e.split_fractions = fractions;
-  e.plan = std::make_unique<solver::SubstepPlan>(fractions.size() > 1 ? solver::split_plan(base, fractions) : base);
-  e.executor = std::make_unique<device::PlanExecutor>(devices, *e.plan, exec_options);
-  e.profiled = e.executor->profile(options.profile_repetitions);
-  e.costs = e.profiled;
-  e.planned = e.profiled;
-  e.links = n > 1 ? measure_links(*e.executor) : sched::DeviceLinks::unified_memory(1, 0.0);
+  if (fractions.size() > 1) base = plan::split_plan(base, fractions);
+  e.executor = std::make_unique<device::PlanExecutor>(devices, std::move(base), executor_options(options));
+  sched::CostTable profiled = e.executor->profile(options.profile_repetitions);
+  sched::DeviceLinks links = n > 1 ? measure_links(*e.executor) : sched::DeviceLinks::unified_memory(1, 0.0);
+  e.costs = sched::CostModel(std::move(profiled), std::move(links), options.reschedule_drift);
 
-  const auto& graph = e.plan->graph;
+  const auto& graph = e.plan().graph;
   e.assignment.assign(graph.size(), 0);
   if (options.mode == ScheduleMode::split) {
     for (sched::TaskId t = 0; t < graph.size(); ++t) {
-      e.assignment[t] = static_cast<sched::DeviceId>(std::max(0, solver::part_of(graph.task(t))));
+      e.assignment[t] = static_cast<sched::DeviceId>(std::max(0, graph.task(t).part));
     }
   }
   make_schedule(e, options, true);
   return e;
 }
 
-solver::SubstepPlan cut_for_mode(const solver::SubstepPlan& base, ScheduleMode mode, std::size_t devices) {
+plan::SubstepPlan cut_for_mode(const plan::SubstepPlan& base, ScheduleMode mode, std::size_t devices) {
   if (mode == ScheduleMode::single || devices < 2) return base;
   const std::vector<double> equal(devices, 1.0 / static_cast<double>(devices));
-  return solver::split_plan(base, equal);
+  return plan::split_plan(base, equal);
 }
 
-PlannedSchedule schedule_from_costs(const solver::SubstepPlan& base, ScheduleMode mode, const sched::CostTable& costs,
+PlannedSchedule schedule_from_costs(const plan::SubstepPlan& base, ScheduleMode mode, const sched::CostTable& costs,
                                     double latency_ms) {
   const std::size_t n = costs.devices;
   if (mode == ScheduleMode::async) {
@@ -268,18 +238,17 @@ PlannedSchedule schedule_from_costs(const solver::SubstepPlan& base, ScheduleMod
   if (mode == ScheduleMode::split) {
     // Re-cut by speed; a part's cost scales with its share of the elements.
     p.split_fractions = speed_fractions(costs);
-    const solver::SubstepPlan equal = std::move(p.plan);
-    p.plan = solver::split_plan(base, p.split_fractions);
+    const plan::SubstepPlan equal = std::move(p.plan);
+    p.plan = plan::split_plan(base, p.split_fractions);
     assignment.assign(p.plan.graph.size(), 0);  // the re-cut may drop parts that rounded to nothing
     std::unordered_map<std::string, sched::TaskId> equal_id;
     for (sched::TaskId t = 0; t < equal.graph.size(); ++t) equal_id[equal.graph.task(t).name] = t;
     p.costs = sched::CostTable(p.plan.graph.size(), n);
     for (sched::TaskId t = 0; t < p.plan.graph.size(); ++t) {
       const sched::Task& task = p.plan.graph.task(t);
-      const int part = solver::part_of(task);
-      assignment[t] = static_cast<sched::DeviceId>(std::max(part, 0));
+      assignment[t] = static_cast<sched::DeviceId>(std::max(task.part, 0));
       const auto it = equal_id.find(task.name);
-      const double scale = part >= 0 ? p.split_fractions[part] * static_cast<double>(n) : 1.0;
+      const double scale = task.part >= 0 ? p.split_fractions[task.part] * static_cast<double>(n) : 1.0;
       for (std::size_t d = 0; d < n; ++d) {
         p.costs.at(t, d) = it == equal_id.end() ? costs.at(0, d) : costs.at(it->second, d) * scale;
       }
@@ -295,7 +264,7 @@ PlannedSchedule schedule_from_costs(const solver::SubstepPlan& base, ScheduleMod
 }
 
 void replay_on_one_device(Execution& e) {
-  std::vector<sched::TaskId> order(e.plan->graph.size());
+  std::vector<sched::TaskId> order(e.plan().graph.size());
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](sched::TaskId a, sched::TaskId b) {
     return e.schedule.slot(a).start_ms < e.schedule.slot(b).start_ms;
@@ -303,31 +272,35 @@ void replay_on_one_device(Execution& e) {
   std::vector<std::vector<sched::Slot>> lanes(e.executor->device_count());
   double clock = 0.0;
   for (sched::TaskId t : order) {
-    lanes[0].push_back({t, clock, clock + e.costs.at(t, 0)});
-    clock += e.costs.at(t, 0);
+    lanes[0].push_back({t, clock, clock + e.costs.costs().at(t, 0)});
+    clock += e.costs.costs().at(t, 0);
   }
-  e.assignment.assign(e.plan->graph.size(), 0);
-  e.schedule = sched::assemble_schedule(e.plan->graph.size(), std::move(lanes));
+  e.assignment.assign(e.plan().graph.size(), 0);
+  e.schedule = sched::assemble_schedule(e.plan().graph.size(), std::move(lanes));
   e.waits.clear();
   e.executor->run_schedule(e.schedule, e.waits);
 }
 
-std::vector<device::TaskTiming> refit_and_reschedule(Execution& e, const ExecutionOptions& options) {
-  std::vector<device::TaskTiming> timings = e.executor->recorded();
-  // What each task cost its queue: from the later of its start and the end
-  // of the queue's previous task, to its end (as pre-profiling measures it).
-  std::vector<double> queue_end(e.executor->device_count(), 0.0);
-  std::vector<sched::Measurement> measurements;
-  for (const auto& t : timings) {
-    const double from = std::max(t.start_ms, queue_end[t.device]);
-    queue_end[t.device] = t.finish_ms;
-    measurements.push_back({t.task, static_cast<sched::DeviceId>(t.device), std::max(t.finish_ms - from, 1e-6)});
+FrameMeasurement measure_frame(Execution& e) {
+  FrameMeasurement m;
+  m.timings = e.executor->recorded();
+  for (const auto& t : m.timings) m.makespan_ms = std::max(m.makespan_ms, t.finish_ms);
+  if (m.timings.empty()) {
+    for (const auto& l : e.executor->launches())
+      m.makespan_ms = std::max(m.makespan_ms, l.ms / std::max(1, l.substeps));
   }
-  sched::refit_costs(e.costs, measurements);
-  refit_latency(e, timings);
-  const bool drifted = total_drift(e.planned, e.costs) > options.reschedule_drift;
-  make_schedule(e, options, e.mode == ScheduleMode::heft && drifted);
-  return timings;
+  return m;
+}
+
+FrameMeasurement refit_and_reschedule(Execution& e, const ExecutionOptions& options) {
+  FrameMeasurement m = measure_frame(e);
+  if (!m.timings.empty()) {
+    e.costs.observe(m.timings, e.waits);
+  } else {
+    e.costs.observe_launches(e.schedule, e.executor->launches());
+  }
+  make_schedule(e, options, e.mode == ScheduleMode::heft && e.costs.drifted());
+  return m;
 }
 
 }  // namespace atssim::app

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include <fmt/format.h>
 
@@ -15,7 +16,6 @@
 #include "model/cloth_builder.hpp"
 #include "scene/scene_loader.hpp"
 #include "solver/method_plan.hpp"
-#include "solver/xpbd/xpbd_plan.hpp"
 #include "util/error.hpp"
 
 namespace atssim::app {
@@ -38,16 +38,50 @@ device::SvmMode svm_mode(const std::string& text) {
   return device::SvmMode::automatic;
 }
 
+// Every task of the schedule that ran, with what was measured of it (NaN
+// where a fused launch without a task clock timed only the whole launch).
 void record_schedule(io::ResultWriter& writer, int frame, const sched::Schedule& used,
-                     const std::vector<sched::Wait>& waits, const std::vector<device::TaskTiming>& timings) {
+                     const std::vector<sched::Wait>& waits, const FrameMeasurement& measured) {
   std::vector<io::ScheduledTask> rows;
-  double measured = 0.0;
-  for (const auto& t : timings) {
-    const sched::Slot& slot = used.slot(t.task);
-    rows.push_back({t.task, static_cast<int>(t.device), slot.start_ms, slot.finish_ms, t.start_ms, t.finish_ms});
-    measured = std::max(measured, t.finish_ms);
+  if (!measured.timings.empty()) {
+    for (const auto& t : measured.timings) {
+      const sched::Slot& slot = used.slot(t.task);
+      rows.push_back({t.task, static_cast<int>(t.device), slot.start_ms, slot.finish_ms, t.start_ms, t.finish_ms});
+    }
+  } else {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    for (std::size_t d = 0; d < used.devices.size(); ++d) {
+      for (const sched::Slot& slot : used.devices[d]) {
+        rows.push_back({slot.task, static_cast<int>(d), slot.start_ms, slot.finish_ms, nan, nan});
+      }
+    }
   }
-  writer.append_schedule(frame, rows, waits, used.makespan_ms, measured);
+  writer.append_schedule(frame, rows, waits, used.makespan_ms, measured.makespan_ms);
+}
+
+io::RunInfo run_info(const RunOptions& options, const scene::SceneDesc& scene, const device::DeviceSet& devices,
+                     const Execution& e, const ExecutionOptions& exec_options) {
+  io::RunInfo info{options.command_line, scene.yaml_text, scene.resolved_yaml, {}, {}};
+  for (const device::DeviceInfo& d : devices.infos()) {
+    info.devices.push_back({d.name, d.vendor, d.type, d.platform, d.version, device::svm_text(d.svm), d.compute_units,
+                            d.index, d.sub_device});
+  }
+  info.schedule.mode = to_string(exec_options.mode);
+  info.schedule.executor = std::string(device::to_string(e.executor->kind()));
+  const auto& graph = e.plan().graph;
+  for (const sched::Task& t : graph.tasks()) {
+    info.schedule.tasks.push_back(
+        {t.name, std::string(plan::to_string(plan::kind_of(t))), t.iteration, t.block, t.part});
+  }
+  for (sched::TaskId t = 0; t < graph.size(); ++t) {
+    for (const sched::Edge& edge : graph.successors(t)) {
+      info.schedule.edges.emplace_back(static_cast<int>(edge.from), static_cast<int>(edge.to));
+    }
+  }
+  info.schedule.costs = e.costs.profiled();
+  info.schedule.latency_ms = e.costs.links().latency_ms;
+  info.schedule.split_fractions = e.split_fractions;
+  return info;
 }
 
 // Keeps only what output needs (object topology and rest shape).
@@ -63,11 +97,11 @@ solver::MethodOptions method_options(const scene::SolverDesc& solver) {
   return {solver.chebyshev_rho, solver.jacobi_step, solver.stencil_step, solver.momentum};
 }
 
-solver::SubstepPlan substep_plan_for(const scene::SceneDesc& scene) {
+plan::SubstepPlan substep_plan_for(const scene::SceneDesc& scene) {
   const auto& sim = scene.simulation;
   const model::Model model = model::build_model(scene);
-  return solver::make_method_plan(scene.solver.method, solver::make_sim_layout(model),
-                                  sim.frame_dt / sim.substeps, sim.iterations, method_options(scene.solver));
+  return solver::make_method_plan(scene.solver.method, solver::make_sim_layout(model), sim.frame_dt / sim.substeps,
+                                  sim.iterations, method_options(scene.solver));
 }
 
 RunResult run_simulation(const RunOptions& options, const std::function<void(const RunProgress&)>& progress) {
@@ -76,7 +110,7 @@ RunResult run_simulation(const RunOptions& options, const std::function<void(con
   scene::check_method_support(scene, scene.solver.method);
   const device::DeviceSet devices = device::DeviceSet::open(scene.devices);
   const auto& sim = scene.simulation;
-  const solver::xpbd::XpbdSettings settings{sim.frame_dt / sim.substeps, sim.iterations};
+  const double substep_dt = sim.frame_dt / sim.substeps;
 
   // Each stage's data is released once the next holds it, so the peak memory
   // is one stage's worth, not the sum (docs/benchmarks.md: bytes per vertex).
@@ -84,35 +118,22 @@ RunResult run_simulation(const RunOptions& options, const std::function<void(con
   const std::size_t particles = model.particles.size();
   solver::SimLayout layout = solver::make_sim_layout(model);
   release_simulation_state(model);
-  solver::SubstepPlan plan =
-      solver::make_method_plan(scene.solver.method, layout, settings.substep_dt, settings.iterations,
-                               method_options(scene.solver));
+  plan::SubstepPlan plan =
+      solver::make_method_plan(scene.solver.method, layout, substep_dt, sim.iterations, method_options(scene.solver));
   layout = {};
-  ExecutionOptions exec_options;
-  exec_options.mode = parse_schedule_mode(scene.solver.schedule);
+  ExecutionOptions exec_options = execution_options(scene);
   if (exec_options.mode == ScheduleMode::async && !solver::is_gauss_seidel(scene.solver.method)) {
-    throw input_error(fmt::format("schedule 'async' relaxes Gauss-Seidel iterations, and '{}' iterates Jacobi sweeps "
-                                  "that already run on every device with one synchronisation each: use --schedule "
-                                  "split or heft",
-                                  scene.solver.method));
+    throw input_error(
+        fmt::format("schedule 'async' relaxes Gauss-Seidel iterations, and '{}' iterates Jacobi sweeps "
+                    "that already run on every device with one synchronisation each: use --schedule "
+                    "split or heft",
+                    scene.solver.method));
   }
   exec_options.svm = svm_mode(options.svm_mode);
-  exec_options.async_depth = scene.solver.async_depth;
-  exec_options.merge = solver::parse_merge_strategy(scene.solver.merge);
-  exec_options.async_latest = scene.solver.async_latest;
-  exec_options.replay = scene.solver.replay;
-  Execution execution = prepare_execution(devices, plan, exec_options);
-  plan = {};
-  for (auto& buffer : execution.plan->buffers) std::vector<std::byte>().swap(buffer.initial);
+  Execution execution = prepare_execution(devices, std::move(plan), exec_options);
   device::PlanExecutor& executor = *execution.executor;
 
-  io::RunInfo info{options.command_line, scene.yaml_text, scene.resolved_yaml, devices.infos(), {}};
-  info.schedule.mode = to_string(exec_options.mode);
-  info.schedule.graph = &execution.plan->graph;
-  info.schedule.costs = execution.profiled;
-  info.schedule.latency_ms = execution.links.latency_ms;
-  info.schedule.split_fractions = execution.split_fractions;
-  io::ResultWriter writer(scene.output.path, info, model);
+  io::ResultWriter writer(scene.output.path, run_info(options, scene, devices, execution, exec_options), model.objects);
 
   RunResult result;
   result.output_path = scene.output.path;
@@ -127,7 +148,7 @@ RunResult run_simulation(const RunOptions& options, const std::function<void(con
     for (int frame = 1; frame <= sim.frames; ++frame) {
       if (g_stop) throw runtime_error(fmt::format("interrupted before frame {}", frame));
       const auto start = std::chrono::steady_clock::now();
-      executor.enqueue_substeps(sim.substeps, true);
+      executor.run_substeps(sim.substeps, true);
       executor.read_positions(xyz);
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
       // Costs from this frame's profiling events refit the table; the
@@ -135,19 +156,20 @@ RunResult run_simulation(const RunOptions& options, const std::function<void(con
       const sched::Schedule used = execution.schedule;
       const std::vector<sched::Wait> used_waits = execution.waits;
       const auto schedule_start = std::chrono::steady_clock::now();
-      const auto timings = refit_and_reschedule(execution, exec_options);
+      const FrameMeasurement measured = refit_and_reschedule(execution, exec_options);
       const double schedule_ms =
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - schedule_start).count();
       if (const int p = find_blow_up(xyz); p >= 0) {
-        throw runtime_error(fmt::format("frame {}: the simulation blew up (particle {} is at a non-finite or "
-                                        "implausible position); use more substeps or iterations, or softer "
-                                        "materials",
-                                        frame, p));
+        throw runtime_error(
+            fmt::format("frame {}: the simulation blew up (particle {} is at a non-finite or "
+                        "implausible position); use more substeps or iterations, or softer "
+                        "materials",
+                        frame, p));
       }
       total_ms += ms;
       result.frames_simulated = frame;
       if (frame % scene.output.stride == 0) {
-        record_schedule(writer, frame, used, used_waits, timings);
+        record_schedule(writer, frame, used, used_waits, measured);
         writer.append_frame(frame * sim.frame_dt, xyz, ms, schedule_ms);
       }
       if (progress) progress({frame, sim.frames, ms, total_ms / frame});

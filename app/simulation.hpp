@@ -25,7 +25,7 @@ struct RunProgress {
 struct RunResult {
   std::string output_path;
   int frames_simulated = 0;
-  int frames_written = 0;   // including the initial state
+  int frames_written = 0;  // including the initial state
   double mean_frame_ms = 0;
   std::size_t particles = 0;
   std::string device;
@@ -39,14 +39,16 @@ RunResult run_simulation(const RunOptions& options, const std::function<void(con
 namespace atssim::scene {
 struct SceneDesc;
 struct SolverDesc;
+}  // namespace atssim::scene
+namespace atssim::plan {
+struct SubstepPlan;
 }
 namespace atssim::solver {
-struct SubstepPlan;
 struct MethodOptions;
 }
 namespace atssim::app {
 // The substep plan of a validated scene (model -> layout -> solver plan).
-solver::SubstepPlan substep_plan_for(const scene::SceneDesc& scene);
+plan::SubstepPlan substep_plan_for(const scene::SceneDesc& scene);
 
 // The scene's per-method settings (solver.chebyshev_rho, jacobi_step, stencil_step).
 solver::MethodOptions method_options(const scene::SolverDesc& solver);

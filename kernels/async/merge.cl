@@ -1,12 +1,11 @@
 /* Data exchange of asynchronous Gauss-Seidel (He et al. 2025 §4.2.2).
  * Positions are float4 with w = inverse mass; w is never merged. Included by
  * every solver program that runs asynchronously. */
+#include "common/task.h"
 
 /* Snapshot of a device's positions for other devices to merge. */
-__kernel void async_publish(__global float4* dst, __global const float4* src, int first, int count) {
-  const int k = get_global_id(0);
-  if (k >= count) return;
-  dst[first + k] = src[first + k];
+ATS_TASK void async_publish(int i, __global float4* dst, __global const float4* src) {
+  dst[i] = src[i];
 }
 
 #define ATS_MERGE_COPY 0
@@ -19,11 +18,7 @@ __kernel void async_publish(__global float4* dst, __global const float4* src, in
  *   average positions:     (dst + other) / 2
  *   average displacements: start + the mean of the displacements of the
  *                          copies that moved the particle since `start` */
-__kernel void async_merge(__global float4* dst, __global const float4* other, __global const float4* start,
-                          int strategy, int first, int count) {
-  const int k = get_global_id(0);
-  if (k >= count) return;
-  const int i = first + k;
+ATS_TASK void async_merge(int i, __global float4* dst, __global const float4* other, __global const float4* start, int strategy) {
   const float4 a = dst[i];
   const float4 b = other[i];
   float3 r;

@@ -3,6 +3,7 @@
  * minimise the incremental potential directly (VBD, JPGD), x~ = x_t + h v +
  * h^2 g (the inertia target, also the first guess). Pinned particles (w = 0)
  * stay. */
+#include "common/task.h"
 /* Semi-implicit Euler for particle i: v += dt g, x += dt v; returns the new
  * position (pinned particles keep theirs and lose their velocity). */
 static inline float4 predict_particle(int i, __global float4* x, __global float4* v, __global float4* x_prev,
@@ -23,37 +24,23 @@ static inline float4 predict_particle(int i, __global float4* x, __global float4
   return q;
 }
 
-__kernel void particles_predict(__global float4* x, __global float4* v, __global float4* x_prev,
-                                __global float4* x_tilde, float dt, float gx, float gy, float gz, int first,
-                                int count) {
-  const int k = get_global_id(0);
-  if (k >= count) return;
-  const int i = first + k;
+ATS_TASK void particles_predict(int i, __global float4* x, __global float4* v, __global float4* x_prev, __global float4* x_tilde, float dt, float gx, float gy, float gz) {
   x_tilde[i] = predict_particle(i, x, v, x_prev, dt, gx, gy, gz);
 }
 
-__kernel void particles_update_velocity(__global const float4* x, __global float4* v, __global const float4* x_prev,
-                                        float inv_dt, int first, int count) {
-  const int k = get_global_id(0);
-  if (k >= count) return;
-  const int i = first + k;
+ATS_TASK void particles_update_velocity(int i, __global const float4* x, __global float4* v, __global const float4* x_prev, float inv_dt) {
   const float4 d = x[i] - x_prev[i];
   v[i] = (float4)(d.x * inv_dt, d.y * inv_dt, d.z * inv_dt, 0.0f);
 }
 
 /* The ground plane y = height: a particle below it is put back on it (the
  * velocity update then removes the motion into the ground; no friction). */
-__kernel void particles_ground(__global float4* x, float height, int first, int count) {
-  const int k = get_global_id(0);
-  if (k >= count) return;
-  const int i = first + k;
+ATS_TASK void particles_ground(int i, __global float4* x, float height) {
   const float4 p = x[i];
   if (p.w > 0.0f && p.y < height) x[i] = (float4)(p.x, height, p.z, p.w);
 }
 
 /* Copies positions (used where an iteration leaves its result elsewhere). */
-__kernel void particles_copy(__global float4* dst, __global const float4* src, int first, int count) {
-  const int k = get_global_id(0);
-  if (k >= count) return;
-  dst[first + k] = src[first + k];
+ATS_TASK void particles_copy(int i, __global float4* dst, __global const float4* src) {
+  dst[i] = src[i];
 }

@@ -15,14 +15,7 @@
 #include "common/particle_steps.cl"
 #include "async/merge.cl"
 
-__kernel void jpgd_step(__global const float4* x, __global const float4* x_before, __global float4* x_next,
-                        __global const float4* x_tilde, __global const int* adj_offsets, __global const int* adj,
-                        __global const ats_distance_c* stretch, __global const ats_bend_c* bend,
-                        __global const ats_tet_c* tets, float inv_h2, float alpha, float omega, float beta,
-                        int has_ground, float ground, int first, int count) {
-  const int k = get_global_id(0);
-  if (k >= count) return;
-  const int i = first + k;
+ATS_TASK void jpgd_step(int i, __global const float4* x, __global const float4* x_before, __global float4* x_next, __global const float4* x_tilde, __global const int* adj_offsets, __global const int* adj, __global const ats_distance_c* stretch, __global const ats_bend_c* bend, __global const ats_tet_c* tets, float inv_h2, float alpha, float omega, float beta, int has_ground, float ground) {
   const float4 p = x[i];
   if (p.w == 0.0f) {
     x_next[i] = p;

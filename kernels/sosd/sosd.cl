@@ -26,14 +26,7 @@
 #define SOSD_MAX 12 /* 4 vertices x 3 */
 
 /* sys[4 i] = (f, 0), sys[4 i + 1 .. 4 i + 3] = rows of H_ii. */
-__kernel void sosd_vertex_systems(__global const float4* x, __global const float4* x_tilde,
-                                  __global const int* adj_offsets, __global const int* adj,
-                                  __global const ats_distance_c* stretch, __global const ats_bend_c* bend,
-                                  __global const ats_tet_c* tets, __global float4* sys, float inv_h2, int first,
-                                  int count) {
-  const int k = get_global_id(0);
-  if (k >= count) return;
-  const int i = first + k;
+ATS_TASK void sosd_vertex_systems(int i, __global const float4* x, __global const float4* x_tilde, __global const int* adj_offsets, __global const int* adj, __global const ats_distance_c* stretch, __global const ats_bend_c* bend, __global const ats_tet_c* tets, __global float4* sys, float inv_h2) {
   if (x[i].w == 0.0f) return; /* pinned: never read */
   const vertex_system s = gather_vertex_system(i, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend, tets);
   sys[4 * i] = (float4)(s.f.x, s.f.y, s.f.z, 0.0f);
@@ -131,11 +124,7 @@ static void sosd_solve(const int* v, int n, ats_mat3 off[4][4], __global const f
   }
 }
 
-__kernel void sosd_stretch(__global const float4* x, __global const float4* sys,
-                           __global const ats_distance_c* stretch, __global float4* d, int first, int count) {
-  const int k = get_global_id(0);
-  if (k >= count) return;
-  const int e = first + k;
+ATS_TASK void sosd_stretch(int e, __global const float4* x, __global const float4* sys, __global const ats_distance_c* stretch, __global float4* d) {
   const ats_distance_c c = stretch[e];
   const int v[2] = {c.a, c.b};
   ats_mat3 off[4][4];
@@ -143,11 +132,7 @@ __kernel void sosd_stretch(__global const float4* x, __global const float4* sys,
   sosd_solve(v, 2, off, x, sys, d, 2 * e);
 }
 
-__kernel void sosd_bend(__global const float4* x, __global const float4* sys, __global const ats_bend_c* bend,
-                        __global float4* d, int first, int count) {
-  const int k = get_global_id(0);
-  if (k >= count) return;
-  const int e = first + k;
+ATS_TASK void sosd_bend(int e, __global const float4* x, __global const float4* sys, __global const ats_bend_c* bend, __global float4* d) {
   const ats_bend_c c = bend[e];
   ats_mat3 off[4][4];
   for (int p = 0; p < 4; ++p) {
@@ -156,11 +141,7 @@ __kernel void sosd_bend(__global const float4* x, __global const float4* sys, __
   sosd_solve(c.v, 4, off, x, sys, d, 4 * e);
 }
 
-__kernel void sosd_tet(__global const float4* x, __global const float4* sys, __global const ats_tet_c* tets,
-                       __global float4* d, int first, int count) {
-  const int k = get_global_id(0);
-  if (k >= count) return;
-  const int e = first + k;
+ATS_TASK void sosd_tet(int e, __global const float4* x, __global const float4* sys, __global const ats_tet_c* tets, __global float4* d) {
   const ats_tet_c t = tets[e];
   ats_vec3 q[4];
   for (int j = 0; j < 4; ++j) q[j] = vs_xyz(x[t.v[j]]);
@@ -179,14 +160,7 @@ __kernel void sosd_tet(__global const float4* x, __global const float4* sys, __g
 /* Stencil displacements of kind `main_kind`, elements [main_first,
  * main_end), take precedence (the main Gauss-Seidel block); main_kind = -1:
  * none. */
-__kernel void sosd_combine(__global float4* x, __global const int* adj_offsets, __global const int* adj,
-                           __global const float4* d_stretch, __global const float4* d_bend,
-                           __global const float4* d_tet, __global const float4* sys, int main_kind,
-                           int main_first, int main_end, float step, int has_ground, float ground, int first,
-                           int count) {
-  const int k = get_global_id(0);
-  if (k >= count) return;
-  const int i = first + k;
+ATS_TASK void sosd_combine(int i, __global float4* x, __global const int* adj_offsets, __global const int* adj, __global const float4* d_stretch, __global const float4* d_bend, __global const float4* d_tet, __global const float4* sys, int main_kind, int main_first, int main_end, float step, int has_ground, float ground) {
   const float4 p = x[i];
   if (p.w == 0.0f) return;
   float4 sum = (float4)(0.0f);

@@ -11,13 +11,8 @@
 #include "async/merge.cl"
 
 /* Vertices order[first .. first + count) of one color. */
-__kernel void vbd_solve(__global float4* x, __global const float4* x_tilde, __global const int* adj_offsets,
-                        __global const int* adj, __global const ats_distance_c* stretch,
-                        __global const ats_bend_c* bend, __global const ats_tet_c* tets, __global const int* order,
-                        float inv_h2, int has_ground, float ground, int first, int count) {
-  const int k = get_global_id(0);
-  if (k >= count) return;
-  const int i = order[first + k];
+ATS_TASK void vbd_solve(int k, __global float4* x, __global const float4* x_tilde, __global const int* adj_offsets, __global const int* adj, __global const ats_distance_c* stretch, __global const ats_bend_c* bend, __global const ats_tet_c* tets, __global const int* order, float inv_h2, int has_ground, float ground) {
+  const int i = order[k];
   const vertex_system s = gather_vertex_system(i, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend, tets);
   const ats_solve3 d = ats_m3_solve(s.h, s.f);
   if (!d.ok) return;

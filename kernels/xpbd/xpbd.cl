@@ -13,18 +13,12 @@
 static inline ats_vec3 xyz(float4 p) { return ats_v3(p.x, p.y, p.z); }
 static inline float4 add_xyz(float4 p, ats_vec3 d) { return (float4)(p.x + d.x, p.y + d.y, p.z + d.z, p.w); }
 
-__kernel void xpbd_predict(__global float4* x, __global float4* v, __global float4* x_prev, float dt,
-                           float gx, float gy, float gz, int first, int count) {
-  const int k = get_global_id(0);
-  if (k >= count) return;
-  predict_particle(first + k, x, v, x_prev, dt, gx, gy, gz);
+ATS_TASK void xpbd_predict(int i, __global float4* x, __global float4* v, __global float4* x_prev, float dt, float gx, float gy, float gz) {
+  predict_particle(i, x, v, x_prev, dt, gx, gy, gz);
 }
 
-__kernel void xpbd_stretch(__global float4* x, __global const ats_distance_c* c, __global float* lambda, int first,
-                           int count, float dt, int reset) {
-  const int k = get_global_id(0);
-  if (k >= count) return;
-  const int i = first + k;
+ATS_TASK void xpbd_stretch(int i, __global float4* x, __global const ats_distance_c* c, __global float* lambda,
+                           float dt, int reset) {
   const ats_distance_c con = c[i];
   const float l = reset ? 0.0f : lambda[i];
   const float4 pa = x[con.a];
@@ -35,11 +29,8 @@ __kernel void xpbd_stretch(__global float4* x, __global const ats_distance_c* c,
   x[con.b] = add_xyz(pb, s.dxb);
 }
 
-__kernel void xpbd_bend(__global float4* x, __global const ats_bend_c* c, __global float4* lambda, int first,
-                        int count, float dt, int reset) {
-  const int k = get_global_id(0);
-  if (k >= count) return;
-  const int i = first + k;
+ATS_TASK void xpbd_bend(int i, __global float4* x, __global const ats_bend_c* c, __global float4* lambda, float dt,
+                        int reset) {
   const ats_bend_c con = c[i];
   ats_vec3 p[4];
   float w[4];
@@ -57,11 +48,8 @@ __kernel void xpbd_bend(__global float4* x, __global const ats_bend_c* c, __glob
 
 /* One StVK tet per work-item: its seven strain constraints in sequence
  * (common/xpbd_tet.h); lambda holds ATS_TET_LAMBDA_STRIDE floats per tet. */
-__kernel void xpbd_tet(__global float4* x, __global const ats_tet_c* c, __global float* lambda, int first, int count,
-                       float dt, int reset) {
-  const int k = get_global_id(0);
-  if (k >= count) return;
-  const int i = first + k;
+ATS_TASK void xpbd_tet(int i, __global float4* x, __global const ats_tet_c* c, __global float* lambda, float dt,
+                       int reset) {
   const ats_tet_c t = c[i];
   ats_vec3 p[4];
   float w[4];

@@ -12,6 +12,7 @@
 #pragma OPENCL FP_CONTRACT OFF
 
 #include "common/ats_math.h"
+#include "common/task.h"
 #include "common/element_types.h"
 #include "common/energy_inertia.h"
 #include "common/energy_stretch.h"
@@ -21,31 +22,20 @@
 
 static inline ats_vec3 energy_xyz(float4 p) { return ats_v3(p.x, p.y, p.z); }
 
-__kernel void energy_inertia(__global const float4* x, __global const float4* x_tilde, __global float* out,
-                             int out_first, int first, int count, float inv_h2) {
-  const int k = get_global_id(0);
-  if (k >= count) return;
-  const int i = first + k;
+ATS_TASK void energy_inertia(int i, __global const float4* x, __global const float4* x_tilde, __global float* out,
+                             int out_first, float inv_h2) {
   const float4 p = x[i];
   out[out_first + i] = p.w > 0.0f ? ats_inertia_energy(energy_xyz(p), energy_xyz(x_tilde[i]), 1.0f / p.w, inv_h2)
                                   : 0.0f;
 }
 
-__kernel void energy_stretch(__global const float4* x, __global const ats_distance_c* c, __global float* out,
-                             int out_first, int first, int count) {
-  const int k = get_global_id(0);
-  if (k >= count) return;
-  const int i = first + k;
+ATS_TASK void energy_stretch(int i, __global const float4* x, __global const ats_distance_c* c, __global float* out, int out_first) {
   const ats_distance_c con = c[i];
   out[out_first + i] =
       ats_stretch_energy(energy_xyz(x[con.a]), energy_xyz(x[con.b]), con.rest, 1.0f / con.compliance);
 }
 
-__kernel void energy_bend(__global const float4* x, __global const ats_bend_c* c, __global float* out,
-                          int out_first, int first, int count) {
-  const int k = get_global_id(0);
-  if (k >= count) return;
-  const int i = first + k;
+ATS_TASK void energy_bend(int i, __global const float4* x, __global const ats_bend_c* c, __global float* out, int out_first) {
   const ats_bend_c con = c[i];
   ats_vec3 p[4];
   for (int j = 0; j < 4; ++j) p[j] = energy_xyz(x[con.v[j]]);
@@ -54,11 +44,7 @@ __kernel void energy_bend(__global const float4* x, __global const ats_bend_c* c
 
 /* One tet: stable neo-Hookean or StVK (ats_tet_c.model); the host has
  * rejected mu <= 0, lambda < 0 and unknown models. */
-__kernel void energy_tet(__global const float4* x, __global const ats_tet_c* c, __global float* out, int out_first,
-                         int first, int count) {
-  const int k = get_global_id(0);
-  if (k >= count) return;
-  const int i = first + k;
+ATS_TASK void energy_tet(int i, __global const float4* x, __global const ats_tet_c* c, __global float* out, int out_first) {
   const ats_tet_c t = c[i];
   ats_vec3 p[4];
   for (int j = 0; j < 4; ++j) p[j] = energy_xyz(x[t.v[j]]);

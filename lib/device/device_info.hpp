@@ -14,19 +14,19 @@ struct SvmCaps {
 };
 
 struct DeviceInfo {
-  int index = -1;               // position in list_devices()
+  int index = -1;  // position in list_devices()
   int platform_index = -1;
   std::string platform;
   std::string name;
   std::string vendor;
-  std::string type;             // "gpu", "cpu", "accelerator", "other"
-  std::string version;          // CL_DEVICE_VERSION
-  std::string c_version;        // highest OpenCL C version the device accepts
+  std::string type;       // "gpu", "cpu", "accelerator", "other"
+  std::string version;    // CL_DEVICE_VERSION
+  std::string c_version;  // highest OpenCL C version the device accepts
   int compute_units = 0;
   long long global_memory = 0;  // bytes
   SvmCaps svm;
-  int max_sub_devices = 0;      // 0 = cannot be partitioned equally
-  int sub_device = -1;          // index within its parent when split, else -1
+  int max_sub_devices = 0;  // 0 = cannot be partitioned equally
+  int sub_device = -1;      // index within its parent when split, else -1
   int sub_device_count = 0;
 };
 

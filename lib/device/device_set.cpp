@@ -26,9 +26,10 @@ std::string available(const std::vector<DeviceHandle>& all) {
 }
 
 [[noreturn]] void bad_spec(const std::string& spec, const std::string& why, const std::vector<DeviceHandle>& all) {
-  throw input_error(fmt::format("--devices '{}': {}; available: {} (e.g. --devices cpu, --devices 0, "
-                                "--devices cpu/2)",
-                                spec, why, available(all)));
+  throw input_error(
+      fmt::format("--devices '{}': {}; available: {} (e.g. --devices cpu, --devices 0, "
+                  "--devices cpu/2)",
+                  spec, why, available(all)));
 }
 
 std::vector<const DeviceHandle*> pick(const std::string& selector, const std::string& spec,
@@ -100,8 +101,9 @@ namespace {
 std::shared_ptr<DeviceSet::Impl> open_impl(const std::string& spec_in) {
   const std::vector<DeviceHandle> all = all_device_handles();
   if (all.empty()) {
-    throw runtime_error("no OpenCL device found: install an OpenCL driver (on Debian: pocl-opencl-icd, "
-                        "scripts/setup.sh installs it) and check `atssim devices`");
+    throw runtime_error(
+        "no OpenCL device found: install an OpenCL driver (on Debian: pocl-opencl-icd, "
+        "scripts/setup.sh installs it) and check `atssim devices`");
   }
   const std::string spec = spec_in.empty() ? "default" : spec_in;
   auto impl = std::make_shared<DeviceSet::Impl>();
@@ -128,8 +130,10 @@ std::shared_ptr<DeviceSet::Impl> open_impl(const std::string& spec_in) {
       split = std::stoi(count);
     }
     if (only >= 0 && (split == 0 || only >= split)) {
-      bad_spec(spec, fmt::format("'{}:{}' names no sub-device; split first, as in cpu/2:{}", item, only,
-                                 split > 0 ? split - 1 : 1), all);
+      bad_spec(spec,
+               fmt::format("'{}:{}' names no sub-device; split first, as in cpu/2:{}", item, only,
+                           split > 0 ? split - 1 : 1),
+               all);
     }
     for (const DeviceHandle* h : pick(selector, spec, all)) {
       if (split == 0) {
@@ -138,8 +142,10 @@ std::shared_ptr<DeviceSet::Impl> open_impl(const std::string& spec_in) {
         continue;
       }
       if (h->info.max_sub_devices < split || h->info.compute_units < split) {
-        bad_spec(spec, fmt::format("device {} ({} compute units) cannot be split into {}", h->info.index,
-                                   h->info.compute_units, split), all);
+        bad_spec(spec,
+                 fmt::format("device {} ({} compute units) cannot be split into {}", h->info.index,
+                             h->info.compute_units, split),
+                 all);
       }
       const cl_device_partition_property props[] = {
           CL_DEVICE_PARTITION_EQUALLY, static_cast<cl_device_partition_property>(h->info.compute_units / split), 0};
@@ -148,8 +154,8 @@ std::shared_ptr<DeviceSet::Impl> open_impl(const std::string& spec_in) {
         cl::Device parent = h->device;
         parent.createSubDevices(props, &subs);
       } catch (const cl::Error& e) {
-        throw runtime_error(fmt::format("splitting device {} into {}: {}", h->info.index, split,
-                                        cl_error_name(e.err())));
+        throw runtime_error(
+            fmt::format("splitting device {} into {}: {}", h->info.index, split, cl_error_name(e.err())));
       }
       for (int s = 0; s < split && s < static_cast<int>(subs.size()); ++s) {
         if (only >= 0 && s != only) continue;
@@ -164,13 +170,16 @@ std::shared_ptr<DeviceSet::Impl> open_impl(const std::string& spec_in) {
   if (impl->devices.empty()) bad_spec(spec, "it selects no device", all);
   for (const DeviceInfo& d : impl->infos) {
     if (d.platform_index != impl->infos.front().platform_index) {
-      bad_spec(spec, fmt::format("devices of different platforms ('{}' and '{}') cannot share SVM memory",
-                                 impl->infos.front().platform, d.platform), all);
+      bad_spec(spec,
+               fmt::format("devices of different platforms ('{}' and '{}') cannot share SVM memory",
+                           impl->infos.front().platform, d.platform),
+               all);
     }
     if (!d.svm.coarse_buffer && !d.svm.fine_buffer) {
-      throw runtime_error(fmt::format("device {} ({}) has no shared virtual memory (SVM); atssim needs OpenCL 2.0+ "
-                                      "SVM — pick another device with --devices (see `atssim devices`)",
-                                      d.index, d.name));
+      throw runtime_error(
+          fmt::format("device {} ({}) has no shared virtual memory (SVM); atssim needs OpenCL 2.0+ "
+                      "SVM — pick another device with --devices (see `atssim devices`)",
+                      d.index, d.name));
     }
   }
   try {

@@ -1,80 +1,100 @@
 #pragma once
-// Runs a solver's SubstepPlan on the devices of a DeviceSet: every buffer in
-// SVM, one OpenCL kernel object per launch with its arguments set once, one
-// in-order queue per device, and event waits only where a schedule says a
-// queue must wait for another (DESIGN.md "Devices"). Knows nothing of physics.
+// Runs a SubstepPlan on the devices of a DeviceSet (DESIGN.md "Devices").
+// Every buffer lives in SVM; the executor owns the plan. Two ways to run the
+// same schedule:
+//   - events: one in-order queue per device, one launch per task, event
+//     waits only where the schedule says a queue must wait for another;
+//   - fused: per device one launch of a dispatcher kernel per call of
+//     run_substeps(), which walks the device's slots in schedule order and
+//     waits through completion counters in fine-grain SVM. A wait that makes
+//     no progress for ExecutorOptions::wait_timeout_s ends with an error.
+// Both give the same bits. Knows nothing of physics.
 #include <memory>
 #include <span>
 #include <vector>
 
 #include "device/device_set.hpp"
+#include "device/executor_choice.hpp"
+#include "plan/plan_state.hpp"
+#include "plan/substep_plan.hpp"
 #include "sched/cost_table.hpp"
 #include "sched/schedule.hpp"
-#include "solver/substep_plan.hpp"
+#include "sched/task_timing.hpp"
 
 namespace atssim::device {
 
 enum class SvmMode { automatic, coarse, fine };
 
 struct ExecutorOptions {
-  SvmMode svm = SvmMode::automatic;  // automatic: fine grain when every device offers it
+  ExecutorKind kind = ExecutorKind::automatic;  // automatic: choose_executor() on the set's devices
+  SvmMode svm = SvmMode::automatic;  // events: automatic = fine grain when every device offers it; fused: fine
   std::size_t device = 0;            // the device that runs everything until a schedule is set
-  std::size_t local_size = 64;       // fixed per kernel: pocl recompiles for each new size
-};
-
-// Measured times of one task in a recorded substep, in ms from the start of
-// the substep's first task (all devices share one clock: OpenCL profiling).
-struct TaskTiming {
-  sched::TaskId task = 0;
-  std::size_t device = 0;
-  double start_ms = 0.0;
-  double finish_ms = 0.0;
+  std::size_t local_size = 64;       // events: fixed per kernel, pocl recompiles for each new size
+  double wait_timeout_s = 10.0;      // fused: no task finished on any device for this long = failure
+  bool task_clock = true;            // fused: time each task with the device's cycle counter where it has one
+  int never_publish = -1;            // fused, tests only: this task never reports completion
 };
 
 class PlanExecutor {
  public:
-  // Builds the plan's program for every device (errors carry the build log)
-  // and uploads the buffers' initial contents.
-  PlanExecutor(const DeviceSet& devices, const solver::SubstepPlan& plan, ExecutorOptions options = {});
+  // Checks every launch against the program's task functions (an unknown
+  // function or a wrong argument list is an error naming both), builds the
+  // program for every device (errors carry the build log) and uploads the
+  // buffers; the plan's initial contents are released afterwards.
+  PlanExecutor(const DeviceSet& devices, plan::SubstepPlan plan, ExecutorOptions options = {});
   PlanExecutor(const PlanExecutor&) = delete;
   PlanExecutor& operator=(const PlanExecutor&) = delete;
   ~PlanExecutor();
 
+  const plan::SubstepPlan& plan() const;
+  ExecutorKind kind() const;
   std::size_t device_count() const;
+  // Fused only: whether tasks are timed one by one (else only launches are).
+  bool has_task_clock() const;
 
   // Every task on one device, in topological order.
   void run_on(std::size_t device);
   // Each task on the device `schedule` gives it, each device's tasks in slot
-  // order; a queue waits for another only at `waits` (and, between
-  // substeps, for the other queues' last task).
+  // order; a device waits for another only at `waits` (and, between
+  // substeps, for the other devices' last task).
   void run_schedule(const sched::Schedule& schedule, std::span<const sched::Wait> waits);
 
-  // Enqueues `count` substeps and returns without waiting. With `record`,
-  // the last one is timed task by task (see recorded()).
-  void enqueue_substeps(int count, bool record = false);
-  // Timings of the last recorded substep, in task order of execution (waits).
-  std::vector<TaskTiming> recorded();
+  // Starts `count` substeps and returns without waiting for them. With
+  // `record`, the last one is timed task by task (see recorded()).
+  void run_substeps(int count, bool record = false);
+  // Timings of the last recorded substep, in the order the tasks ran on
+  // their devices. Empty for fused execution without a task clock.
+  std::vector<sched::TaskTiming> recorded();
+  // Fused: each device's launch of the last run_substeps(); events: empty.
+  std::vector<sched::LaunchTiming> launches();
 
   // Pre-profiling (paper §5): runs the plan on each device alone for
   // `repetitions` substeps after one warm-up, and returns the trimmed mean of
-  // each task's cost there, including the queue's launch gap. Simulation
-  // state is restored afterwards; the current schedule is kept.
+  // what each task cost its device there (events: including the queue's
+  // launch gap; fused: the task itself). The state is restored afterwards;
+  // the current schedule is kept.
   sched::CostTable profile(int repetitions = 5);
-  // Median time from the end of a task on `from` to the start of a task on
-  // `to` that waits for it (an event hop), over `repetitions` hops.
+  // Median delay from the end of work on `from` to the start of work on `to`
+  // that waits for it: an event hop (events) or an SVM-atomic handshake
+  // (fused).
   double measure_latency_ms(std::size_t from, std::size_t to, int repetitions = 20);
 
-  // Waits for everything enqueued.
+  // Waits for everything started. Fused: throws atssim::Error (runtime)
+  // naming the device and the task when a wait made no progress in time.
   void finish();
-  // Copies a buffer to the host (waits first).
-  std::vector<std::byte> read(solver::BufferId id);
-  void write(solver::BufferId id, std::span<const std::byte> bytes);
-  // Positions as xyz float triplets (from the plan's float4 position buffer).
+
+  // The state carried between substeps (waits first).
+  plan::PlanState read_state();
+  void reset(const plan::PlanState& state);
+  std::vector<std::byte> read(plan::BufferId id);
+  void write(plan::BufferId id, std::span<const std::byte> bytes);
+  // Positions as xyz float triplets (from the plan's float4 positions buffer).
   void read_positions(std::vector<float>& xyz);
   bool fine_grain() const;
 
- private:
   struct Impl;
+
+ private:
   std::unique_ptr<Impl> impl_;
 };
 

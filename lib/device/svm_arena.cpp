@@ -9,7 +9,8 @@
 
 namespace atssim::device {
 
-SvmArena::SvmArena(cl::Context context, bool fine_grain) : context_(std::move(context)), fine_grain_(fine_grain) {}
+SvmArena::SvmArena(cl::Context context, bool fine_grain, bool atomics)
+    : context_(std::move(context)), fine_grain_(fine_grain || atomics), atomics_(atomics) {}
 
 SvmArena::~SvmArena() {
   for (void* p : allocations_) clSVMFree(context_(), p);
@@ -18,14 +19,25 @@ SvmArena::~SvmArena() {
 void* SvmArena::allocate(std::size_t bytes) {
   cl_svm_mem_flags flags = CL_MEM_READ_WRITE;
   if (fine_grain_) flags |= CL_MEM_SVM_FINE_GRAIN_BUFFER;
-  void* p = clSVMAlloc(context_(), flags, std::max<std::size_t>(bytes, 16), 64);
+  if (atomics_) flags |= CL_MEM_SVM_ATOMICS;
+  const std::size_t size = std::max<std::size_t>(bytes, 16);
+  void* p = clSVMAlloc(context_(), flags, size, 64);
   if (p == nullptr) {
-    throw runtime_error(fmt::format("cannot allocate {} bytes of shared virtual memory on the device; make the "
-                                    "scene smaller or choose another device",
-                                    bytes));
+    throw runtime_error(
+        fmt::format("cannot allocate {} bytes of shared virtual memory on the device; make the "
+                    "scene smaller or choose another device",
+                    bytes));
   }
+  if (fine_grain_) std::memset(p, 0, size);
   allocations_.push_back(p);
   return p;
+}
+
+void SvmArena::release(void* ptr) {
+  const auto it = std::find(allocations_.begin(), allocations_.end(), ptr);
+  if (it == allocations_.end()) return;
+  clSVMFree(context_(), ptr);
+  allocations_.erase(it);
 }
 
 void SvmArena::write(const cl::CommandQueue& queue, void* ptr, const void* src, std::size_t bytes) {

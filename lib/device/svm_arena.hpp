@@ -11,14 +11,19 @@ namespace atssim::device {
 
 class SvmArena {
  public:
-  SvmArena(cl::Context context, bool fine_grain);
+  // `atomics`: fine-grain buffers that kernels and the host may update
+  // atomically while kernels run (the fused executor's counters).
+  SvmArena(cl::Context context, bool fine_grain, bool atomics = false);
   SvmArena(const SvmArena&) = delete;
   SvmArena& operator=(const SvmArena&) = delete;
   ~SvmArena();
 
   bool fine_grain() const { return fine_grain_; }
-  // Allocates at least `bytes` (≥ 16), 64-byte aligned.
+  // Allocates at least `bytes` (≥ 16), 64-byte aligned, zero-filled when
+  // fine grain.
   void* allocate(std::size_t bytes);
+  // Frees one allocation of this arena (no kernel may still use it).
+  void release(void* ptr);
   // Host copies through `queue` (blocking map/unmap for coarse grain).
   void write(const cl::CommandQueue& queue, void* ptr, const void* src, std::size_t bytes);
   void read(const cl::CommandQueue& queue, const void* ptr, void* dst, std::size_t bytes);
@@ -26,6 +31,7 @@ class SvmArena {
  private:
   cl::Context context_;
   bool fine_grain_;
+  bool atomics_;
   std::vector<void*> allocations_;
 };
 

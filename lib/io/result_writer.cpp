@@ -36,7 +36,7 @@ std::string now_iso8601() {
   return fmt::format("{:%Y-%m-%dT%H:%M:%SZ}", fmt::gmtime(std::chrono::system_clock::to_time_t(now)));
 }
 
-void write_devices(hid_t file, const std::vector<device::DeviceInfo>& devices) {
+void write_devices(hid_t file, const std::vector<DeviceRecord>& devices) {
   H5Handle g = create_group(file, "devices");
   std::vector<std::string> name, vendor, type, platform, version, svm;
   std::vector<int> units, index, sub;
@@ -46,7 +46,7 @@ void write_devices(hid_t file, const std::vector<device::DeviceInfo>& devices) {
     type.push_back(d.type);
     platform.push_back(d.platform);
     version.push_back(d.version);
-    svm.push_back(device::svm_text(d.svm));
+    svm.push_back(d.svm);
     units.push_back(d.compute_units);
     index.push_back(d.index);
     sub.push_back(d.sub_device);
@@ -65,29 +65,26 @@ void write_devices(hid_t file, const std::vector<device::DeviceInfo>& devices) {
 void write_schedule_info(hid_t file, const ScheduleInfo& info, std::size_t devices) {
   H5Handle g = create_group(file, "schedule");
   write_string_attribute(g, "mode", info.mode);
+  write_string_attribute(g, "executor", info.executor);
   H5Handle tasks = create_group(g, "tasks");
   std::vector<std::string> name, kind;
-  std::vector<int> iteration, block;
-  if (info.graph != nullptr) {
-    for (const sched::Task& t : info.graph->tasks()) {
-      name.push_back(t.name);
-      kind.push_back(t.kind);
-      iteration.push_back(t.iteration);
-      block.push_back(t.block);
-    }
+  std::vector<int> iteration, block, part;
+  for (const TaskRecord& t : info.tasks) {
+    name.push_back(t.name);
+    kind.push_back(t.kind);
+    iteration.push_back(t.iteration);
+    block.push_back(t.block);
+    part.push_back(t.part);
   }
   write_string_array(tasks, "name", name);
   write_string_array(tasks, "kind", kind);
   write_int_array(tasks, "iteration", iteration, 0);
   write_int_array(tasks, "block", block, 0);
+  write_int_array(tasks, "part", part, 0);
   std::vector<int> from, to;
-  if (info.graph != nullptr) {
-    for (sched::TaskId t = 0; t < info.graph->size(); ++t) {
-      for (const sched::Edge& e : info.graph->successors(t)) {
-        from.push_back(static_cast<int>(e.from));
-        to.push_back(static_cast<int>(e.to));
-      }
-    }
+  for (const auto& [a, b] : info.edges) {
+    from.push_back(a);
+    to.push_back(b);
   }
   write_int_array(tasks, "edge_from", from, 0);
   write_int_array(tasks, "edge_to", to, 0);
@@ -97,9 +94,9 @@ void write_schedule_info(hid_t file, const ScheduleInfo& info, std::size_t devic
   if (!info.split_fractions.empty()) write_double_array(dev, "split_fractions", info.split_fractions, 0);
 }
 
-void write_mesh(hid_t file, const model::Model& model) {
+void write_mesh(hid_t file, std::span<const model::ObjectRange> objects) {
   H5Handle mesh = create_group(file, "mesh");
-  for (const auto& obj : model.objects) {
+  for (const auto& obj : objects) {
     H5Handle g = create_group(mesh, obj.name);
     std::vector<float> rest;
     for (const auto& p : obj.rest_position) rest.insert(rest.end(), {float(p.x()), float(p.y()), float(p.z())});
@@ -118,17 +115,18 @@ void write_mesh(hid_t file, const model::Model& model) {
 
 }  // namespace
 
-ResultWriter::ResultWriter(const std::string& path, const RunInfo& info, const model::Model& model)
-    : path_(path), objects_(model.objects) {
+ResultWriter::ResultWriter(const std::string& path, const RunInfo& info, std::span<const model::ObjectRange> objects)
+    : path_(path), objects_(objects.begin(), objects.end()) {
   for (const auto& obj : objects_) particles_ = std::max<std::size_t>(particles_, obj.vertex_offset + obj.vertex_count);
   // SWMR needs the latest file format; readers are h5py/HDF5 ≥ 1.10.
   H5Handle fapl = h5_check(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "file access properties");
   h5_check(H5Pset_libver_bounds(fapl, H5F_LIBVER_LATEST, H5F_LIBVER_LATEST), "file format bounds");
   const hid_t id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
   if (id < 0) {
-    throw input_error(fmt::format("cannot create output file '{}': check that its folder exists and is writable "
-                                  "(or pass -o elsewhere)",
-                                  path));
+    throw input_error(
+        fmt::format("cannot create output file '{}': check that its folder exists and is writable "
+                    "(or pass -o elsewhere)",
+                    path));
   }
   file_ = H5Handle(id, H5Fclose);
   write_string_attribute(file_, "format", "atssim");
@@ -144,7 +142,7 @@ ResultWriter::ResultWriter(const std::string& path, const RunInfo& info, const m
   write_string_dataset(scene, "resolved", info.resolved_yaml);
   write_devices(file_, info.devices);
   write_schedule_info(file_, info.schedule, info.devices.size());
-  write_mesh(file_, model);
+  write_mesh(file_, objects);
 
   H5Handle frames = create_group(file_, "frames");
   time_ = create_series(frames, "time", 0, 0, H5T_IEEE_F64LE);
@@ -277,8 +275,8 @@ void ResultWriter::close_with(bool complete, const std::string& error) {
   positions_.reset();
   time_.reset();
   for (H5Handle* h : {&frame_ms_, &schedule_ms_, &sched_frame_, &sched_task_, &sched_device_, &sched_pstart_,
-                      &sched_pfinish_, &sched_mstart_, &sched_mfinish_, &wait_frame_, &wait_producer_,
-                      &wait_consumer_, &wait_pdevice_, &wait_cdevice_, &mk_frame_, &mk_predicted_, &mk_measured_}) {
+                      &sched_pfinish_, &sched_mstart_, &sched_mfinish_, &wait_frame_, &wait_producer_, &wait_consumer_,
+                      &wait_pdevice_, &wait_cdevice_, &mk_frame_, &mk_predicted_, &mk_measured_}) {
     h->reset();
   }
   file_.reset();
@@ -290,9 +288,7 @@ void ResultWriter::close_with(bool complete, const std::string& error) {
   write_xdmf();
 }
 
-std::string ResultWriter::xdmf_path() const {
-  return std::filesystem::path(path_).replace_extension(".xdmf").string();
-}
+std::string ResultWriter::xdmf_path() const { return std::filesystem::path(path_).replace_extension(".xdmf").string(); }
 
 void ResultWriter::write_xdmf() const {
   write_xdmf_file(xdmf_path(), std::filesystem::path(path_).filename().string(), objects_, particles_, times_);

@@ -8,31 +8,49 @@
 #include <string>
 #include <vector>
 
-#include "device/device_info.hpp"
 #include "io/h5_handle.hpp"
 #include "model/model.hpp"
 #include "sched/cost_table.hpp"
 #include "sched/schedule.hpp"
-#include "sched/task_graph.hpp"
 
 namespace atssim::io {
 
 constexpr int kFormatVersion = 1;
 
+// A device as the output describes it (plain data: the writer links no OpenCL).
+struct DeviceRecord {
+  std::string name, vendor, type, platform, version;
+  std::string svm;  // e.g. "coarse+fine+atomics"
+  int compute_units = 0;
+  int index = -1;  // in `atssim devices`
+  int sub_device = -1;
+};
+
+// One task of the substep plan.
+struct TaskRecord {
+  std::string name;
+  std::string kind;  // "predict", "stretch", … (plan::TaskKind)
+  int iteration = -1;
+  int block = -1;
+  int part = -1;
+};
+
 // The substep's tasks and what the scheduler was given.
 struct ScheduleInfo {
-  std::string mode;                      // "single", "split", "heft"
-  const sched::TaskGraph* graph = nullptr;
-  sched::CostTable costs;                // pre-profiled, ms, task × device
-  std::vector<double> latency_ms;        // device × device event-hop latency
-  std::vector<double> split_fractions;   // share of each device ("split")
+  std::string mode;      // "single", "split", "heft", "async"
+  std::string executor;  // "events" or "fused"
+  std::vector<TaskRecord> tasks;
+  std::vector<std::pair<int, int>> edges;
+  sched::CostTable costs;               // pre-profiled, ms, task × device
+  std::vector<double> latency_ms;       // device × device hop latency
+  std::vector<double> split_fractions;  // share of each device ("split")
 };
 
 struct RunInfo {
   std::string command_line;
-  std::string scene_yaml;      // as given
-  std::string resolved_yaml;   // after defaults and --set
-  std::vector<device::DeviceInfo> devices;
+  std::string scene_yaml;     // as given
+  std::string resolved_yaml;  // after defaults and --set
+  std::vector<DeviceRecord> devices;
   ScheduleInfo schedule;
 };
 
@@ -47,8 +65,9 @@ struct ScheduledTask {
 
 class ResultWriter {
  public:
-  // Creates (truncates) `path` and writes everything but the frames.
-  ResultWriter(const std::string& path, const RunInfo& info, const model::Model& model);
+  // Creates (truncates) `path` and writes everything but the frames;
+  // `objects` are the simulated objects' particle ranges and topology.
+  ResultWriter(const std::string& path, const RunInfo& info, std::span<const model::ObjectRange> objects);
   ResultWriter(const ResultWriter&) = delete;
   ResultWriter& operator=(const ResultWriter&) = delete;
   ~ResultWriter();

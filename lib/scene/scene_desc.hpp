@@ -23,8 +23,8 @@ struct SimulationDesc {
 };
 
 struct GridDesc {
-  std::array<double, 2> size{1.0, 1.0};  // metres along local x and z
-  std::array<int, 2> resolution{32, 32}; // vertices along x and z (≥ 2 each)
+  std::array<double, 2> size{1.0, 1.0};   // metres along local x and z
+  std::array<int, 2> resolution{32, 32};  // vertices along x and z (≥ 2 each)
 };
 
 struct TransformDesc {
@@ -37,15 +37,15 @@ struct TransformDesc {
 enum class SolidModel { neo_hookean, stvk, springs };
 
 struct MaterialDesc {
-  double density = 0.2;            // kg/m² for cloth, kg/m³ for solids (default 1000 there)
-  double stretch_compliance = 0.0; // cloth: m/N (inverse stiffness); used when has_stretch
+  double density = 0.2;             // kg/m² for cloth, kg/m³ for solids (default 1000 there)
+  double stretch_compliance = 0.0;  // cloth: m/N (inverse stiffness); used when has_stretch
   bool has_stretch = false;
-  double bend_compliance = 0.0;    // cloth: 1/(N·m); used when has_bending
+  double bend_compliance = 0.0;  // cloth: 1/(N·m); used when has_bending
   bool has_bending = false;
-  double youngs_modulus = 1.0e5;   // solids: Pa (> 0)
-  double poisson_ratio = 0.3;      // solids: 0 ≤ ν < 0.5
+  double youngs_modulus = 1.0e5;  // solids: Pa (> 0)
+  double poisson_ratio = 0.3;     // solids: 0 ≤ ν < 0.5
   SolidModel solid_model = SolidModel::neo_hookean;
-  std::string model_where;         // "file:line" (or the --set) that chose solid_model; empty = default
+  std::string model_where;  // "file:line" (or the --set) that chose solid_model; empty = default
 };
 
 struct BoxDesc {
@@ -54,8 +54,8 @@ struct BoxDesc {
 };
 
 struct PinDesc {
-  std::vector<int> vertices;  // indices into the object's vertices
-  std::vector<BoxDesc> boxes; // world-space boxes: every vertex inside is pinned
+  std::vector<int> vertices;   // indices into the object's vertices
+  std::vector<BoxDesc> boxes;  // world-space boxes: every vertex inside is pinned
 };
 
 // A triangle mesh as read from a file: vertices welded by position.
@@ -70,9 +70,9 @@ struct TriangleMesh {
 struct TetMesh {
   std::vector<std::array<double, 3>> vertices;
   std::vector<std::array<int, 4>> tetrahedra;
-  std::string file;                     // "" for procedural meshes
-  std::vector<int> element_line;        // 1-based line in `file` (empty when procedural)
-  std::vector<long long> element_label; // the element's number in `file` (empty when procedural)
+  std::string file;                      // "" for procedural meshes
+  std::vector<int> element_line;         // 1-based line in `file` (empty when procedural)
+  std::vector<long long> element_label;  // the element's number in `file` (empty when procedural)
 };
 
 // A procedural tetrahedral box centred on the origin; every cell is split
@@ -87,45 +87,47 @@ enum class ObjectType { cloth, solid };
 struct ObjectDesc {
   std::string name;
   ObjectType type = ObjectType::cloth;
-  std::optional<GridDesc> grid;      // cloth: exactly one of grid / mesh_path
-  std::optional<TetBoxDesc> box;     // solid: exactly one of box / mesh_path
-  std::string mesh_path;             // absolute, resolved against the scene's folder
-  TriangleMesh mesh;                 // cloth: loaded when mesh_path is set
-  TetMesh tet_mesh;                  // solid: loaded when mesh_path is set
+  std::optional<GridDesc> grid;   // cloth: exactly one of grid / mesh_path
+  std::optional<TetBoxDesc> box;  // solid: exactly one of box / mesh_path
+  std::string mesh_path;          // absolute, resolved against the scene's folder
+  TriangleMesh mesh;              // cloth: loaded when mesh_path is set
+  TetMesh tet_mesh;               // solid: loaded when mesh_path is set
   TransformDesc transform;
   MaterialDesc material;
   PinDesc pins;
-  int source_line = 0;               // 1-based line of the object in the scene file
+  int source_line = 0;  // 1-based line of the object in the scene file
 };
 
 struct SolverDesc {
   std::string method = "xpbd";
-  std::string method_where;         // "file:line" (or the --set) that chose the method; empty = default
-  std::string schedule = "single";  // single | split | heft | async: how the substep uses the devices
-  int async_depth = 2;              // async: iterations in flight at once (1 = serial Gauss-Seidel)
+  std::string method_where;                     // "file:line" (or the --set) that chose the method; empty = default
+  std::string schedule = "single";              // single | split | heft | async: how the substep uses the devices
+  int async_depth = 2;                          // async: iterations in flight at once (1 = serial Gauss-Seidel)
   std::string merge = "average_displacements";  // async: how a device merges another's result
-  bool async_latest = true;         // async: also merge the latest finished result, not only dependencies
-  bool replay = false;              // async: run the schedule on one device, in schedule order
-  double chebyshev_rho = 0.9;       // jpgd: spectral radius estimate of the Chebyshev acceleration (0 = off)
-  double momentum = 0.0;            // jpgd: heavy-ball momentum beta; > 0 replaces the Chebyshev acceleration
-  double jacobi_step = 0.5;         // jpgd: step length on the block-Jacobi direction
-  double stencil_step = 0.7;        // sosd: step length on the combined stencil displacements
+  bool async_latest = true;                     // async: also merge the latest finished result, not only dependencies
+  bool replay = false;                          // async: run the schedule on one device, in schedule order
+  std::string executor = "auto";                // auto | fused | events: how the devices run the schedule
+  double wait_timeout_s = 10.0;                 // fused: a run in which no task finishes this long fails
+  double chebyshev_rho = 0.9;  // jpgd: spectral radius estimate of the Chebyshev acceleration (0 = off)
+  double momentum = 0.0;       // jpgd: heavy-ball momentum beta; > 0 replaces the Chebyshev acceleration
+  double jacobi_step = 0.5;    // jpgd: step length on the block-Jacobi direction
+  double stencil_step = 0.7;   // sosd: step length on the combined stencil displacements
 };
 
 struct OutputDesc {
-  std::string path = "out.h5";       // resolved against the working directory
-  int stride = 1;                    // write every stride-th frame
+  std::string path = "out.h5";  // resolved against the working directory
+  int stride = 1;               // write every stride-th frame
 };
 
 struct SceneDesc {
-  std::string source_path;           // the scene file ("" for text scenes)
-  std::string yaml_text;             // as given
-  std::string resolved_yaml;         // after defaults and --set overrides
+  std::string source_path;    // the scene file ("" for text scenes)
+  std::string yaml_text;      // as given
+  std::string resolved_yaml;  // after defaults and --set overrides
   SimulationDesc simulation;
   std::vector<ObjectDesc> objects;
   SolverDesc solver;
   OutputDesc output;
-  std::string devices = "default";   // device spec, see `atssim devices`
+  std::string devices = "default";  // device spec, see `atssim devices`
 };
 
 }  // namespace atssim::scene

@@ -20,11 +20,12 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr std::array<std::string_view, 5> kRootKeys{"simulation", "objects", "solver", "output", "devices"};
-constexpr std::array<std::string_view, 7> kSimulationKeys{"fps", "dt", "substeps", "iterations", "frames",
-                                                          "gravity", "ground"};
-constexpr std::array<std::string_view, 10> kSolverKeys{"method", "schedule", "async_depth", "merge", "async_fetch",
-                                                      "replay", "chebyshev_rho", "jacobi_step", "stencil_step",
-                                                      "momentum"};
+constexpr std::array<std::string_view, 7> kSimulationKeys{"fps",    "dt",      "substeps", "iterations",
+                                                          "frames", "gravity", "ground"};
+constexpr std::array<std::string_view, 12> kSolverKeys{"method",       "schedule", "async_depth",   "merge",
+                                                       "async_fetch",  "replay",   "chebyshev_rho", "jacobi_step",
+                                                       "stencil_step", "momentum", "executor",      "wait_timeout"};
+constexpr std::array<std::string_view, 3> kExecutors{"auto", "fused", "events"};
 constexpr std::array<std::string_view, 4> kSchedules{"single", "split", "heft", "async"};
 constexpr std::array<std::string_view, 3> kMerges{"average_displacements", "average_positions", "main_precedence"};
 constexpr std::array<std::string_view, 2> kOutputKeys{"path", "stride"};
@@ -64,8 +65,8 @@ void apply_override(YAML::Node& root, const std::string& assignment, const std::
         index = parent.size();
       }
       if (index >= parent.size()) {
-        throw input_error(fmt::format("--set {}: '{}' is a list of {} items; use an index from 0 to {}",
-                                      assignment, keys[i - (i > 0 ? 1 : 0)], parent.size(),
+        throw input_error(fmt::format("--set {}: '{}' is a list of {} items; use an index from 0 to {}", assignment,
+                                      keys[i - (i > 0 ? 1 : 0)], parent.size(),
                                       parent.size() == 0 ? 0 : parent.size() - 1));
       }
       next = parent[index];
@@ -160,7 +161,8 @@ SceneDesc parse_scene(const std::string& yaml_text, const std::string& source_na
       scene.solver.method_where = m.where();
       bool known = false;
       for (auto k : kMethods) known = known || scene.solver.method == k;
-      if (!known) m.fail(fmt::format("unknown solver method '{}'", scene.solver.method), "available: xpbd, vbd, sosd, jpgd");
+      if (!known)
+        m.fail(fmt::format("unknown solver method '{}'", scene.solver.method), "available: xpbd, vbd, sosd, jpgd");
     }
     if (solver.has("schedule")) {
       const YamlReader m = solver.child("schedule");
@@ -175,7 +177,8 @@ SceneDesc parse_scene(const std::string& yaml_text, const std::string& source_na
     if (solver.has("async_depth")) scene.solver.async_depth = solver.child("async_depth").integer_in(1, 64);
     if (solver.has("chebyshev_rho")) {
       scene.solver.chebyshev_rho =
-          solver.child("chebyshev_rho").number_in(0.0, 0.999, false, "a spectral radius 0 ≤ rho < 1 (0 = no acceleration)");
+          solver.child("chebyshev_rho")
+              .number_in(0.0, 0.999, false, "a spectral radius 0 ≤ rho < 1 (0 = no acceleration)");
     }
     if (solver.has("jacobi_step")) {
       scene.solver.jacobi_step = solver.child("jacobi_step").number_in(0.0, 1.0, true, "a step length 0 < step ≤ 1");
@@ -206,6 +209,21 @@ SceneDesc parse_scene(const std::string& yaml_text, const std::string& source_na
       }
       scene.solver.async_latest = fetch == "latest";
     }
+    if (solver.has("executor")) {
+      const YamlReader m = solver.child("executor");
+      scene.solver.executor = m.string();
+      bool known = false;
+      for (auto k : kExecutors) known = known || scene.solver.executor == k;
+      if (!known) {
+        m.fail(fmt::format("unknown executor '{}'", scene.solver.executor),
+               "use auto (fused where every device has fine-grain SVM with atomics), fused (one launch per device "
+               "and frame) or events (one launch per task)");
+      }
+    }
+    if (solver.has("wait_timeout")) {
+      scene.solver.wait_timeout_s =
+          solver.child("wait_timeout").number_in(0.0, 3600.0, true, "seconds, 0 < wait_timeout ≤ 3600");
+    }
     if (solver.has("replay")) {
       const YamlReader m = solver.child("replay");
       const std::string v = m.string();
@@ -230,20 +248,23 @@ void check_method_support(const SceneDesc& scene, const std::string& method) {
     if (o.type != ObjectType::solid) continue;
     const std::string& model_where = o.material.model_where;
     if (o.material.solid_model == SolidModel::springs) {
-      throw input_error(fmt::format("{}: solid '{}' has model springs, which no solver simulates yet; use "
-                                    "neo_hookean or stvk",
-                                    model_where, o.name));
+      throw input_error(
+          fmt::format("{}: solid '{}' has model springs, which no solver simulates yet; use "
+                      "neo_hookean or stvk",
+                      model_where, o.name));
     }
     if (method == "xpbd" && o.material.solid_model == SolidModel::neo_hookean) {
       // Blame the line that chose the model, else the one that chose xpbd,
       // else the object (both defaults).
-      const std::string where = !model_where.empty()                ? model_where
-                                : !scene.solver.method_where.empty() ? scene.solver.method_where
-                                                                     : fmt::format("{}:{}", scene.source_path, o.source_line);
-      throw input_error(fmt::format("{}: solid '{}' is neo_hookean{}, and solver.method xpbd simulates solids as "
-                                    "StVK strain constraints only; set its material.model to stvk, or use "
-                                    "solver.method vbd, sosd or jpgd",
-                                    where, o.name, model_where.empty() ? " (the default)" : ""));
+      const std::string where = !model_where.empty() ? model_where
+                                : !scene.solver.method_where.empty()
+                                    ? scene.solver.method_where
+                                    : fmt::format("{}:{}", scene.source_path, o.source_line);
+      throw input_error(
+          fmt::format("{}: solid '{}' is neo_hookean{}, and solver.method xpbd simulates solids as "
+                      "StVK strain constraints only; set its material.model to stvk, or use "
+                      "solver.method vbd, sosd or jpgd",
+                      where, o.name, model_where.empty() ? " (the default)" : ""));
     }
   }
 }

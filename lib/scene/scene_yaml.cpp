@@ -15,9 +15,12 @@ void flow_seq(YAML::Emitter& out, const Array& values) {
 
 const char* solid_model_name(SolidModel model) {
   switch (model) {
-    case SolidModel::stvk: return "stvk";
-    case SolidModel::springs: return "springs";
-    case SolidModel::neo_hookean: break;
+    case SolidModel::stvk:
+      return "stvk";
+    case SolidModel::springs:
+      return "springs";
+    case SolidModel::neo_hookean:
+      break;
   }
   return "neo_hookean";
 }
@@ -111,6 +114,8 @@ std::string to_resolved_yaml(const SceneDesc& scene) {
   out << YAML::Key << "merge" << YAML::Value << solver.merge;
   out << YAML::Key << "async_fetch" << YAML::Value << (solver.async_latest ? "latest" : "dependencies");
   out << YAML::Key << "replay" << YAML::Value << (solver.replay ? "true" : "false");
+  out << YAML::Key << "executor" << YAML::Value << solver.executor;
+  out << YAML::Key << "wait_timeout" << YAML::Value << solver.wait_timeout_s;
   out << YAML::Key << "chebyshev_rho" << YAML::Value << solver.chebyshev_rho;
   out << YAML::Key << "momentum" << YAML::Value << solver.momentum;
   out << YAML::Key << "jacobi_step" << YAML::Value << solver.jacobi_step;

@@ -60,7 +60,7 @@ std::vector<double> gauss_seidel_rank(const TaskGraph& graph, const CostTable& c
   return gauss_seidel_rank(graph, costs, links, orders);
 }
 
-std::vector<TaskId> gauss_seidel_order(const TaskGraph& graph, std::string_view kind) {
+std::vector<TaskId> gauss_seidel_order(const TaskGraph& graph, int kind) {
   std::vector<TaskId> ids;
   for (TaskId t = 0; t < graph.size(); ++t) {
     if (graph.task(t).kind == kind) ids.push_back(t);
@@ -68,7 +68,8 @@ std::vector<TaskId> gauss_seidel_order(const TaskGraph& graph, std::string_view 
   std::stable_sort(ids.begin(), ids.end(), [&](TaskId a, TaskId b) {
     const Task& x = graph.task(a);
     const Task& y = graph.task(b);
-    return x.iteration != y.iteration ? x.iteration < y.iteration : x.block < y.block;
+    if (x.iteration != y.iteration) return x.iteration < y.iteration;
+    return x.block != y.block ? x.block < y.block : x.part < y.part;
   });
   return ids;
 }

@@ -29,6 +29,6 @@ std::vector<double> gauss_seidel_rank(const TaskGraph& graph, const CostTable& c
                                       std::span<const TaskId> order);
 
 // The tasks of `kind` in Gauss-Seidel order: by iteration, then block, then id.
-std::vector<TaskId> gauss_seidel_order(const TaskGraph& graph, std::string_view kind);
+std::vector<TaskId> gauss_seidel_order(const TaskGraph& graph, int kind);
 
 }  // namespace atssim::sched

@@ -41,7 +41,7 @@ RandomDag random_layered_dag(const RandomDagOptions& o) {
       ++layer;
     }
     --layer_left;
-    const TaskId id = dag.graph.add_task({fmt::format("t{}", i), "random", layer, -1});
+    const TaskId id = dag.graph.add_task({fmt::format("t{}", i), 0, layer, -1});
     if (layer == 0) continue;
     const std::size_t inputs = 1 + rng.below(std::max<std::size_t>(1, o.max_inputs));
     for (std::size_t k = 0; k < inputs; ++k) {

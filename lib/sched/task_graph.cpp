@@ -43,7 +43,7 @@ std::size_t TaskGraph::edge_count() const {
   return n;
 }
 
-std::vector<TaskId> TaskGraph::tasks_of_kind(const std::string& kind) const {
+std::vector<TaskId> TaskGraph::tasks_of_kind(int kind) const {
   std::vector<TaskId> ids;
   for (TaskId i = 0; i < size(); ++i) {
     if (tasks_[i].kind == kind) ids.push_back(i);

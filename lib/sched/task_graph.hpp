@@ -2,7 +2,8 @@
 // A DAG of coarse simulation tasks (paper §3.3.1). Plain data: a task is an
 // id, a name, a kind and its place in the iteration; edges carry the
 // communication weight paid when the two ends run on different devices.
-// Knows nothing of OpenCL, physics or files.
+// Knows nothing of OpenCL, physics or files: a kind is a label that the layer
+// above defines (plan::TaskKind); the scheduler only compares labels.
 #include <span>
 #include <string>
 #include <vector>
@@ -13,10 +14,13 @@ namespace atssim::sched {
 
 struct Task {
   std::string name;    // unique, human readable: "it2/stretch/c3"
-  std::string kind;    // "predict", "stretch", "bend", "update_velocity", …
+  int kind = 0;        // label shared by the tasks of one kind; kMixedKind for a merge of kinds
   int iteration = -1;  // solver iteration the task belongs to; -1 = none
   int block = -1;      // color block within its kind; -1 = none
+  int part = -1;       // part of a task cut between devices (0, 1, …); -1 = the task whole
 };
+
+inline constexpr int kMixedKind = -1;
 
 struct Edge {
   TaskId from = 0;
@@ -42,7 +46,7 @@ class TaskGraph {
   std::size_t edge_count() const;
 
   // Ids of tasks whose kind equals `kind`, in id order.
-  std::vector<TaskId> tasks_of_kind(const std::string& kind) const;
+  std::vector<TaskId> tasks_of_kind(int kind) const;
 
   // Kahn's algorithm; ties broken by smallest id, so the order is
   // deterministic. Throws atssim::Error naming the tasks of a cycle.

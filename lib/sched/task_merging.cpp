@@ -39,7 +39,8 @@ Task merged_task(const TaskGraph& graph, std::span<const TaskId> members) {
   for (TaskId t : members) {
     const Task& m = graph.task(t);
     merged.name += (merged.name.empty() ? "" : "+") + m.name;
-    if (m.kind != first.kind) merged.kind = "merged";
+    if (m.kind != first.kind) merged.kind = kMixedKind;
+    if (m.part != first.part) merged.part = -1;
     if (m.iteration != first.iteration) merged.iteration = -1;
     if (m.block != first.block) merged.block = -1;
   }

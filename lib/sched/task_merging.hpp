@@ -14,7 +14,7 @@
 // an outside task becomes an edge of the merged task with the same weight
 // (two such edges to one outside task keep the larger weight). The merged
 // task is named "first+…+last", keeps kind/iteration/block when all members
-// share them (else "merged" / -1). Tasks outside every group are unchanged.
+// share them (else kMixedKind / -1). Tasks outside every group are unchanged.
 // A group whose members are linked through an outside task would make a
 // cycle: that is an error naming it.
 #include <cstddef>

@@ -22,12 +22,14 @@ std::span<const std::string_view> method_names() { return kMethods; }
 // one combine step per iteration; its stencil solves are Jacobi sweeps.
 bool is_gauss_seidel(const std::string& method) { return method == "xpbd" || method == "vbd"; }
 
-SubstepPlan make_method_plan(const std::string& method, const SimLayout& layout, double substep_dt,
-                             int iterations, const MethodOptions& options) {
+plan::SubstepPlan make_method_plan(const std::string& method, const SimLayout& layout, double substep_dt,
+                                   int iterations, const MethodOptions& options) {
   if (method == "xpbd") return xpbd::make_xpbd_plan(layout, {substep_dt, iterations});
   if (method == "vbd") return vbd::make_vbd_plan(layout, substep_dt, iterations);
   if (method == "sosd") return sosd::make_sosd_plan(layout, substep_dt, iterations, options.stencil_step);
-  if (method == "jpgd") return jpgd::make_jpgd_plan(layout, {substep_dt, iterations, options.chebyshev_rho, options.jacobi_step, options.momentum});
+  if (method == "jpgd")
+    return jpgd::make_jpgd_plan(layout,
+                                {substep_dt, iterations, options.chebyshev_rho, options.jacobi_step, options.momentum});
   throw input_error(fmt::format("unknown method '{}'; available: xpbd, vbd, sosd, jpgd", method));
 }
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <string_view>
 
-#include "solver/substep_plan.hpp"
+#include "plan/substep_plan.hpp"
 #include "solver/layout/sim_layout.hpp"
 
 namespace atssim::solver {
@@ -22,8 +22,8 @@ struct MethodOptions {
 
 // Throws atssim::Error (input) for an unknown method, or a scene the method
 // cannot solve (VBD, SOSD and JPGD need finite stiffness).
-SubstepPlan make_method_plan(const std::string& method, const SimLayout& layout, double substep_dt,
-                             int iterations, const MethodOptions& options = {});
+plan::SubstepPlan make_method_plan(const std::string& method, const SimLayout& layout, double substep_dt,
+                                   int iterations, const MethodOptions& options = {});
 
 // Whether the method's iterations are Gauss-Seidel (async applies) or Jacobi
 // sweeps with one synchronisation each (JPGD, SOSD).

@@ -15,16 +15,14 @@ using namespace atssim;
 
 namespace {
 
-solver::SubstepPlan cloth_plan(int resolution, int iterations) {
+plan::SubstepPlan cloth_plan(int resolution, int iterations) {
   return app::substep_plan_for(
       scene::parse_scene(test::hanging_cloth_yaml(resolution, 1e4, 1e-3, iterations), "s.yaml", "."));
 }
 
-std::vector<float> positions_after(app::Execution& e, int substeps) {
-  for (std::size_t b = 0; b < e.plan->buffers.size(); ++b) {
-    e.executor->write(static_cast<solver::BufferId>(b), e.plan->buffers[b].initial);
-  }
-  e.executor->enqueue_substeps(substeps);
+std::vector<float> positions_after(app::Execution& e, const plan::PlanState& start, int substeps) {
+  e.executor->reset(start);
+  e.executor->run_substeps(substeps);
   std::vector<float> xyz;
   e.executor->read_positions(xyz);
   return xyz;
@@ -52,16 +50,18 @@ std::string run_cloth(const test::TempDir& dir, const std::vector<std::string>& 
 
 TEST_CASE("replaying an async schedule on one device reproduces the executed result exactly") {
   const auto devices = device::DeviceSet::open("cpu/2");
-  const solver::MergeStrategy strategy = GENERATE(solver::MergeStrategy::average_displacements,
-                                                  solver::MergeStrategy::average_positions,
-                                                  solver::MergeStrategy::main_precedence);
+  const plan::MergeStrategy strategy =
+      GENERATE(plan::MergeStrategy::average_displacements, plan::MergeStrategy::average_positions,
+               plan::MergeStrategy::main_precedence);
+  const device::ExecutorKind executor = GENERATE(device::ExecutorKind::events, device::ExecutorKind::fused);
   app::ExecutionOptions options;
   options.mode = app::ScheduleMode::async;
+  options.executor = executor;
   options.merge = strategy;
   options.profile_repetitions = 2;
   // Equal costs everywhere: HEFT's placement no longer depends on timing
   // noise, and with the kinds' chains independent it uses both devices.
-  const solver::SubstepPlan plan = cloth_plan(24, 4);
+  const plan::SubstepPlan plan = cloth_plan(24, 4);
   options.placement_costs = sched::CostTable(plan.graph.size(), 2, 1.0);
   app::Execution e = app::prepare_execution(devices, plan, options);
   // Both devices really work, and they exchange data.
@@ -72,10 +72,12 @@ TEST_CASE("replaying an async schedule on one device reproduces the executed res
   CHECK(e.async_merges > 0);
   CHECK_FALSE(e.waits.empty());
 
-  const auto executed = positions_after(e, 8);
+  REQUIRE(e.executor->kind() == executor);
+  const plan::PlanState start = e.executor->read_state();
+  const auto executed = positions_after(e, start, 8);
   app::replay_on_one_device(e);
-  const auto replayed = positions_after(e, 8);
-  INFO("strategy " << solver::to_string(strategy));
+  const auto replayed = positions_after(e, start, 8);
+  INFO("strategy " << plan::to_string(strategy) << ", executor " << device::to_string(executor));
   CHECK(max_difference(executed, replayed) == 0.0);
 }
 

@@ -45,11 +45,11 @@ TEST_CASE("the device energy kernels equal the host incremental potential on a m
   const SimLayout& state = step.state();
 
   energy::EnergyBuffers ids;
-  const SubstepPlan plan = energy::make_energy_plan(start, predicted, h, &ids);
+  const plan::SubstepPlan plan = energy::make_energy_plan(start, predicted, h, &ids);
   const auto devices = device::DeviceSet::open("cpu");
   device::PlanExecutor exec(devices, plan);
   exec.write(ids.x, std::as_bytes(std::span(state.x)));  // evaluate the stepped state
-  exec.enqueue_substeps(1);
+  exec.run_substeps(1);
   const std::vector<float> terms = as_floats(exec.read(ids.energy));
   const energy::EnergyOutput where = energy::energy_output(state);
   REQUIRE(int(terms.size()) == where.size);
@@ -91,11 +91,11 @@ TEST_CASE("the device energy kernels equal the host incremental potential on a m
   state.x = other.x;
 
   energy::EnergyBuffers ids;
-  const SubstepPlan plan = energy::make_energy_plan(start, predicted, h, &ids);
+  const plan::SubstepPlan plan = energy::make_energy_plan(start, predicted, h, &ids);
   const auto devices = device::DeviceSet::open("cpu");
   device::PlanExecutor exec(devices, plan);
   exec.write(ids.x, std::as_bytes(std::span(state.x)));
-  exec.enqueue_substeps(1);
+  exec.run_substeps(1);
   const std::vector<float> terms = as_floats(exec.read(ids.energy));
   const energy::EnergyOutput where = energy::energy_output(state);
   REQUIRE(int(terms.size()) == where.size);

@@ -11,8 +11,8 @@
 
 #include "device/device_set.hpp"
 #include "device/plan_executor.hpp"
+#include "plan/substep_plan.hpp"
 #include "solids/materials_check.h"  // float: ats_real is float here
-#include "solver/substep_plan.hpp"
 
 using namespace atssim;
 
@@ -68,16 +68,16 @@ TEST_CASE("the material kernels on the device equal the host float math to 1e-4"
   std::vector<float> host(ATS_MATERIALS_OUT);
   ats_materials_check(in.data(), host.data());
 
-  solver::SubstepPlan plan;
+  plan::SubstepPlan plan;
   plan.program = "materials_check";
-  const solver::BufferId in_id = plan.add_buffer("in", solver::bytes_of(in));
-  const solver::BufferId out_id = plan.add_buffer("out", std::vector<std::byte>(ATS_MATERIALS_OUT * sizeof(float)));
-  plan.add_task(
-      {"materials", "materials", -1, -1},
-      {{"materials_check", 1, {solver::KernelArg::of_buffer(in_id), solver::KernelArg::of_buffer(out_id)}, -1}});
+  const plan::BufferId in_id = plan.add_buffer("in", plan::BufferRole::elements, plan::bytes_of(in));
+  const plan::BufferId out_id =
+      plan.add_buffer("out", plan::BufferRole::results, std::vector<std::byte>(ATS_MATERIALS_OUT * sizeof(float)));
+  plan.add_task(plan::make_task("materials", plan::TaskKind::energy),
+                {{"materials_check", {0, 1}, {plan::KernelArg::of_buffer(in_id), plan::KernelArg::of_buffer(out_id)}}});
   const auto devices = device::DeviceSet::open("cpu");
   device::PlanExecutor exec(devices, plan);
-  exec.enqueue_substeps(1);
+  exec.run_substeps(1);
   const std::vector<std::byte> raw = exec.read(out_id);
   REQUIRE(raw.size() == ATS_MATERIALS_OUT * sizeof(float));
   std::vector<float> dev(ATS_MATERIALS_OUT);

@@ -22,14 +22,18 @@ std::vector<Float4> as_float4(const std::vector<std::byte>& raw) {
   return out;
 }
 
-device::SvmMode mode_of(const char* name) {
-  return std::string(name) == "coarse" ? device::SvmMode::coarse : device::SvmMode::fine;
+// "events/coarse", "events/fine" or "fused" (fine grain with atomics).
+device::ExecutorOptions options_of(const std::string& name) {
+  device::ExecutorOptions o;
+  o.kind = name == "fused" ? device::ExecutorKind::fused : device::ExecutorKind::events;
+  o.svm = name == "events/coarse" ? device::SvmMode::coarse : device::SvmMode::fine;
+  return o;
 }
 
 }  // namespace
 
 TEST_CASE("the OpenCL kernels and the host reference agree to 1e-5 after one substep") {
-  const char* svm = GENERATE("coarse", "fine");
+  const std::string executor = GENERATE("events/coarse", "events/fine", "fused");
   const auto m = model::build_model(scene::parse_scene(test::hanging_cloth_yaml(16, 1e4, 1e-2), "s.yaml", "."));
   const XpbdSettings settings{1.0 / 240.0, 8};
   const SimLayout layout = make_sim_layout(m);
@@ -43,8 +47,8 @@ TEST_CASE("the OpenCL kernels and the host reference agree to 1e-5 after one sub
   auto disturbed = make_xpbd_plan(start, settings);
 
   const auto devices = device::DeviceSet::open("cpu");
-  device::PlanExecutor exec(devices, disturbed, {mode_of(svm)});
-  exec.enqueue_substeps(1);
+  device::PlanExecutor exec(devices, disturbed, options_of(executor));
+  exec.run_substeps(1);
   const auto gpu_x = as_float4(exec.read(ids.x));
   const auto gpu_v = as_float4(exec.read(ids.v));
 
@@ -58,11 +62,11 @@ TEST_CASE("the OpenCL kernels and the host reference agree to 1e-5 after one sub
     max_dx = std::max({max_dx, double(std::abs(a.x - b.x)), double(std::abs(a.y - b.y)), double(std::abs(a.z - b.z))});
     const auto& va = gpu_v[i];
     const auto& vb = ref.state().v[i];
-    max_dv = std::max({max_dv, double(std::abs(va.x - vb.x)), double(std::abs(va.y - vb.y)),
-                       double(std::abs(va.z - vb.z))});
+    max_dv =
+        std::max({max_dv, double(std::abs(va.x - vb.x)), double(std::abs(va.y - vb.y)), double(std::abs(va.z - vb.z))});
     moved = std::max(moved, double(std::abs(b.y - start.x[i].y)));
   }
-  INFO("svm " << svm << " max |dx| " << max_dx << " max |dv| " << max_dv);
+  INFO(executor << ": max |dx| " << max_dx << " max |dv| " << max_dv);
   CHECK(moved > 1e-4);  // the substep really changed the state
   CHECK(max_dx < 1e-5);
   CHECK(max_dv < 1e-5 / settings.substep_dt);
@@ -80,7 +84,7 @@ TEST_CASE("without constraints the OpenCL XPBD reproduces discrete free fall to 
   const auto devices = device::DeviceSet::open("cpu");
   device::PlanExecutor exec(devices, plan);
   const int n = 16;
-  exec.enqueue_substeps(n);
+  exec.run_substeps(n);
   const auto x = as_float4(exec.read(ids.x));
   const double k = h * h * n * (n + 1) / 2.0;
   for (std::size_t i = 0; i < m.particles.size(); ++i) {
@@ -96,7 +100,7 @@ TEST_CASE("pinned particles never move on the device") {
   const auto plan = make_xpbd_plan(make_sim_layout(m), {1.0 / 240.0, 8}, &ids);
   const auto devices = device::DeviceSet::open("cpu");
   device::PlanExecutor exec(devices, plan);
-  exec.enqueue_substeps(40);
+  exec.run_substeps(40);
   const auto x = as_float4(exec.read(ids.x));
   int pinned = 0;
   double lowest = 0.0;

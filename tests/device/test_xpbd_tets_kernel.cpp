@@ -26,16 +26,18 @@ std::vector<Float4> as_float4(const std::vector<std::byte>& raw) {
   return out;
 }
 
-model::Model stvk_box(const std::string& gravity, const std::string& size, const std::string& resolution,
-                      double youngs, const std::string& pins) {
-  const std::string yaml =
-      "simulation: {gravity: " + gravity + "}\n"
-      "objects:\n"
-      "  - type: solid\n"
-      "    box: {size: " + size + ", resolution: " + resolution + "}\n"
-      "    transform: {translate: [0.3, 1.0, -0.2], rotate: [10, 0, 30]}\n"
-      "    material: {density: 1000, youngs_modulus: " + std::to_string(youngs) +
-      ", poisson_ratio: 0.4, model: stvk}\n" + pins;
+model::Model stvk_box(const std::string& gravity, const std::string& size, const std::string& resolution, double youngs,
+                      const std::string& pins) {
+  const std::string yaml = "simulation: {gravity: " + gravity +
+                           "}\n"
+                           "objects:\n"
+                           "  - type: solid\n"
+                           "    box: {size: " +
+                           size + ", resolution: " + resolution +
+                           "}\n"
+                           "    transform: {translate: [0.3, 1.0, -0.2], rotate: [10, 0, 30]}\n"
+                           "    material: {density: 1000, youngs_modulus: " +
+                           std::to_string(youngs) + ", poisson_ratio: 0.4, model: stvk}\n" + pins;
   return model::build_model(scene::parse_scene(yaml, "s.yaml", "."));
 }
 
@@ -53,7 +55,7 @@ TEST_CASE("a rest StVK box of many tets stays at rest to 1e-6 on the device with
   const auto plan = make_xpbd_plan(layout, {1.0 / 960.0, 10}, &ids);
   const auto devices = device::DeviceSet::open("cpu");
   device::PlanExecutor exec(devices, plan);
-  exec.enqueue_substeps(30);
+  exec.run_substeps(30);
   const auto x = as_float4(exec.read(ids.x));
   const double drift = max_distance(x, layout.x);
   INFO("E " << youngs << (pins.empty() ? " free" : " pinned") << ": max drift after 30 substeps " << drift << " m");
@@ -63,8 +65,8 @@ TEST_CASE("a rest StVK box of many tets stays at rest to 1e-6 on the device with
 TEST_CASE("the xpbd_tet kernel and the host reference agree to 1e-5 on a moving StVK bar", "[xpbd][tet]") {
   const char* svm = GENERATE("coarse", "fine");
   const int substeps = GENERATE(1, 4);
-  const auto m = stvk_box("[0, -9.81, 0]", "[0.2, 1.0, 0.2]", "[2, 6, 2]", 1.0e5,
-                          "    pins: {vertices: [0, 1, 2, 3]}\n");
+  const auto m =
+      stvk_box("[0, -9.81, 0]", "[0.2, 1.0, 0.2]", "[2, 6, 2]", 1.0e5, "    pins: {vertices: [0, 1, 2, 3]}\n");
   const XpbdSettings settings{1.0 / 240.0, 8};
   SimLayout start = make_sim_layout(m);
   // A disturbed, moving state so that every constraint does work.
@@ -75,9 +77,11 @@ TEST_CASE("the xpbd_tet kernel and the host reference agree to 1e-5 on a moving 
   XpbdBuffers ids;
   const auto plan = make_xpbd_plan(start, settings, &ids);
   const auto devices = device::DeviceSet::open("cpu");
-  device::PlanExecutor exec(devices, plan,
-                            {std::string(svm) == "coarse" ? device::SvmMode::coarse : device::SvmMode::fine});
-  exec.enqueue_substeps(substeps);
+  device::ExecutorOptions options;
+  options.kind = device::ExecutorKind::events;
+  options.svm = std::string(svm) == "coarse" ? device::SvmMode::coarse : device::SvmMode::fine;
+  device::PlanExecutor exec(devices, plan, options);
+  exec.run_substeps(substeps);
   const auto gpu_x = as_float4(exec.read(ids.x));
   const auto gpu_v = as_float4(exec.read(ids.v));
 

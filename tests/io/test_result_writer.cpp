@@ -22,7 +22,7 @@ model::Model small_model() {
 }
 
 io::RunInfo run_info() {
-  device::DeviceInfo d;
+  io::DeviceRecord d;
   d.name = "test device";
   d.type = "cpu";
   d.compute_units = 1;
@@ -42,7 +42,7 @@ TEST_CASE("positions written to HDF5 and read back are equal") {
     for (float& v : f) v = u(rng);
   }
   {
-    io::ResultWriter w(path, run_info(), m);
+    io::ResultWriter w(path, run_info(), m.objects);
     for (std::size_t f = 0; f < frames.size(); ++f) w.append_frame(0.1 * f, frames[f], 1.5);
     w.finish();
   }
@@ -64,7 +64,7 @@ TEST_CASE("a failed run keeps its frames and records the error") {
   const std::string path = dir.file("out.h5");
   std::vector<float> xyz(m.particles.size() * 3, 1.0f);
   {
-    io::ResultWriter w(path, run_info(), m);
+    io::ResultWriter w(path, run_info(), m.objects);
     w.append_frame(0.0, xyz, 0.0);
     w.append_frame(0.1, xyz, 1.0);
     w.fail("frame 2: the simulation blew up");
@@ -81,7 +81,7 @@ TEST_CASE("the XDMF sidecar points ParaView at every frame of the HDF5 file") {
   const std::string path = dir.file("run.h5");
   std::vector<float> xyz(m.particles.size() * 3, 0.0f);
   {
-    io::ResultWriter w(path, run_info(), m);
+    io::ResultWriter w(path, run_info(), m.objects);
     for (int f = 0; f < 3; ++f) w.append_frame(f / 60.0, xyz, 1.0);
     w.finish();
   }

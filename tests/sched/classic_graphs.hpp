@@ -24,7 +24,7 @@ struct WeightedEdge {
 inline Problem make_problem(const std::vector<std::string>& names, const std::vector<std::vector<double>>& cost_rows,
                             const std::vector<WeightedEdge>& edges) {
   Problem p;
-  for (const auto& name : names) p.graph.add_task({name, "classic", -1, -1});
+  for (const auto& name : names) p.graph.add_task({name, 0, -1, -1});
   for (const auto& e : edges) p.graph.add_edge(e.from, e.to, e.weight);
   p.costs = CostTable::from_rows(cost_rows);
   p.links = DeviceLinks::weighted(p.costs.devices);  // cross-device comm = edge weight

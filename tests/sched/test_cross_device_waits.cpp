@@ -10,7 +10,7 @@ namespace {
 
 TaskGraph tasks(int n) {
   TaskGraph g;
-  for (int i = 0; i < n; ++i) g.add_task({fmt::format("t{}", i), "k", -1, -1});
+  for (int i = 0; i < n; ++i) g.add_task({fmt::format("t{}", i), 0, -1, -1});
   return g;
 }
 

@@ -12,7 +12,7 @@ namespace {
 // a -> {b, c} -> d, costs per device.
 TaskGraph diamond() {
   TaskGraph g;
-  for (const char* n : {"a", "b", "c", "d"}) g.add_task({n, "k", -1, -1});
+  for (const char* n : {"a", "b", "c", "d"}) g.add_task({n, 0, -1, -1});
   g.add_edge(0, 1);
   g.add_edge(0, 2);
   g.add_edge(1, 3);

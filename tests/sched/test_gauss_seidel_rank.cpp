@@ -10,6 +10,8 @@ using namespace atssim::sched;
 
 namespace {
 
+constexpr int kStretch = 1;  // kind labels: the scheduler only compares them
+
 // 4 iterations × 5 color blocks of one constraint kind. Within an iteration
 // the blocks run in Gauss-Seidel order (block b+1 reads block b); block b of
 // iteration k+1 reads block b of iteration k. Nothing else orders the
@@ -30,14 +32,14 @@ Grid grid() {
   std::vector<std::vector<double>> rows;
   for (int k = 0; k < kIterations; ++k) {
     for (int b = 0; b < kBlocks; ++b) {
-      const TaskId id = g.graph.add_task({fmt::format("it{}/stretch/c{}", k, b), "stretch", k, b});
+      const TaskId id = g.graph.add_task({fmt::format("it{}/stretch/c{}", k, b), kStretch, k, b});
       if (b > 0) g.graph.add_edge(id - 1, id);
       if (k > 0) g.graph.add_edge(id - kBlocks, id);
       rows.push_back({gpu[b], 1.7 * gpu[b]});
     }
   }
   g.costs = CostTable::from_rows(rows);
-  g.gs_order = gauss_seidel_order(g.graph, "stretch");
+  g.gs_order = gauss_seidel_order(g.graph, kStretch);
   return g;
 }
 

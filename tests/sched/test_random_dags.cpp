@@ -136,8 +136,8 @@ TEST_CASE("On 1,000 random DAGs of at most 8 tasks no heuristic beats the exhaus
 TEST_CASE("The exhaustive search finds hand-computed optima", "[exhaustive]") {
   // Two independent tasks, two devices: each on its own device.
   TaskGraph g;
-  g.add_task({"a", "k", -1, -1});
-  g.add_task({"b", "k", -1, -1});
+  g.add_task({"a", 0, -1, -1});
+  g.add_task({"b", 0, -1, -1});
   const auto costs = CostTable::from_rows({{3, 5}, {4, 6}});
   const auto links = DeviceLinks::weighted(2);
   CHECK(test::optimal_makespan(g, costs, links, {}, 100) == 5.0);  // a@1 (5) ‖ b@0 (4)

@@ -8,7 +8,7 @@ namespace {
 
 TaskGraph diamond() {  // 0 → {1, 2} → 3
   TaskGraph g;
-  for (const char* n : {"a", "b", "c", "d"}) g.add_task({n, "k", -1, -1});
+  for (const char* n : {"a", "b", "c", "d"}) g.add_task({n, 0, -1, -1});
   g.add_edge(0, 1);
   g.add_edge(0, 2);
   g.add_edge(1, 3);

@@ -14,9 +14,9 @@ struct Fixture {
   CostTable costs = CostTable::from_rows({{2, 3}, {2, 3}, {kCannotRun, 3}});
   DeviceLinks links = DeviceLinks::weighted(2);
   Fixture() {
-    graph.add_task({"a", "k", -1, -1});
-    graph.add_task({"b", "k", -1, -1});
-    graph.add_task({"c", "k", -1, -1});
+    graph.add_task({"a", 0, -1, -1});
+    graph.add_task({"b", 0, -1, -1});
+    graph.add_task({"c", 0, -1, -1});
     graph.add_edge(0, 1, 4.0);
     graph.add_edge(1, 2, 4.0);
   }

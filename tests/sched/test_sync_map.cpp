@@ -14,7 +14,7 @@ Schedule lanes(std::size_t tasks, std::vector<std::vector<Slot>> devices) {
 
 TaskGraph chain(int n) {
   TaskGraph g;
-  for (int i = 0; i < n; ++i) g.add_task({"t" + std::to_string(i), "k", i, 0});
+  for (int i = 0; i < n; ++i) g.add_task({"t" + std::to_string(i), 0, i, 0});
   for (int i = 1; i < n; ++i) g.add_edge(i - 1, i);
   return g;
 }
@@ -41,7 +41,7 @@ TEST_CASE("a dependency across devices is always merged, the first helper merge 
 TEST_CASE("only dependencies are merged unless the latest results are asked for") {
   // Two independent chains: a0 -> a1 on device 0, b0 -> b1 on device 1, after a root r on 0.
   TaskGraph g;
-  for (const char* n : {"r", "a0", "a1", "b0", "b1"}) g.add_task({n, "k", 0, 0});
+  for (const char* n : {"r", "a0", "a1", "b0", "b1"}) g.add_task({n, 0, 0, 0});
   g.add_edge(0, 1);
   g.add_edge(1, 2);
   g.add_edge(0, 3);
@@ -66,7 +66,7 @@ TEST_CASE("only dependencies are merged unless the latest results are asked for"
 TEST_CASE("a helper's start point moves with every main result it merges") {
   // main: m0 m1 m2 ; helper: h0 (needs m0), h1 (needs m1); main's m2 needs h1.
   TaskGraph g;
-  for (const char* n : {"m0", "m1", "m2", "h0", "h1"}) g.add_task({n, "k", 0, 0});
+  for (const char* n : {"m0", "m1", "m2", "h0", "h1"}) g.add_task({n, 0, 0, 0});
   g.add_edge(0, 1);
   g.add_edge(1, 2);
   g.add_edge(0, 3);
@@ -83,5 +83,5 @@ TEST_CASE("a helper's start point moves with every main result it merges") {
   CHECK(helper[1].start == 0);  // the segment that began with m0's result
   REQUIRE(main.size() == 1);
   CHECK(main[0].producer == 4);
-  CHECK(main[0].start == 1);    // h1 ran in the segment that began with m1's result
+  CHECK(main[0].start == 1);  // h1 ran in the segment that began with m1's result
 }

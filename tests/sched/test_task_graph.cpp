@@ -8,9 +8,11 @@ using namespace atssim::sched;
 
 namespace {
 
+constexpr int kPredict = 1, kStretch = 2, kBend = 3, kUpdate = 4;  // kind labels
+
 TaskGraph chain(int n) {
   TaskGraph g;
-  for (int i = 0; i < n; ++i) g.add_task({fmt::format("t{}", i), "k", -1, -1});
+  for (int i = 0; i < n; ++i) g.add_task({fmt::format("t{}", i), 0, -1, -1});
   for (int i = 1; i < n; ++i) g.add_edge(i - 1, i, 1.0);
   return g;
 }
@@ -19,10 +21,10 @@ TaskGraph chain(int n) {
 
 TEST_CASE("A cycle is an error that names the tasks on it", "[task_graph]") {
   TaskGraph g;
-  const TaskId a = g.add_task({"predict", "predict", -1, -1});
-  const TaskId b = g.add_task({"it1/stretch/c0", "stretch", 1, 0});
-  const TaskId c = g.add_task({"it1/bend/c0", "bend", 1, 0});
-  const TaskId d = g.add_task({"update_velocity", "update_velocity", -1, -1});
+  const TaskId a = g.add_task({"predict", kPredict, -1, -1});
+  const TaskId b = g.add_task({"it1/stretch/c0", kStretch, 1, 0});
+  const TaskId c = g.add_task({"it1/bend/c0", kBend, 1, 0});
+  const TaskId d = g.add_task({"update_velocity", kUpdate, -1, -1});
   g.add_edge(a, b);
   g.add_edge(b, c);
   g.add_edge(c, b);
@@ -35,7 +37,7 @@ TEST_CASE("A cycle is an error that names the tasks on it", "[task_graph]") {
 
 TEST_CASE("Topological order breaks ties by the smallest id", "[task_graph]") {
   TaskGraph g;
-  for (int i = 0; i < 4; ++i) g.add_task({fmt::format("t{}", i), "k", -1, -1});
+  for (int i = 0; i < 4; ++i) g.add_task({fmt::format("t{}", i), 0, -1, -1});
   g.add_edge(3, 1);
   g.add_edge(2, 1);
   CHECK(g.topological_order() == std::vector<TaskId>{0, 2, 3, 1});

@@ -10,6 +10,8 @@ using namespace atssim::sched;
 
 namespace {
 
+constexpr int kStretch = 1, kBend = 2;  // kind labels: the scheduler only compares them
+
 constexpr DeviceId kGpu = 0;
 constexpr DeviceId kCpu = 1;
 
@@ -25,11 +27,11 @@ struct BendingChain {
 
 BendingChain bending_chain(double t1, double t2, double tc) {
   BendingChain c;
-  const TaskId input = c.graph.add_task({"stretch", "stretch", 0, -1});
+  const TaskId input = c.graph.add_task({"stretch", kStretch, 0, -1});
   std::vector<std::vector<double>> rows{{kCannotRun, 0.0}};
   TaskId last = input;
   for (int b = 0; b < 8; ++b) {
-    const TaskId id = c.graph.add_task({fmt::format("bend/c{}", b), "bend", 0, b});
+    const TaskId id = c.graph.add_task({fmt::format("bend/c{}", b), kBend, 0, b});
     c.graph.add_edge(last, id);
     rows.push_back({t1, t2});
     c.blocks.push_back(id);
@@ -81,7 +83,7 @@ TEST_CASE("The smallest profitable merge is the first k with k·t2 > tc + k·t1"
 TEST_CASE("A merged task costs the sum of its members and keeps outside edges", "[merging]") {
   // a → b → c → d, a → c (weight 7), merge {b, c}.
   TaskGraph g;
-  for (const char* n : {"a", "b", "c", "d"}) g.add_task({n, "bend", 1, -1});
+  for (const char* n : {"a", "b", "c", "d"}) g.add_task({n, kBend, 1, -1});
   g.add_edge(0, 1, 2);
   g.add_edge(1, 2, 3);
   g.add_edge(2, 3, 4);
@@ -93,7 +95,7 @@ TEST_CASE("A merged task costs the sum of its members and keeps outside edges", 
   const TaskId bc = m.merged_id[1];
   CHECK(m.merged_id[2] == bc);
   CHECK(m.graph.task(bc).name == "b+c");
-  CHECK(m.graph.task(bc).kind == "bend");
+  CHECK(m.graph.task(bc).kind == kBend);
   CHECK(m.members[bc] == std::vector<TaskId>{1, 2});  // run order, not the order given
   CHECK(m.costs.at(bc, 0) == 8.0);
   CHECK_FALSE(m.costs.can_run(bc, 1));
@@ -105,7 +107,7 @@ TEST_CASE("A merged task costs the sum of its members and keeps outside edges", 
 
 TEST_CASE("Merging tasks linked through an outside task is an error naming the cycle", "[merging]") {
   TaskGraph g;
-  for (const char* n : {"a", "b", "c"}) g.add_task({n, "k", -1, -1});
+  for (const char* n : {"a", "b", "c"}) g.add_task({n, 0, -1, -1});
   g.add_edge(0, 1);
   g.add_edge(1, 2);
   const CostTable costs(3, 2, 1.0);
@@ -116,7 +118,7 @@ TEST_CASE("Merging tasks linked through an outside task is an error naming the c
 
 TEST_CASE("A task in two merge groups is an error", "[merging]") {
   TaskGraph g;
-  for (const char* n : {"a", "b", "c"}) g.add_task({n, "k", -1, -1});
+  for (const char* n : {"a", "b", "c"}) g.add_task({n, 0, -1, -1});
   const CostTable costs(3, 2, 1.0);
   const std::vector<std::vector<TaskId>> groups{{0, 1}, {1, 2}};
   CHECK_THROWS_WITH(merge_tasks(g, costs, groups), Catch::Contains("'b' is in more than one"));

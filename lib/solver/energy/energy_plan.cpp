@@ -11,15 +11,12 @@ namespace atssim::solver::energy {
 
 namespace {
 
-using Arg = KernelArg;
+using Arg = plan::KernelArg;
 
-// (out_first, first, count) follow the three buffers: the range is args 4, 5.
-KernelLaunch element_launch(const char* kernel, BufferId x, BufferId elements, BufferId out, int out_first, int count) {
-  return {kernel,
-          static_cast<std::size_t>(count),
-          {Arg::of_buffer(x), Arg::of_buffer(elements), Arg::of_buffer(out), Arg::of_int(out_first), Arg::of_int(0),
-           Arg::of_int(count)},
-          4};
+plan::KernelLaunch element_launch(const char* function, plan::BufferId x, plan::BufferId elements, plan::BufferId out,
+                                  int out_first, int count) {
+  return {
+      function, {0, count}, {Arg::of_buffer(x), Arg::of_buffer(elements), Arg::of_buffer(out), Arg::of_int(out_first)}};
 }
 
 }  // namespace
@@ -34,8 +31,8 @@ EnergyOutput energy_output(const SimLayout& layout) {
   return o;
 }
 
-SubstepPlan make_energy_plan(const SimLayout& layout, const std::vector<Float4>& predicted, double h,
-                             EnergyBuffers* ids) {
+plan::SubstepPlan make_energy_plan(const SimLayout& layout, const std::vector<Float4>& predicted, double h,
+                                   EnergyBuffers* ids) {
   if (predicted.size() != layout.x.size()) {
     throw input_error(
         fmt::format("energy plan: {} predicted positions for {} particles", predicted.size(), layout.x.size()));
@@ -44,22 +41,24 @@ SubstepPlan make_energy_plan(const SimLayout& layout, const std::vector<Float4>&
   require_valid_tets(layout);
   const EnergyOutput where = energy_output(layout);
 
-  SubstepPlan plan;
+  plan::SubstepPlan plan;
   plan.program = "xpbd_energy";
   plan.particle_count = static_cast<int>(layout.x.size());
   EnergyBuffers b;
-  b.x = plan.add_buffer("x", bytes_of(layout.x));
-  b.predicted = plan.add_buffer("predicted", bytes_of(predicted));
-  if (!layout.stretch.empty()) b.stretch = plan.add_buffer("stretch", bytes_of(layout.stretch));
-  if (!layout.bend.empty()) b.bend = plan.add_buffer("bend", bytes_of(layout.bend));
-  if (!layout.tets.empty()) b.tets = plan.add_buffer("tets", bytes_of(layout.tets));
-  b.energy = plan.add_buffer("energy", std::vector<std::byte>(static_cast<std::size_t>(where.size) * sizeof(float)));
-  plan.positions = b.x;
+  using plan::BufferRole;
+  b.x = plan.add_buffer("x", BufferRole::positions, plan::bytes_of(layout.x));
+  b.predicted = plan.add_buffer("predicted", BufferRole::inertia_target, plan::bytes_of(predicted));
+  if (!layout.stretch.empty())
+    b.stretch = plan.add_buffer("stretch", BufferRole::elements, plan::bytes_of(layout.stretch));
+  if (!layout.bend.empty()) b.bend = plan.add_buffer("bend", BufferRole::elements, plan::bytes_of(layout.bend));
+  if (!layout.tets.empty()) b.tets = plan.add_buffer("tets", BufferRole::elements, plan::bytes_of(layout.tets));
+  b.energy = plan.add_buffer("energy", BufferRole::results,
+                             std::vector<std::byte>(static_cast<std::size_t>(where.size) * sizeof(float)));
 
-  // Every element is independent, so one task whose launches each cover a
-  // whole set; range_arg lets split_plan cut them between devices.
-  std::vector<KernelLaunch> launches;
-  KernelLaunch inertia =
+  // Every element is independent: one task whose launches each cover a
+  // whole set.
+  std::vector<plan::KernelLaunch> launches;
+  plan::KernelLaunch inertia =
       element_launch("energy_inertia", b.x, b.predicted, b.energy, where.inertia_first, plan.particle_count);
   inertia.args.push_back(Arg::of_float(static_cast<float>(1.0 / (h * h))));
   launches.push_back(std::move(inertia));
@@ -75,7 +74,7 @@ SubstepPlan make_energy_plan(const SimLayout& layout, const std::vector<Float4>&
     launches.push_back(
         element_launch("energy_tet", b.x, b.tets, b.energy, where.tet_first, static_cast<int>(layout.tets.size())));
   }
-  plan.add_task({"energy", "energy", -1, -1}, std::move(launches));
+  plan.add_task(plan::make_task("energy", plan::TaskKind::energy), std::move(launches));
   if (ids != nullptr) *ids = b;
   return plan;
 }

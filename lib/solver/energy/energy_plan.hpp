@@ -7,14 +7,14 @@
 // plan again.
 #include <vector>
 
-#include "solver/substep_plan.hpp"
+#include "plan/substep_plan.hpp"
 #include "solver/layout/sim_layout.hpp"
 
 namespace atssim::solver::energy {
 
 // Buffer ids inside an energy plan (those absent from the layout are -1).
 struct EnergyBuffers {
-  BufferId x = -1, predicted = -1, stretch = -1, bend = -1, tets = -1, energy = -1;
+  plan::BufferId x = -1, predicted = -1, stretch = -1, bend = -1, tets = -1, energy = -1;
 };
 
 // Where each term lands in the output array: particles, then stretch
@@ -32,7 +32,7 @@ EnergyOutput energy_output(const SimLayout& layout);
 // Throws atssim::Error (input) when a constraint has compliance 0 (no finite
 // energy), a tet has mu <= 0 or lambda < 0, or predicted and the layout
 // differ in size.
-SubstepPlan make_energy_plan(const SimLayout& layout, const std::vector<Float4>& predicted, double h,
-                             EnergyBuffers* ids = nullptr);
+plan::SubstepPlan make_energy_plan(const SimLayout& layout, const std::vector<Float4>& predicted, double h,
+                                   EnergyBuffers* ids = nullptr);
 
 }  // namespace atssim::solver::energy

@@ -20,46 +20,41 @@ std::vector<double> chebyshev_weights(int iterations, double rho) {
   return omega;
 }
 
-SubstepPlan make_jpgd_plan(const SimLayout& layout, const JpgdSettings& settings, vertex::VertexBuffers* ids) {
+plan::SubstepPlan make_jpgd_plan(const SimLayout& layout, const JpgdSettings& settings, vertex::VertexBuffers* ids) {
   const vertex::VertexLayout vertices = vertex::make_vertex_layout(layout);
-  SubstepPlan plan;
+  plan::SubstepPlan plan;
   plan.program = "jpgd";
   vertex::VertexBuffers b;
   sched::TaskId last = vertex::begin_vertex_plan(plan, layout, vertices, settings.substep_dt, b);
   const int n = plan.particle_count;
   // x^{k+1} goes to a different buffer than x^k and x^{k-1}: three rotate.
-  const BufferId rotation[3] = {b.x, plan.add_buffer("x_1", bytes_of(layout.x)),
-                                plan.add_buffer("x_2", bytes_of(layout.x))};
+  const plan::BufferId rotation[3] = {b.x, plan.add_buffer("x_1", plan::BufferRole::scratch, plan::bytes_of(layout.x)),
+                                      plan.add_buffer("x_2", plan::BufferRole::scratch, plan::bytes_of(layout.x))};
   const float inv_h2 = static_cast<float>(1.0 / (settings.substep_dt * settings.substep_dt));
   const bool heavy_ball = settings.momentum > 0.0;
   const std::vector<double> omega = chebyshev_weights(settings.iterations, heavy_ball ? 0.0 : settings.chebyshev_rho);
   const float beta = heavy_ball ? static_cast<float>(settings.momentum) : 0.0f;
-  using Arg = KernelArg;
+  using Arg = plan::KernelArg;
   for (int it = 0; it < settings.iterations; ++it) {
-    const BufferId current = rotation[it % 3];
-    const BufferId before = it == 0 ? current : rotation[(it + 2) % 3];
-    const BufferId next = rotation[(it + 1) % 3];
-    const sched::TaskId t = plan.add_task(
-        {fmt::format("it{}/jacobi", it + 1), "jacobi", it, 0},
-        {{"jpgd_step", static_cast<std::size_t>(n),
-          {Arg::of_buffer(current), Arg::of_buffer(before), Arg::of_buffer(next), Arg::of_buffer(b.x_tilde),
-           Arg::of_buffer(b.adjacency_offsets), Arg::of_buffer(b.adjacency), Arg::of_buffer(b.stretch),
-           Arg::of_buffer(b.bend), Arg::of_buffer(b.tets), Arg::of_float(inv_h2),
-           Arg::of_float(static_cast<float>(settings.step)), Arg::of_float(static_cast<float>(omega[it])),
-           Arg::of_float(it == 0 ? 0.0f : beta), Arg::of_int(layout.has_ground ? 1 : 0),
-           Arg::of_float(layout.ground_y), Arg::of_int(0), Arg::of_int(n)},
-          15}});
-    plan.graph.add_edge(last, t);
+    const plan::BufferId current = rotation[it % 3];
+    const plan::BufferId before = it == 0 ? current : rotation[(it + 2) % 3];
+    const plan::BufferId next = rotation[(it + 1) % 3];
+    const sched::TaskId t = plan.add_task_after(
+        last, plan::make_task(fmt::format("it{}/jacobi", it + 1), plan::TaskKind::jacobi, it, 0),
+        {"jpgd_step",
+         {0, n},
+         {Arg::of_buffer(current), Arg::of_buffer(before), Arg::of_buffer(next), Arg::of_buffer(b.x_tilde),
+          Arg::of_buffer(b.adjacency_offsets), Arg::of_buffer(b.adjacency), Arg::of_buffer(b.stretch),
+          Arg::of_buffer(b.bend), Arg::of_buffer(b.tets), Arg::of_float(inv_h2),
+          Arg::of_float(static_cast<float>(settings.step)), Arg::of_float(static_cast<float>(omega[it])),
+          Arg::of_float(it == 0 ? 0.0f : beta), Arg::of_int(layout.has_ground ? 1 : 0),
+          Arg::of_float(layout.ground_y)}});
     last = add_ground_task(plan, t, layout, next, it);
   }
-  const BufferId result = rotation[settings.iterations % 3];
+  const plan::BufferId result = rotation[settings.iterations % 3];
   if (result != b.x) {
-    const sched::TaskId copy = plan.add_task(
-        {"copy_result", "copy", -1, -1},
-        {{"particles_copy", static_cast<std::size_t>(n),
-          {Arg::of_buffer(b.x), Arg::of_buffer(result), Arg::of_int(0), Arg::of_int(n)}, 2}});
-    plan.graph.add_edge(last, copy);
-    last = copy;
+    last = plan.add_task_after(last, plan::make_task("copy_result", plan::TaskKind::copy),
+                               {"particles_copy", {0, n}, {Arg::of_buffer(b.x), Arg::of_buffer(result)}});
   }
   vertex::end_vertex_plan(plan, last, b, settings.substep_dt);
   if (ids != nullptr) *ids = b;

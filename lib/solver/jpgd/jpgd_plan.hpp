@@ -3,9 +3,9 @@
 // (Wang & Yang 2016) as a substep plan: predict, then one task per
 // iteration that moves every vertex at once (cut-able between devices with
 // one synchronisation per iteration), then the velocity update.
-#include "solver/substep_plan.hpp"
-#include "solver/vertex/vertex_plan.hpp"
+#include "plan/substep_plan.hpp"
 #include "solver/layout/sim_layout.hpp"
+#include "solver/vertex/vertex_plan.hpp"
 
 namespace atssim::solver::jpgd {
 
@@ -26,7 +26,7 @@ struct JpgdSettings {
 // Chebyshev weights omega_1 .. omega_n: 1, 2/(2 - rho^2), 4/(4 - rho^2 omega_{k-1}).
 std::vector<double> chebyshev_weights(int iterations, double rho);
 
-SubstepPlan make_jpgd_plan(const SimLayout& layout, const JpgdSettings& settings,
-                           vertex::VertexBuffers* ids = nullptr);
+plan::SubstepPlan make_jpgd_plan(const SimLayout& layout, const JpgdSettings& settings,
+                                 vertex::VertexBuffers* ids = nullptr);
 
 }  // namespace atssim::solver::jpgd

@@ -26,21 +26,23 @@ std::vector<StencilBlock> stencil_blocks(const SimLayout& layout) {
   return blocks;
 }
 
-SubstepPlan make_sosd_plan(const SimLayout& layout, double substep_dt, int iterations, double step,
-                           vertex::VertexBuffers* ids) {
+plan::SubstepPlan make_sosd_plan(const SimLayout& layout, double substep_dt, int iterations, double step,
+                                 vertex::VertexBuffers* ids) {
   const vertex::VertexLayout vertices = vertex::make_vertex_layout(layout);
-  SubstepPlan plan;
+  plan::SubstepPlan plan;
   plan.program = "sosd";
   vertex::VertexBuffers b;
   sched::TaskId last = vertex::begin_vertex_plan(plan, layout, vertices, substep_dt, b);
   const int n = plan.particle_count;
   constexpr std::size_t kFloat4 = 4 * sizeof(float);
-  const BufferId systems = plan.add_buffer("vertex_systems", std::vector<std::byte>(4 * n * kFloat4));
-  const std::array<BufferId, 3> d{
-      plan.add_buffer("d_stretch", std::vector<std::byte>(2 * layout.stretch.size() * kFloat4)),
-      plan.add_buffer("d_bend", std::vector<std::byte>(4 * layout.bend.size() * kFloat4)),
-      plan.add_buffer("d_tet", std::vector<std::byte>(4 * layout.tets.size() * kFloat4))};
-  const std::array<BufferId, 3> elements{b.stretch, b.bend, b.tets};
+  using plan::BufferRole;
+  const plan::BufferId systems =
+      plan.add_buffer("vertex_systems", BufferRole::scratch, std::vector<std::byte>(4 * n * kFloat4));
+  const std::array<plan::BufferId, 3> d{
+      plan.add_buffer("d_stretch", BufferRole::scratch, std::vector<std::byte>(2 * layout.stretch.size() * kFloat4)),
+      plan.add_buffer("d_bend", BufferRole::scratch, std::vector<std::byte>(4 * layout.bend.size() * kFloat4)),
+      plan.add_buffer("d_tet", BufferRole::scratch, std::vector<std::byte>(4 * layout.tets.size() * kFloat4))};
+  const std::array<plan::BufferId, 3> elements{b.stretch, b.bend, b.tets};
   constexpr std::array<const char*, 3> kKinds{"stretch", "bend", "tet"};
   const std::vector<StencilBlock> blocks = stencil_blocks(layout);
   const std::array<int, 3> kind_count{static_cast<int>(layout.stretch.size()), static_cast<int>(layout.bend.size()),
@@ -48,36 +50,36 @@ SubstepPlan make_sosd_plan(const SimLayout& layout, double substep_dt, int itera
   std::array<int, 3> first_block{0, 0, 0};  // index in `blocks` of each kind's first color
   for (int i = static_cast<int>(blocks.size()) - 1; i >= 0; --i) first_block[blocks[i].kind] = i;
   const float inv_h2 = static_cast<float>(1.0 / (substep_dt * substep_dt));
-  using Arg = KernelArg;
+  using Arg = plan::KernelArg;
   for (int it = 0; it < iterations; ++it) {
-    const sched::TaskId systems_task = plan.add_task(
-        {fmt::format("it{}/systems", it + 1), "systems", it, -1},
-        {{"sosd_vertex_systems", static_cast<std::size_t>(n),
-          {Arg::of_buffer(b.x), Arg::of_buffer(b.x_tilde), Arg::of_buffer(b.adjacency_offsets),
-           Arg::of_buffer(b.adjacency), Arg::of_buffer(b.stretch), Arg::of_buffer(b.bend), Arg::of_buffer(b.tets),
-           Arg::of_buffer(systems), Arg::of_float(inv_h2), Arg::of_int(0), Arg::of_int(n)},
-          9}});
-    plan.graph.add_edge(last, systems_task);
+    const sched::TaskId systems_task =
+        plan.add_task_after(last, plan::make_task(fmt::format("it{}/systems", it + 1), plan::TaskKind::systems, it),
+                            {"sosd_vertex_systems",
+                             {0, n},
+                             {Arg::of_buffer(b.x), Arg::of_buffer(b.x_tilde), Arg::of_buffer(b.adjacency_offsets),
+                              Arg::of_buffer(b.adjacency), Arg::of_buffer(b.stretch), Arg::of_buffer(b.bend),
+                              Arg::of_buffer(b.tets), Arg::of_buffer(systems), Arg::of_float(inv_h2)}});
     // All stencils read the same x^k and vertex systems, so a block matters
     // only as the main one: one task for it, and per kind one task for the
     // rest (the Jacobi blocks: up to two element ranges around the main).
     const StencilBlock main = blocks.empty() ? StencilBlock{-1, 0, 0} : blocks[it % blocks.size()];
     std::vector<sched::TaskId> stencil_tasks;
     const auto launch = [&](int kind, int first, int end) {
-      return KernelLaunch{fmt::format("sosd_{}", kKinds[kind]), static_cast<std::size_t>(end - first),
-                          {Arg::of_buffer(b.x), Arg::of_buffer(systems), Arg::of_buffer(elements[kind]),
-                           Arg::of_buffer(d[kind]), Arg::of_int(first), Arg::of_int(end - first)},
-                          4};
+      return plan::KernelLaunch{
+          fmt::format("sosd_{}", kKinds[kind]),
+          {first, end - first},
+          {Arg::of_buffer(b.x), Arg::of_buffer(systems), Arg::of_buffer(elements[kind]), Arg::of_buffer(d[kind])}};
     };
     if (main.kind >= 0) {
       const int color = static_cast<int>(it % blocks.size()) - first_block[main.kind];
-      stencil_tasks.push_back(plan.add_task(
-          {fmt::format("it{}/main/{}/c{}", it + 1, kKinds[main.kind], color), "main", it, color},
-          {launch(main.kind, main.first, main.end)}));
+      stencil_tasks.push_back(
+          plan.add_task(plan::make_task(fmt::format("it{}/main/{}/c{}", it + 1, kKinds[main.kind], color),
+                                        plan::TaskKind::main_block, it, color),
+                        {launch(main.kind, main.first, main.end)}));
     }
     for (int kind = 0; kind < 3; ++kind) {
       if (kind_count[kind] == 0) continue;
-      std::vector<KernelLaunch> rest;
+      std::vector<plan::KernelLaunch> rest;
       if (kind != main.kind) {
         rest.push_back(launch(kind, 0, kind_count[kind]));
       } else {
@@ -86,18 +88,18 @@ SubstepPlan make_sosd_plan(const SimLayout& layout, double substep_dt, int itera
       }
       if (rest.empty()) continue;
       stencil_tasks.push_back(
-          plan.add_task({fmt::format("it{}/{}", it + 1, kKinds[kind]), kKinds[kind], it, -1}, std::move(rest)));
+          plan.add_task(plan::make_task(fmt::format("it{}/{}", it + 1, kKinds[kind]), plan::TaskKind::stencils, it),
+                        std::move(rest)));
     }
     for (sched::TaskId t : stencil_tasks) plan.graph.add_edge(systems_task, t);
     const sched::TaskId combine = plan.add_task(
-        {fmt::format("it{}/combine", it + 1), "combine", it, -1},
-        {{"sosd_combine", static_cast<std::size_t>(n),
-          {Arg::of_buffer(b.x), Arg::of_buffer(b.adjacency_offsets), Arg::of_buffer(b.adjacency),
-           Arg::of_buffer(d[0]), Arg::of_buffer(d[1]), Arg::of_buffer(d[2]), Arg::of_buffer(systems),
-           Arg::of_int(main.kind), Arg::of_int(main.first), Arg::of_int(main.end),
-           Arg::of_float(static_cast<float>(step)), Arg::of_int(layout.has_ground ? 1 : 0),
-           Arg::of_float(layout.ground_y), Arg::of_int(0), Arg::of_int(n)},
-          13}});
+        plan::make_task(fmt::format("it{}/combine", it + 1), plan::TaskKind::combine, it),
+        {{"sosd_combine",
+          {0, n},
+          {Arg::of_buffer(b.x), Arg::of_buffer(b.adjacency_offsets), Arg::of_buffer(b.adjacency), Arg::of_buffer(d[0]),
+           Arg::of_buffer(d[1]), Arg::of_buffer(d[2]), Arg::of_buffer(systems), Arg::of_int(main.kind),
+           Arg::of_int(main.first), Arg::of_int(main.end), Arg::of_float(static_cast<float>(step)),
+           Arg::of_int(layout.has_ground ? 1 : 0), Arg::of_float(layout.ground_y)}}});
     for (sched::TaskId t : stencil_tasks) plan.graph.add_edge(t, combine);
     if (stencil_tasks.empty()) plan.graph.add_edge(systems_task, combine);
     last = add_ground_task(plan, combine, layout, b.x, it);

@@ -7,9 +7,9 @@
 // task in which the main block takes precedence; then the velocity update.
 // Every launch is a range over independent items, so `split` cuts them
 // between devices exactly.
-#include "solver/substep_plan.hpp"
-#include "solver/vertex/vertex_plan.hpp"
+#include "plan/substep_plan.hpp"
 #include "solver/layout/sim_layout.hpp"
+#include "solver/vertex/vertex_plan.hpp"
 
 namespace atssim::solver::sosd {
 
@@ -28,7 +28,7 @@ std::vector<StencilBlock> stencil_blocks(const SimLayout& layout);
 // neighbours, which move in the same step, so a full step is a Jacobi step
 // over nearly every vertex (a stretch color is a matching) and overshoots on
 // stiff cloth (docs/accuracy.md).
-SubstepPlan make_sosd_plan(const SimLayout& layout, double substep_dt, int iterations,
-                           double step = 0.7, vertex::VertexBuffers* ids = nullptr);
+plan::SubstepPlan make_sosd_plan(const SimLayout& layout, double substep_dt, int iterations, double step = 0.7,
+                                 vertex::VertexBuffers* ids = nullptr);
 
 }  // namespace atssim::solver::sosd

@@ -6,10 +6,10 @@
 
 namespace atssim::solver::vbd {
 
-SubstepPlan make_vbd_plan(const SimLayout& layout, double substep_dt, int iterations,
-                          vertex::VertexBuffers* ids) {
+plan::SubstepPlan make_vbd_plan(const SimLayout& layout, double substep_dt, int iterations,
+                                vertex::VertexBuffers* ids) {
   const vertex::VertexLayout vertices = vertex::make_vertex_layout(layout);
-  SubstepPlan plan;
+  plan::SubstepPlan plan;
   plan.program = "vbd";
   vertex::VertexBuffers b;
   sched::TaskId last = vertex::begin_vertex_plan(plan, layout, vertices, substep_dt, b);
@@ -18,17 +18,15 @@ SubstepPlan make_vbd_plan(const SimLayout& layout, double substep_dt, int iterat
     for (int c = 0; c < vertices.colors.count(); ++c) {
       const int first = vertices.colors.offsets[c];
       const int count = vertices.colors.offsets[c + 1] - first;
-      using Arg = KernelArg;
-      const sched::TaskId t = plan.add_task(
-          {fmt::format("it{}/vertex/c{}", it + 1, c), "vertex", it, c},
-          {{"vbd_solve", static_cast<std::size_t>(count),
-            {Arg::of_buffer(b.x), Arg::of_buffer(b.x_tilde), Arg::of_buffer(b.adjacency_offsets),
-             Arg::of_buffer(b.adjacency), Arg::of_buffer(b.stretch), Arg::of_buffer(b.bend), Arg::of_buffer(b.tets),
-             Arg::of_buffer(b.order), Arg::of_float(inv_h2), Arg::of_int(layout.has_ground ? 1 : 0),
-             Arg::of_float(layout.ground_y), Arg::of_int(first), Arg::of_int(count)},
-            11}});
-      plan.graph.add_edge(last, t);
-      last = t;
+      using Arg = plan::KernelArg;
+      last = plan.add_task_after(
+          last, plan::make_task(fmt::format("it{}/vertex/c{}", it + 1, c), plan::TaskKind::vertex, it, c),
+          {"vbd_solve",
+           {first, count},
+           {Arg::of_buffer(b.x), Arg::of_buffer(b.x_tilde), Arg::of_buffer(b.adjacency_offsets),
+            Arg::of_buffer(b.adjacency), Arg::of_buffer(b.stretch), Arg::of_buffer(b.bend), Arg::of_buffer(b.tets),
+            Arg::of_buffer(b.order), Arg::of_float(inv_h2), Arg::of_int(layout.has_ground ? 1 : 0),
+            Arg::of_float(layout.ground_y)}});
     }
     last = add_ground_task(plan, last, layout, b.x, it);
   }

@@ -2,24 +2,24 @@
 // The parts every vertex-block method's substep shares: buffers (state,
 // inertia target, elements, per-vertex element lists), predict, and the
 // velocity update; VBD and JPGD put their iterations in between.
-#include "solver/substep_plan.hpp"
-#include "solver/vertex/vertex_layout.hpp"
+#include "plan/substep_plan.hpp"
 #include "solver/layout/sim_layout.hpp"
+#include "solver/vertex/vertex_layout.hpp"
 
 namespace atssim::solver::vertex {
 
 struct VertexBuffers {
-  BufferId x = -1, v = -1, x_prev = -1, x_tilde = -1, stretch = -1, bend = -1, tets = -1, adjacency_offsets = -1,
-           adjacency = -1, order = -1;
+  plan::BufferId x = -1, v = -1, x_prev = -1, x_tilde = -1, stretch = -1, bend = -1, tets = -1, adjacency_offsets = -1,
+                 adjacency = -1, order = -1;
 };
 
 // Adds the buffers and the predict task; returns predict's id. Throws
 // atssim::Error (input) when a constraint is infinitely stiff (compliance
 // 0): these methods minimise an energy, which then does not exist.
-sched::TaskId begin_vertex_plan(SubstepPlan& plan, const SimLayout& layout, const VertexLayout& vertices,
+sched::TaskId begin_vertex_plan(plan::SubstepPlan& plan, const SimLayout& layout, const VertexLayout& vertices,
                                 double substep_dt, VertexBuffers& ids);
 
 // Adds the velocity update after `last`.
-void end_vertex_plan(SubstepPlan& plan, sched::TaskId last, const VertexBuffers& ids, double substep_dt);
+void end_vertex_plan(plan::SubstepPlan& plan, sched::TaskId last, const VertexBuffers& ids, double substep_dt);
 
 }  // namespace atssim::solver::vertex

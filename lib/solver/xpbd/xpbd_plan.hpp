@@ -4,7 +4,7 @@
 // then tetrahedron (StVK strain) color blocks, in Gauss-Seidel order ->
 // update velocity. Only the element sets the model has produce tasks.
 #include "model/model.hpp"
-#include "solver/substep_plan.hpp"
+#include "plan/substep_plan.hpp"
 #include "solver/layout/sim_layout.hpp"
 
 namespace atssim::solver::xpbd {
@@ -16,10 +16,10 @@ struct XpbdSettings {
 
 // Buffer ids inside an XPBD plan (those absent from the model are -1).
 struct XpbdBuffers {
-  BufferId x = -1, v = -1, x_prev = -1, stretch = -1, stretch_lambda = -1, bend = -1, bend_lambda = -1;
-  BufferId tet = -1, tet_lambda = -1;
+  plan::BufferId x = -1, v = -1, x_prev = -1, stretch = -1, stretch_lambda = -1, bend = -1, bend_lambda = -1;
+  plan::BufferId tet = -1, tet_lambda = -1;
 };
 
-SubstepPlan make_xpbd_plan(const SimLayout& layout, const XpbdSettings& settings, XpbdBuffers* ids = nullptr);
+plan::SubstepPlan make_xpbd_plan(const SimLayout& layout, const XpbdSettings& settings, XpbdBuffers* ids = nullptr);
 
 }  // namespace atssim::solver::xpbd

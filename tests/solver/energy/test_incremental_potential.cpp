@@ -141,7 +141,7 @@ TEST_CASE("a constraint with compliance 0 has no incremental potential", "[energ
 TEST_CASE("the energy plan is one task of program xpbd_energy covering every particle and constraint", "[energy]") {
   const SimLayout state = test::moving_cloth(4, 1e3, 1e-3, kH);
   EnergyBuffers ids;
-  const SubstepPlan plan = make_energy_plan(state, predicted_positions(state, kH), kH, &ids);
+  const plan::SubstepPlan plan = make_energy_plan(state, predicted_positions(state, kH), kH, &ids);
   CHECK(plan.program == "xpbd_energy");
   REQUIRE(plan.graph.size() == 1);
   REQUIRE(plan.launches.size() == 1);
@@ -150,10 +150,8 @@ TEST_CASE("the energy plan is one task of program xpbd_energy covering every par
   CHECK(plan.buffers[ids.energy].initial.size() == where.size * sizeof(float));
   int covered = 0;
   for (const auto& l : plan.launches[0]) {
-    REQUIRE(l.range_arg >= 0);
-    CHECK(l.args[l.range_arg].i32 == 0);
-    CHECK(l.args[l.range_arg + 1].i32 == int(l.global_size));
-    covered += int(l.global_size);
+    CHECK(l.range.first == 0);
+    covered += l.range.count;
   }
   CHECK(covered == where.size);
 }

@@ -44,11 +44,11 @@ TEST_CASE("an SOSD iteration is vertex systems, the main block beside the Jacobi
   const auto layout = make_sim_layout(m);
   const auto plan = sosd::make_sosd_plan(layout, 1.0 / 240.0, iterations);
   const auto blocks = sosd::stencil_blocks(layout);
-  const auto systems = plan.graph.tasks_of_kind("systems");
-  const auto combines = plan.graph.tasks_of_kind("combine");
+  const auto systems = plan.tasks_of(plan::TaskKind::systems);
+  const auto combines = plan.tasks_of(plan::TaskKind::combine);
   REQUIRE(systems.size() == std::size_t(iterations));
   REQUIRE(combines.size() == std::size_t(iterations));
-  CHECK(plan.graph.tasks_of_kind("main").size() == std::size_t(iterations));
+  CHECK(plan.tasks_of(plan::TaskKind::main_block).size() == std::size_t(iterations));
   const int counts[2] = {static_cast<int>(layout.stretch.size()), static_cast<int>(layout.bend.size())};
   for (int it = 0; it < iterations; ++it) {
     // The stencil tasks of one iteration follow its systems task only and all
@@ -57,17 +57,18 @@ TEST_CASE("an SOSD iteration is vertex systems, the main block beside the Jacobi
     std::vector<int> solved[2] = {std::vector<int>(counts[0], 0), std::vector<int>(counts[1], 0)};
     for (sched::TaskId t = 0; t < plan.graph.size(); ++t) {
       const auto& task = plan.graph.task(t);
-      if (task.iteration != it || (task.kind != "stretch" && task.kind != "bend" && task.kind != "main")) continue;
+      const plan::TaskKind k = plan::kind_of(task);
+      if (task.iteration != it || (k != plan::TaskKind::stencils && k != plan::TaskKind::main_block)) continue;
       REQUIRE(plan.graph.predecessors(t).size() == 1);
       CHECK(plan.graph.predecessors(t).front().from == systems[it]);
       REQUIRE(plan.graph.successors(t).size() == 1);
       CHECK(plan.graph.successors(t).front().to == combines[it]);
       for (const auto& l : plan.launches[t]) {
-        const int kind = l.kernel == "sosd_stretch" ? 0 : 1;
-        REQUIRE((l.kernel == "sosd_stretch" || l.kernel == "sosd_bend"));
-        const int first = l.args[l.range_arg].i32, count = l.args[l.range_arg + 1].i32;
+        const int kind = l.function == "sosd_stretch" ? 0 : 1;
+        REQUIRE((l.function == "sosd_stretch" || l.function == "sosd_bend"));
+        const int first = l.range.first, count = l.range.count;
         for (int e = first; e < first + count; ++e) ++solved[kind][e];
-        if (task.kind == "main") {  // the iteration's main block, rotating through the blocks
+        if (k == plan::TaskKind::main_block) {  // the iteration's main block, rotating through the blocks
           const auto& b = blocks[it % blocks.size()];
           CHECK(b.kind == kind);
           CHECK(first == b.first);
@@ -79,8 +80,8 @@ TEST_CASE("an SOSD iteration is vertex systems, the main block beside the Jacobi
       for (int c : s) CHECK(c == 1);
     }
   }
-  // Every launch covers independent items: split may cut any of them.
-  for (const auto& launches : plan.launches) {
-    for (const auto& l : launches) CHECK(l.range_arg >= 0);
+  // Every task but the Jacobi rest of the main block's kind has one launch: split may cut it.
+  for (sched::TaskId t = 0; t < plan.graph.size(); ++t) {
+    if (plan::kind_of(plan.graph.task(t)) != plan::TaskKind::stencils) CHECK(plan.launches[t].size() == 1);
   }
 }

@@ -11,9 +11,9 @@ using namespace atssim::solver::xpbd;
 
 namespace {
 
-solver::SubstepPlan plan_for(double stretch, double bend, int iterations) {
-  const auto m = model::build_model(
-      scene::parse_scene(test::hanging_cloth_yaml(10, stretch, bend, iterations), "s.yaml", "."));
+plan::SubstepPlan plan_for(double stretch, double bend, int iterations) {
+  const auto m =
+      model::build_model(scene::parse_scene(test::hanging_cloth_yaml(10, stretch, bend, iterations), "s.yaml", "."));
   return make_xpbd_plan(make_sim_layout(m), {1.0 / 240.0, iterations});
 }
 
@@ -21,8 +21,8 @@ solver::SubstepPlan plan_for(double stretch, double bend, int iterations) {
 
 TEST_CASE("a scene with bending stiffness 0 has no bending task") {
   const auto plan = plan_for(1e4, 0.0, 4);
-  CHECK(plan.graph.tasks_of_kind("bend").empty());
-  CHECK_FALSE(plan.graph.tasks_of_kind("stretch").empty());
+  CHECK(plan.tasks_of(plan::TaskKind::bend).empty());
+  CHECK_FALSE(plan.tasks_of(plan::TaskKind::stretch).empty());
   for (const auto& b : plan.buffers) CHECK(b.name.find("bend") == std::string::npos);
 }
 
@@ -34,12 +34,12 @@ TEST_CASE("the XPBD substep graph is predict, iterations of color blocks, update
   const int stretch_blocks = static_cast<int>(layout.stretch_blocks.size()) - 1;
   const int bend_blocks = static_cast<int>(layout.bend_blocks.size()) - 1;
   CHECK(plan.graph.size() == std::size_t(2 + iterations * (stretch_blocks + bend_blocks)));
-  CHECK(plan.graph.tasks_of_kind("stretch").size() == std::size_t(iterations * stretch_blocks));
-  CHECK(plan.graph.tasks_of_kind("bend").size() == std::size_t(iterations * bend_blocks));
+  CHECK(plan.tasks_of(plan::TaskKind::stretch).size() == std::size_t(iterations * stretch_blocks));
+  CHECK(plan.tasks_of(plan::TaskKind::bend).size() == std::size_t(iterations * bend_blocks));
   // A Gauss-Seidel chain: the topological order is unique and starts/ends right.
   const auto order = plan.graph.topological_order();
-  CHECK(plan.graph.task(order.front()).kind == "predict");
-  CHECK(plan.graph.task(order.back()).kind == "update_velocity");
+  CHECK(plan::kind_of(plan.graph.task(order.front())) == plan::TaskKind::predict);
+  CHECK(plan::kind_of(plan.graph.task(order.back())) == plan::TaskKind::update_velocity);
   CHECK(plan.graph.edge_count() == plan.graph.size() - 1);
   for (std::size_t i = 1; i < order.size(); ++i) {
     REQUIRE(plan.graph.predecessors(order[i]).size() == 1);

@@ -1,4 +1,4 @@
-#include "solver/plan_split.hpp"
+#include "plan/split_plan.hpp"
 
 #include <cmath>
 #include <numeric>
@@ -7,7 +7,7 @@
 
 #include "util/error.hpp"
 
-namespace atssim::solver {
+namespace atssim::plan {
 
 namespace {
 
@@ -34,12 +34,6 @@ std::vector<std::pair<std::int32_t, std::int32_t>> part_ranges(std::int32_t coun
 
 }  // namespace
 
-int part_of(const sched::Task& task) {
-  const auto hash = task.name.rfind('#');
-  if (hash == std::string::npos) return -1;
-  return std::atoi(task.name.c_str() + hash + 1);
-}
-
 SubstepPlan split_plan(const SubstepPlan& plan, std::span<const double> fractions, std::size_t granule) {
   const double total = std::accumulate(fractions.begin(), fractions.end(), 0.0);
   if (fractions.empty() || std::abs(total - 1.0) > 1e-9) {
@@ -48,7 +42,6 @@ SubstepPlan split_plan(const SubstepPlan& plan, std::span<const double> fraction
   SubstepPlan out;
   out.program = plan.program;
   out.buffers = plan.buffers;
-  out.positions = plan.positions;
   out.particle_count = plan.particle_count;
 
   // parts[t]: the new task ids that together perform old task t.
@@ -56,23 +49,20 @@ SubstepPlan split_plan(const SubstepPlan& plan, std::span<const double> fraction
   for (sched::TaskId t : plan.graph.topological_order()) {
     const sched::Task& task = plan.graph.task(t);
     const auto& launches = plan.launches[t];
-    const bool splittable = fractions.size() > 1 && launches.size() == 1 && launches[0].range_arg >= 0;
+    const bool splittable = fractions.size() > 1 && launches.size() == 1;
     if (!splittable) {
       parts[t].push_back(out.add_task(task, launches));
     } else {
       const KernelLaunch& whole = launches[0];
-      const std::int32_t first = whole.args.at(whole.range_arg).i32;
-      const std::int32_t count = whole.args.at(whole.range_arg + 1).i32;
-      const auto ranges = part_ranges(count, fractions, granule);
+      const auto ranges = part_ranges(whole.range.count, fractions, granule);
       for (std::size_t p = 0; p < ranges.size(); ++p) {
         const auto [b, e] = ranges[p];
         if (e <= b) continue;
         KernelLaunch piece = whole;
-        piece.args[whole.range_arg] = KernelArg::of_int(first + b);
-        piece.args[whole.range_arg + 1] = KernelArg::of_int(e - b);
-        piece.global_size = static_cast<std::size_t>(e - b);
+        piece.range = {whole.range.first + b, e - b};
         sched::Task named = task;
         named.name = fmt::format("{}#{}", task.name, p);
+        named.part = static_cast<int>(p);
         parts[t].push_back(out.add_task(std::move(named), {std::move(piece)}));
       }
       // Nothing to cut (no elements): keep the task so the dependency chain holds.
@@ -87,4 +77,4 @@ SubstepPlan split_plan(const SubstepPlan& plan, std::span<const double> fraction
   return out;
 }
 
-}  // namespace atssim::solver
+}  // namespace atssim::plan

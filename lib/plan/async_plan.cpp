@@ -1,4 +1,4 @@
-#include "solver/async_plan.hpp"
+#include "plan/async_plan.hpp"
 
 #include <algorithm>
 #include <map>
@@ -7,7 +7,7 @@
 
 #include "util/error.hpp"
 
-namespace atssim::solver {
+namespace atssim::plan {
 
 namespace {
 
@@ -16,15 +16,17 @@ constexpr int kCopy = 0, kAveragePositions = 1, kAverageDisplacements = 2;
 
 struct Slot {
   BufferId buffer = -1;
-  double busy_until = -1.0;               // predicted start of the last reader of its content
-  sched::TaskId content = sched::kNoTask; // the publication it holds
+  double busy_until = -1.0;                // predicted start of the last reader of its content
+  sched::TaskId content = sched::kNoTask;  // the publication it holds
 };
 
 int merge_code(MergeStrategy strategy, const sched::Merge& m, sched::DeviceId main) {
   if (m.start == sched::kNoTask) return m.consumer_device == main ? kAveragePositions : kCopy;
   switch (strategy) {
-    case MergeStrategy::average_positions: return kAveragePositions;
-    case MergeStrategy::average_displacements: return kAverageDisplacements;
+    case MergeStrategy::average_positions:
+      return kAveragePositions;
+    case MergeStrategy::average_displacements:
+      return kAverageDisplacements;
     case MergeStrategy::main_precedence:
       // Fig. 5(b): a helper that receives the main device's result drops its
       // own data for it; the main device keeps its stream and merges the
@@ -41,16 +43,20 @@ MergeStrategy parse_merge_strategy(const std::string& text) {
   if (text == "average_positions") return MergeStrategy::average_positions;
   if (text == "average_displacements") return MergeStrategy::average_displacements;
   if (text == "main_precedence") return MergeStrategy::main_precedence;
-  throw input_error(fmt::format("unknown merge strategy '{}'; use average_displacements, average_positions or "
-                                "main_precedence",
-                                text));
+  throw input_error(
+      fmt::format("unknown merge strategy '{}'; use average_displacements, average_positions or "
+                  "main_precedence",
+                  text));
 }
 
 std::string to_string(MergeStrategy strategy) {
   switch (strategy) {
-    case MergeStrategy::average_positions: return "average_positions";
-    case MergeStrategy::average_displacements: return "average_displacements";
-    case MergeStrategy::main_precedence: return "main_precedence";
+    case MergeStrategy::average_positions:
+      return "average_positions";
+    case MergeStrategy::average_displacements:
+      return "average_displacements";
+    case MergeStrategy::main_precedence:
+      return "main_precedence";
   }
   return "?";
 }
@@ -59,7 +65,7 @@ AsyncPlan make_async_plan(const SubstepPlan& graph_plan, const sched::Schedule& 
                           MergeStrategy strategy) {
   const auto& graph = graph_plan.graph;
   if (schedule.task_count() != graph.size()) throw Error("make_async_plan: the schedule is not of this graph");
-  const BufferId x = graph_plan.positions;
+  const BufferId x = graph_plan.buffer(BufferRole::positions);
   const std::size_t devices = schedule.devices.size();
   const sched::DeviceId main = map.main_device;
   const int n = graph_plan.particle_count;
@@ -68,13 +74,14 @@ AsyncPlan make_async_plan(const SubstepPlan& graph_plan, const sched::Schedule& 
   SubstepPlan& plan = out.plan;
   plan.program = graph_plan.program;
   plan.buffers = graph_plan.buffers;
-  plan.positions = x;
   plan.particle_count = n;
 
   // One copy of the positions per device; the main device's is the plan's.
   std::vector<BufferId> replica(devices, x);
   for (std::size_t d = 0; d < devices; ++d) {
-    if (d != main) replica[d] = plan.add_buffer(fmt::format("x@{}", d), graph_plan.buffers[x].initial);
+    if (d != main) {
+      replica[d] = plan.add_buffer(fmt::format("x@{}", d), BufferRole::replica, graph_plan.buffers[x].initial);
+    }
   }
   for (sched::TaskId t = 0; t < graph.size(); ++t) {
     auto launches = graph_plan.launches[t];
@@ -108,9 +115,8 @@ AsyncPlan make_async_plan(const SubstepPlan& graph_plan, const sched::Schedule& 
   }
   std::vector<sched::TaskId> publications;
   for (const auto& [p, when] : last_use) publications.push_back(p);
-  std::sort(publications.begin(), publications.end(), [&](sched::TaskId a, sched::TaskId b) {
-    return schedule.slot(a).finish_ms < schedule.slot(b).finish_ms;
-  });
+  std::sort(publications.begin(), publications.end(),
+            [&](sched::TaskId a, sched::TaskId b) { return schedule.slot(a).finish_ms < schedule.slot(b).finish_ms; });
 
   std::vector<Slot> slots;
   std::map<sched::TaskId, std::size_t> slot_of;
@@ -124,17 +130,15 @@ AsyncPlan make_async_plan(const SubstepPlan& graph_plan, const sched::Schedule& 
       if (slots[i].busy_until < at && (s == slots.size() || slots[i].busy_until < slots[s].busy_until)) s = i;
     }
     if (s == slots.size()) {
-      slots.push_back({plan.add_buffer(fmt::format("snapshot{}", slots.size()), std::vector<std::byte>(positions_bytes)),
+      slots.push_back({plan.add_buffer(fmt::format("snapshot{}", slots.size()), BufferRole::snapshot,
+                                       std::vector<std::byte>(positions_bytes)),
                        -1.0, sched::kNoTask});
     }
     const sched::DeviceId d = schedule.device_of(p);
     const sched::Task& source = graph.task(p);
     const sched::TaskId pub = plan.add_task(
-        {"publish:" + source.name, "publish", source.iteration, source.block},
-        {{"async_publish", static_cast<std::size_t>(n),
-          {KernelArg::of_buffer(slots[s].buffer), KernelArg::of_buffer(replica[d]), KernelArg::of_int(0),
-           KernelArg::of_int(n)},
-          2}});
+        make_task("publish:" + source.name, TaskKind::publish, source.iteration, source.block),
+        {{"async_publish", {0, n}, {KernelArg::of_buffer(slots[s].buffer), KernelArg::of_buffer(replica[d])}}});
     out.device.push_back(d);
     plan.graph.add_edge(p, pub);
     if (const sched::TaskId next = next_on_device(p); next != sched::kNoTask) plan.graph.add_edge(pub, next);
@@ -146,19 +150,19 @@ AsyncPlan make_async_plan(const SubstepPlan& graph_plan, const sched::Schedule& 
   }
 
   // Merges, chained in map order before their consumer.
-  std::map<sched::TaskId, sched::TaskId> last_merge_before;  // consumer -> its latest merge task
+  std::map<sched::TaskId, sched::TaskId> last_merge_before;     // consumer -> its latest merge task
   std::map<sched::TaskId, std::vector<sched::TaskId>> readers;  // publication -> merges reading it
   for (const auto& m : map.merges) {
     const BufferId from = slots[slot_of.at(m.producer)].buffer;
     const BufferId start = m.start == sched::kNoTask ? from : slots[slot_of.at(m.start)].buffer;
     const sched::Task& consumer = graph.task(m.consumer);
-    const sched::TaskId merge = plan.add_task(
-        {fmt::format("merge:{}<-{}", consumer.name, graph.task(m.producer).name), "merge", consumer.iteration,
-         consumer.block},
-        {{"async_merge", static_cast<std::size_t>(n),
-          {KernelArg::of_buffer(replica[m.consumer_device]), KernelArg::of_buffer(from), KernelArg::of_buffer(start),
-           KernelArg::of_int(merge_code(strategy, m, main)), KernelArg::of_int(0), KernelArg::of_int(n)},
-          4}});
+    const sched::TaskId merge =
+        plan.add_task(make_task(fmt::format("merge:{}<-{}", consumer.name, graph.task(m.producer).name),
+                                TaskKind::merge, consumer.iteration, consumer.block),
+                      {{"async_merge",
+                        {0, n},
+                        {KernelArg::of_buffer(replica[m.consumer_device]), KernelArg::of_buffer(from),
+                         KernelArg::of_buffer(start), KernelArg::of_int(merge_code(strategy, m, main))}}});
     out.device.push_back(m.consumer_device);
     plan.graph.add_edge(publish_task.at(m.producer), merge);
     if (m.start != sched::kNoTask) plan.graph.add_edge(publish_task.at(m.start), merge);
@@ -181,4 +185,4 @@ AsyncPlan make_async_plan(const SubstepPlan& graph_plan, const sched::Schedule& 
   return out;
 }
 
-}  // namespace atssim::solver
+}  // namespace atssim::plan

@@ -1,11 +1,11 @@
 #include <catch2/catch.hpp>
 
+#include "model/cloth_builder.hpp"
+#include "plan/async_graph.hpp"
+#include "plan/substep_plan.hpp"
 #include "scene/scene_loader.hpp"
 #include "sched/gauss_seidel_rank.hpp"
 #include "sched/sync_map.hpp"
-#include "solver/async_graph.hpp"
-#include "solver/substep_plan.hpp"
-#include "model/cloth_builder.hpp"
 #include "solver/xpbd/xpbd_plan.hpp"
 #include "support/scenes.hpp"
 
@@ -13,8 +13,9 @@ using namespace atssim;
 
 namespace {
 
-solver::SubstepPlan serial_plan(int iterations) {
-  const auto m = model::build_model(scene::parse_scene(test::hanging_cloth_yaml(10, 1e4, 1e-3, iterations), "s.yaml", "."));
+plan::SubstepPlan serial_plan(int iterations) {
+  const auto m =
+      model::build_model(scene::parse_scene(test::hanging_cloth_yaml(10, 1e4, 1e-3, iterations), "s.yaml", "."));
   return solver::xpbd::make_xpbd_plan(solver::make_sim_layout(m), {1.0 / 240.0, iterations});
 }
 
@@ -40,7 +41,7 @@ bool reaches(const sched::TaskGraph& g, sched::TaskId from, sched::TaskId to) {
 
 TEST_CASE("async depth 1 keeps the serial Gauss-Seidel chain") {
   const auto serial = serial_plan(3);
-  const auto async = solver::async_graph(serial, 1);
+  const auto async = plan::async_graph(serial, 1);
   CHECK(async.graph.edge_count() == serial.graph.edge_count());
   CHECK(async.graph.topological_order() == serial.graph.topological_order());
 }
@@ -48,23 +49,25 @@ TEST_CASE("async depth 1 keeps the serial Gauss-Seidel chain") {
 TEST_CASE("async depth n keeps each kind's order and lets at most n iterations overlap") {
   const int iterations = 5, depth = GENERATE(2, 3);
   const auto serial = serial_plan(iterations);
-  const auto async = solver::async_graph(serial, depth);
+  const auto async = plan::async_graph(serial, depth);
   const auto& g = async.graph;
   REQUIRE(g.size() == serial.graph.size());
-  for (const std::string kind : {"stretch", "bend"}) {
-    const auto order = sched::gauss_seidel_order(g, kind);
+  for (const plan::TaskKind kind : {plan::TaskKind::stretch, plan::TaskKind::bend}) {
+    const auto order = sched::gauss_seidel_order(g, static_cast<int>(kind));
     for (std::size_t i = 1; i < order.size(); ++i) CHECK(reaches(g, order[i - 1], order[i]));
   }
   // Iteration k needs all of iteration k - depth, but nothing of k - depth + 1 of the other kind.
-  const auto stretch = sched::gauss_seidel_order(g, "stretch");
-  const auto bend = sched::gauss_seidel_order(g, "bend");
+  const auto stretch = sched::gauss_seidel_order(g, static_cast<int>(plan::TaskKind::stretch));
+  const auto bend = sched::gauss_seidel_order(g, static_cast<int>(plan::TaskKind::bend));
   auto first_of = [&](const std::vector<sched::TaskId>& o, int it) {
-    for (auto t : o) if (g.task(t).iteration == it) return t;
+    for (auto t : o)
+      if (g.task(t).iteration == it) return t;
     return sched::kNoTask;
   };
   auto last_of = [&](const std::vector<sched::TaskId>& o, int it) {
     sched::TaskId last = sched::kNoTask;
-    for (auto t : o) if (g.task(t).iteration == it) last = t;
+    for (auto t : o)
+      if (g.task(t).iteration == it) last = t;
     return last;
   };
   for (int it = depth; it < iterations; ++it) {
@@ -72,8 +75,8 @@ TEST_CASE("async depth n keeps each kind's order and lets at most n iterations o
     CHECK_FALSE(reaches(g, first_of(bend, it - depth + 1), first_of(stretch, it)));
   }
   // Predict before everything, update velocity after everything.
-  const auto predict = g.tasks_of_kind("predict").front();
-  const auto update = g.tasks_of_kind("update_velocity").front();
+  const auto predict = g.tasks_of_kind(static_cast<int>(plan::TaskKind::predict)).front();
+  const auto update = g.tasks_of_kind(static_cast<int>(plan::TaskKind::update_velocity)).front();
   for (sched::TaskId t = 0; t < g.size(); ++t) {
     if (t != predict) CHECK(reaches(g, predict, t));
     if (t != update) CHECK(reaches(g, t, update));

@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
+#include "plan/substep_plan.hpp"
 #include "sched/schedule.hpp"
 #include "sched/sync_map.hpp"
-#include "solver/substep_plan.hpp"
 
-namespace atssim::solver {
+namespace atssim::plan {
 
 enum class MergeStrategy { average_positions, average_displacements, main_precedence };
 
@@ -22,15 +22,15 @@ MergeStrategy parse_merge_strategy(const std::string& text);  // throws input er
 std::string to_string(MergeStrategy strategy);
 
 struct AsyncPlan {
-  SubstepPlan plan;                      // the graph's tasks (on per-device copies) + publish/merge tasks
-  std::vector<sched::DeviceId> device;   // per task of `plan`
-  int slots = 0;                         // snapshot buffers allocated
+  SubstepPlan plan;                     // the graph's tasks (on per-device copies) + publish/merge tasks
+  std::vector<sched::DeviceId> device;  // per task of `plan`
+  int slots = 0;                        // snapshot buffers allocated
 };
 
-// `graph_plan` holds the async graph (solver::async_graph) whose tasks
-// `schedule` places; `positions` is the buffer the tasks read and write as
-// positions (float4 per particle), replicated per device here.
+// `graph_plan` holds the async graph (plan::async_graph) whose tasks
+// `schedule` places; its positions buffer (float4 per particle) is
+// replicated per device here.
 AsyncPlan make_async_plan(const SubstepPlan& graph_plan, const sched::Schedule& schedule, const sched::SyncMap& map,
                           MergeStrategy strategy);
 
-}  // namespace atssim::solver
+}  // namespace atssim::plan

@@ -1,4 +1,4 @@
-#include "solver/async_graph.hpp"
+#include "plan/async_graph.hpp"
 
 #include <map>
 
@@ -6,7 +6,7 @@
 
 #include "util/error.hpp"
 
-namespace atssim::solver {
+namespace atssim::plan {
 
 SubstepPlan async_graph(const SubstepPlan& serial, int depth) {
   if (depth < 1) throw input_error(fmt::format("async depth {} must be at least 1", depth));
@@ -16,9 +16,9 @@ SubstepPlan async_graph(const SubstepPlan& serial, int depth) {
   for (const sched::Task& t : serial.graph.tasks()) out.graph.add_task(t);
 
   const auto order = serial.graph.topological_order();
-  std::vector<sched::TaskId> before, after;                    // tasks outside the iterations
-  std::map<int, std::map<std::string, sched::TaskId>> last_of;  // iteration -> kind -> last task
-  std::map<std::string, sched::TaskId> previous_of_kind;
+  std::vector<sched::TaskId> before, after;             // tasks outside the iterations
+  std::map<int, std::map<int, sched::TaskId>> last_of;  // iteration -> kind -> last task
+  std::map<int, sched::TaskId> previous_of_kind;
   bool seen_iteration = false;
   for (sched::TaskId t : order) {
     const sched::Task& task = serial.graph.task(t);
@@ -27,12 +27,12 @@ SubstepPlan async_graph(const SubstepPlan& serial, int depth) {
       continue;
     }
     seen_iteration = true;
-    if (task.kind == "collision") {
+    if (traits(kind_of(task)).serial) {
       // Ends its iteration: after every kind's last task of it; every kind's
       // next task waits for it (through previous_of_kind below).
       for (const auto& [kind, last] : last_of[task.iteration]) out.graph.add_edge(last, t);
       for (auto& [kind, previous] : previous_of_kind) previous = t;
-      last_of[task.iteration]["collision"] = t;
+      last_of[task.iteration][task.kind] = t;
       continue;
     }
     if (auto it = previous_of_kind.find(task.kind); it != previous_of_kind.end()) out.graph.add_edge(it->second, t);
@@ -60,4 +60,4 @@ SubstepPlan async_graph(const SubstepPlan& serial, int depth) {
   return out;
 }
 
-}  // namespace atssim::solver
+}  // namespace atssim::plan

@@ -8,17 +8,17 @@
 //     `depth` iterations are in flight ("n-iteration concurrency");
 //   - tasks outside the iterations (predict, update velocity) keep their
 //     place: before, respectively after, every iteration task.
-//   - collision tasks (kind "collision") are serialized at the end of their
-//     iteration (§4.2.1, "Asyn-Serial Collision"): they wait for every task
-//     of the iteration and the next iteration waits for them;
+//   - serial kinds (KindTraits::serial: collision) are serialized at the end
+//     of their iteration (§4.2.1, "Asyn-Serial Collision"): they wait for
+//     every task of the iteration and the next iteration waits for them;
 // depth 1 means no overlap at all: the graph stays the serial chain, so
 // async with depth 1 is serial Gauss-Seidel.
-#include "solver/substep_plan.hpp"
+#include "plan/substep_plan.hpp"
 
-namespace atssim::solver {
+namespace atssim::plan {
 
 // The same tasks and launches as `serial` (a Gauss-Seidel chain as the
 // solvers emit it), with the relaxed edges. Throws atssim::Error for depth < 1.
 SubstepPlan async_graph(const SubstepPlan& serial, int depth);
 
-}  // namespace atssim::solver
+}  // namespace atssim::plan

@@ -1,0 +1,28 @@
+#pragma once
+// The devices' cycle counters against the host clock (internal to
+// lib/device): the fused dispatcher stamps tasks in device cycles, and a
+// two-point calibration turns them into milliseconds on one clock.
+#include <vector>
+
+#include "device/device_set_impl.hpp"
+#include "device/svm_arena.hpp"
+
+namespace atssim::device {
+
+struct CycleClock {
+  double cycles_per_ms = 0.0;
+  double ref_cycles = 0.0;  // a reading …
+  double ref_ms = 0.0;      // … and the host time it was taken at (steady clock)
+  double to_ms(double cycles) const { return ref_ms + (cycles - ref_cycles) / cycles_per_ms; }
+};
+
+// One per device of the set, or empty when its compiler has no cycle counter
+// (or the counter does not advance). Devices whose readings fit one line
+// (the sub-devices of one CPU share its counter) share one calibration, so
+// their stamps compare exactly. Measured once per set and process (~20 ms).
+const std::vector<CycleClock>& cycle_clocks(const DeviceSet::Impl& set, SvmArena& arena);
+
+// Host steady clock in ms.
+double host_ms();
+
+}  // namespace atssim::device

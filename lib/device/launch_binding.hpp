@@ -1,0 +1,16 @@
+#pragma once
+// Checks a plan's launches against the task functions its program declares
+// (kernels/common/task.h) before anything runs, so a launch that names an
+// unknown function or passes the wrong arguments fails loudly, naming both
+// (internal to lib/device).
+#include <vector>
+
+#include "plan/substep_plan.hpp"
+
+namespace atssim::device {
+
+// Per task, per launch: the function's case in the program's dispatcher.
+// Throws atssim::Error (runtime: a bug in the solver, not in the input).
+std::vector<std::vector<int>> bind_launches(const plan::SubstepPlan& plan);
+
+}  // namespace atssim::device

@@ -1,0 +1,19 @@
+#pragma once
+// Cuts the launches of a SubstepPlan into parts that may run on different
+// devices. A task with one launch is cut by its range; a task of several
+// launches stays whole. The result computes exactly what the plan computes,
+// in the same Gauss-Seidel order: every part of a task depends on every part
+// of the task's predecessors.
+#include <span>
+
+#include "plan/substep_plan.hpp"
+
+namespace atssim::plan {
+
+// `fractions` (positive, summed to 1) gives each part's share of the elements;
+// boundaries are rounded to multiples of `granule` elements so that every
+// part but the last fills whole work-groups. Empty parts are dropped. Part k
+// of task "it1/stretch/c0" is named "it1/stretch/c0#k" and has Task::part k.
+SubstepPlan split_plan(const SubstepPlan& plan, std::span<const double> fractions, std::size_t granule = 64);
+
+}  // namespace atssim::plan

@@ -1,0 +1,98 @@
+#include "sched/cost_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace atssim::sched {
+
+std::vector<Measurement> task_costs(std::span<const TaskTiming> timings, std::size_t devices) {
+  std::vector<double> device_end(devices, 0.0);
+  std::vector<Measurement> out;
+  for (const TaskTiming& t : timings) {
+    const double from = std::max(t.start_ms, device_end.at(t.device));
+    device_end[t.device] = t.finish_ms;
+    out.push_back({t.task, t.device, std::max(t.finish_ms - from, 1e-6)});
+  }
+  return out;
+}
+
+double total_drift(const CostTable& planned, const CostTable& now) {
+  double worst = 0.0;
+  for (std::size_t d = 0; d < planned.devices; ++d) {
+    double a = 0.0, b = 0.0;
+    for (std::size_t t = 0; t < planned.tasks; ++t) {
+      const double pa = planned.at(static_cast<TaskId>(t), d), pb = now.at(static_cast<TaskId>(t), d);
+      if (pa < kCannotRun) a += pa;
+      if (pb < kCannotRun) b += pb;
+    }
+    if (a > 0.0) worst = std::max(worst, std::abs(b - a) / a);
+  }
+  return worst;
+}
+
+void refit_latency(DeviceLinks& links, std::span<const TaskTiming> timings, std::span<const Wait> waits,
+                   std::size_t task_count, double weight) {
+  if (waits.empty()) return;
+  const std::size_t n = links.devices;
+  std::vector<const TaskTiming*> of_task(task_count, nullptr);
+  std::vector<double> device_free(task_count, 0.0);  // when the task's device was free for it
+  std::vector<double> last_end(n, 0.0);
+  for (const TaskTiming& t : timings) {
+    of_task.at(t.task) = &t;
+    device_free[t.task] = last_end.at(t.device);
+    last_end[t.device] = t.finish_ms;
+  }
+  std::vector<std::vector<double>> samples(n * n);
+  for (const Wait& w : waits) {
+    const TaskTiming* p = of_task.at(w.producer);
+    const TaskTiming* c = of_task.at(w.consumer);
+    if (p == nullptr || c == nullptr || p->finish_ms < device_free[w.consumer]) continue;
+    samples[w.producer_device * n + w.consumer_device].push_back(std::max(c->start_ms - p->finish_ms, 0.0));
+  }
+  for (std::size_t a = 0; a < n; ++a) {
+    for (std::size_t b = 0; b < n; ++b) {
+      auto& s = samples[a * n + b];
+      if (a == b || s.size() < 3) continue;
+      std::nth_element(s.begin(), s.begin() + s.size() / 2, s.end());
+      double& latency = links.latency_ms[a * n + b];
+      latency += weight * (s[s.size() / 2] - latency);
+    }
+  }
+}
+
+void refit_from_launches(CostTable& costs, const Schedule& predicted, std::span<const LaunchTiming> launches,
+                         double weight) {
+  for (const LaunchTiming& l : launches) {
+    if (l.device >= predicted.devices.size() || predicted.devices[l.device].empty() || l.substeps <= 0) continue;
+    const double predicted_end = predicted.devices[l.device].back().finish_ms;
+    if (!(predicted_end > 0.0)) continue;
+    const double scale = 1.0 + weight * (l.ms / l.substeps / predicted_end - 1.0);
+    for (const Slot& s : predicted.devices[l.device]) {
+      double& c = costs.at(s.task, l.device);
+      if (c < kCannotRun) c *= scale;
+    }
+  }
+}
+
+CostModel::CostModel(CostTable profiled, DeviceLinks links, double drift_threshold)
+    : profiled_(profiled),
+      costs_(profiled),
+      planned_(std::move(profiled)),
+      links_(std::move(links)),
+      threshold_(drift_threshold) {}
+
+void CostModel::observe(std::span<const TaskTiming> timings, std::span<const Wait> waits) {
+  const std::vector<Measurement> measured = task_costs(timings, costs_.devices);
+  refit_costs(costs_, measured);
+  refit_latency(links_, timings, waits, costs_.tasks);
+}
+
+void CostModel::observe_launches(const Schedule& predicted, std::span<const LaunchTiming> launches) {
+  refit_from_launches(costs_, predicted, launches);
+}
+
+bool CostModel::drifted() const { return total_drift(planned_, costs_) > threshold_; }
+
+void CostModel::plan_made() { planned_ = costs_; }
+
+}  // namespace atssim::sched

@@ -1,0 +1,68 @@
+#pragma once
+// The scheduler's cost model while a run goes on (paper §5, Table 1: costs
+// re-profiled every frame with smoothing): turns what the executor measured
+// into task costs and link latencies, and says when the schedule should be
+// made again. Pure: timings in, tables out.
+#include <span>
+#include <vector>
+
+#include "sched/cost_refit.hpp"
+#include "sched/cost_table.hpp"
+#include "sched/device_links.hpp"
+#include "sched/schedule.hpp"
+#include "sched/task_timing.hpp"
+
+namespace atssim::sched {
+
+// What each task of a recorded substep cost its device: from the later of
+// its start and the end of the device's previous task, to its end (so a
+// wait for another device is not the task's cost). `timings` are in the
+// order the tasks ran on each device.
+std::vector<Measurement> task_costs(std::span<const TaskTiming> timings, std::size_t devices);
+
+// Largest relative change of a device's total cost of the substep: single
+// tasks are noisy (a few µs), a device's total is what HEFT balances.
+double total_drift(const CostTable& planned, const CostTable& now);
+
+// The hop latency an idle probe measures is a lower bound: under load a
+// waiting device starts later. Every cross-device wait that held its
+// consumer back (the producer finished after the consumer's device was
+// free) gives one sample, the delay from the producer's end to the
+// consumer's start; with 3 or more samples for a device pair, the link moves
+// `weight` of the way to their median.
+void refit_latency(DeviceLinks& links, std::span<const TaskTiming> timings, std::span<const Wait> waits,
+                   std::size_t task_count, double weight = 0.5);
+
+// Without per-task timings (a fused launch on a device without a task
+// clock), each device's costs are scaled so that the schedule's predicted
+// end on that device matches its measured launch (per substep), smoothed by
+// `weight`. `predicted` is the schedule the launch ran, `assignment` the
+// device of every task.
+void refit_from_launches(CostTable& costs, const Schedule& predicted, std::span<const LaunchTiming> launches,
+                         double weight = 0.5);
+
+class CostModel {
+ public:
+  CostModel() = default;
+  CostModel(CostTable profiled, DeviceLinks links, double drift_threshold = 0.15);
+
+  const CostTable& profiled() const { return profiled_; }
+  const CostTable& costs() const { return costs_; }
+  const DeviceLinks& links() const { return links_; }
+
+  // One recorded substep (events, or fused with a task clock).
+  void observe(std::span<const TaskTiming> timings, std::span<const Wait> waits);
+  // One frame's launches (fused without a task clock).
+  void observe_launches(const Schedule& predicted, std::span<const LaunchTiming> launches);
+  // Whether the costs moved by more than the threshold since plan_made().
+  bool drifted() const;
+  // The current costs are those the schedule was just made with.
+  void plan_made();
+
+ private:
+  CostTable profiled_, costs_, planned_;
+  DeviceLinks links_;
+  double threshold_ = 0.15;
+};
+
+}  // namespace atssim::sched

@@ -1,0 +1,27 @@
+#pragma once
+// What an executor reports about a substep it ran: plain records, no policy
+// (STYLE.md: the executor observes, the cost model decides).
+#include <cstddef>
+
+#include "sched/ids.hpp"
+
+namespace atssim::sched {
+
+// One task of a recorded substep, in ms from the start of the substep's
+// first task (all devices on one clock).
+struct TaskTiming {
+  TaskId task = 0;
+  DeviceId device = 0;
+  double start_ms = 0.0;
+  double finish_ms = 0.0;
+};
+
+// One device's whole launch of a frame (fused execution without a task
+// clock: only the launch is timed).
+struct LaunchTiming {
+  DeviceId device = 0;
+  int substeps = 0;
+  double ms = 0.0;
+};
+
+}  // namespace atssim::sched
