@@ -1,5 +1,7 @@
 #include <catch2/catch.hpp>
 
+#include <fmt/format.h>
+
 #include "sched/sync_map.hpp"
 
 using namespace atssim;
@@ -14,7 +16,7 @@ Schedule lanes(std::size_t tasks, std::vector<std::vector<Slot>> devices) {
 
 TaskGraph chain(int n) {
   TaskGraph g;
-  for (int i = 0; i < n; ++i) g.add_task({"t" + std::to_string(i), 0, i, 0});
+  for (int i = 0; i < n; ++i) g.add_task({fmt::format("t{}", i), 0, i, 0});
   for (int i = 1; i < n; ++i) g.add_edge(i - 1, i);
   return g;
 }
