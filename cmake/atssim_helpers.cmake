@@ -1,9 +1,21 @@
 # atssim_add_library(NAME SOURCES... DEPS...) — one static library per
-# pipeline stage; a stage links only the stages to its left (DESIGN.md).
+# pipeline stage (lib/<stage>); a stage links only the stages to its left
+# (DESIGN.md).
+#
+# Each stage gets an include root of its own, build/include_roots/<stage>,
+# holding nothing but a link <stage> -> lib/<stage>. The root is PUBLIC, so
+# a target sees exactly the roots of the stages it links: an include of a
+# stage it may not use ("solver/…" from lib/device) fails to compile.
 function(atssim_add_library name)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  get_filename_component(stage ${CMAKE_CURRENT_SOURCE_DIR} NAME)
+  set(root ${PROJECT_BINARY_DIR}/include_roots/${stage})
+  file(MAKE_DIRECTORY ${root})
+  if(NOT EXISTS ${root}/${stage})
+    file(CREATE_LINK ${CMAKE_CURRENT_SOURCE_DIR} ${root}/${stage} SYMBOLIC)
+  endif()
   add_library(${name} STATIC ${ARG_SOURCES})
-  target_include_directories(${name} PUBLIC ${PROJECT_SOURCE_DIR}/lib)
+  target_include_directories(${name} PUBLIC ${root})
   target_link_libraries(${name} PUBLIC ${ARG_DEPS})
 endfunction()
 
