@@ -128,8 +128,7 @@ Action add_schedule_command(CLI::App& cli) {
     if (!args->devices.empty()) overrides.push_back("devices=" + args->devices);
     if (!args->schedule.empty()) overrides.push_back("solver.schedule=" + args->schedule);
     if (!args->executor.empty()) overrides.push_back("solver.executor=" + args->executor);
-    const scene::SceneDesc scene = scene::load_scene_file(args->scene, overrides);
-    scene::check_method_support(scene, scene.solver.method);
+    const scene::SceneDesc scene = load_scene(args->scene, overrides);
     const ScheduleMode mode = parse_schedule_mode(scene.solver.schedule);
     const plan::SubstepPlan base = substep_plan_for(scene);
 

@@ -17,5 +17,6 @@ Action add_devices_command(CLI::App& cli);
 Action add_schedule_command(CLI::App& cli);
 Action add_converge_command(CLI::App& cli, const std::string& command_line);
 Action add_inspect_command(CLI::App& cli);
+Action add_methods_command(CLI::App& cli);
 
 }  // namespace atssim::app

@@ -13,7 +13,7 @@
 #include "scene/scene_loader.hpp"
 #include "solver/energy/incremental_potential.hpp"
 #include "solver/energy/predicted_positions.hpp"
-#include "solver/method_plan.hpp"
+#include "solver/method_registry.hpp"
 #include "solver/newton/newton_reference.hpp"
 #include "util/error.hpp"
 
@@ -41,10 +41,7 @@ struct Variant {
 std::vector<Variant> variants_of(const ConvergeOptions& o, const ExecutionOptions& base) {
   std::vector<Variant> out;
   for (const std::string& method : o.methods) {
-    bool known = false;
-    for (auto m : solver::method_names()) known = known || m == method;
-    if (!known)
-      throw input_error(fmt::format("--methods: unknown method '{}'; available: xpbd, vbd, sosd, jpgd", method));
+    const solver::MethodDescription& described = solver::method(method, "--methods");
     for (const std::string& s : o.schedules) {
       ExecutionOptions e = base;
       e.mode = parse_schedule_mode(s);
@@ -53,7 +50,7 @@ std::vector<Variant> variants_of(const ConvergeOptions& o, const ExecutionOption
         out.push_back({method + "/" + s, method, e});
         continue;
       }
-      if (!solver::is_gauss_seidel(method)) continue;
+      if (!described.gauss_seidel) continue;
       for (const std::string& m : o.merges) {
         e.merge = plan::parse_merge_strategy(m);
         out.push_back({method + "/async/" + m, method, e});
@@ -75,21 +72,20 @@ io::ConvergenceResult run_convergence(const ConvergeOptions& o) {
     throw input_error(fmt::format("--iterations {} is out of range; use 1 to 4096", o.max_iterations));
   }
   if (o.frames_before < 0) throw input_error("--frames-before must be ≥ 0");
-  const scene::SceneDesc scene = scene::load_scene_file(o.scene_path, o.overrides);
+  const scene::SceneDesc scene = load_scene(o.scene_path, o.overrides);
   const std::vector<Variant> variants = variants_of(o, execution_options(scene));
-  for (const std::string& method : o.methods) scene::check_method_support(scene, method);
+  for (const std::string& method : o.methods) solver::check_scene(scene, solver::method(method));
   const auto& sim = scene.simulation;
   const double h = sim.frame_dt / sim.substeps;
   const device::DeviceSet devices = device::DeviceSet::open(scene.devices);
 
   // The state after `frames_before` frames of the scene's own method
   // (solver.method), on one device.
-  scene::check_method_support(scene, scene.solver.method);
   const model::Model model = model::build_model(scene);
   solver::SimLayout state = solver::make_sim_layout(model);
   {
-    device::PlanExecutor executor(
-        devices, solver::make_method_plan(scene.solver.method, state, h, sim.iterations, method_options(scene.solver)));
+    const solver::MethodDescription& own = solver::method(scene.solver.method);
+    device::PlanExecutor executor(devices, own.build(state, solver::method_settings(scene, own)));
     executor.run_substeps(o.frames_before * sim.substeps);
     const plan::PlanState reached = executor.read_state();
     state.x = plan::values_of<Float4>(reached.positions);
@@ -126,8 +122,10 @@ io::ConvergenceResult run_convergence(const ConvergeOptions& o) {
     io::ConvergenceTrace trace;
     trace.variant = v.name;
     for (int k : iteration_counts(o.max_iterations)) {
-      Execution e = prepare_execution(
-          devices, solver::make_method_plan(v.method, state, h, k, method_options(scene.solver)), v.options);
+      const solver::MethodDescription& method = solver::method(v.method);
+      solver::MethodSettings settings = solver::method_settings(scene, method);
+      settings.iterations = k;
+      Execution e = prepare_execution(devices, method.build(state, settings), v.options);
       const plan::PlanState start{plan::bytes_of(state.x), plan::bytes_of(state.v)};
       std::vector<double> times;
       std::vector<Float4> x;

@@ -3,8 +3,8 @@
 #include <cstdio>
 #include <string>
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include "app/commands.hpp"
 #include "util/error.hpp"
@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   const atssim::app::Action schedule = atssim::app::add_schedule_command(cli);
   const atssim::app::Action converge = atssim::app::add_converge_command(cli, command_line);
   const atssim::app::Action inspect = atssim::app::add_inspect_command(cli);
+  const atssim::app::Action methods = atssim::app::add_methods_command(cli);
 
   try {
     cli.parse(argc, argv);
@@ -42,6 +43,7 @@ int main(int argc, char** argv) {
       if (sub->get_name() == "schedule") return schedule();
       if (sub->get_name() == "converge") return converge();
       if (sub->get_name() == "inspect") return inspect();
+      if (sub->get_name() == "methods") return methods();
     }
   } catch (const atssim::Error& e) {
     fmt::print(stderr, "atssim: {}\n", e.what());

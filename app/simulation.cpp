@@ -15,7 +15,8 @@
 #include "io/result_writer.hpp"
 #include "model/cloth_builder.hpp"
 #include "scene/scene_loader.hpp"
-#include "solver/method_plan.hpp"
+#include "scene/scene_yaml.hpp"
+#include "solver/method_registry.hpp"
 #include "util/error.hpp"
 
 namespace atssim::app {
@@ -93,24 +94,30 @@ void release_simulation_state(model::Model& model) {
 
 void request_stop() { g_stop = true; }
 
-solver::MethodOptions method_options(const scene::SolverDesc& solver) {
-  return {solver.chebyshev_rho, solver.jacobi_step, solver.stencil_step, solver.momentum};
+scene::SceneDesc load_scene(const std::string& path, std::span<const std::string> overrides) {
+  scene::SceneDesc scene = scene::load_scene_file(path, overrides);
+  const solver::MethodDescription& method = solver::method(scene.solver.method, scene.solver.method_where);
+  solver::check_scene(scene, method);
+  auto& given = scene.solver.method_options;
+  for (const solver::MethodOption& o : method.options) {
+    const bool set = std::any_of(given.begin(), given.end(), [&](const auto& g) { return g.key == o.key; });
+    if (!set) given.push_back({std::string(o.key), fmt::format("{}", o.default_value), ""});
+  }
+  scene.resolved_yaml = scene::to_resolved_yaml(scene);
+  return scene;
 }
 
 plan::SubstepPlan substep_plan_for(const scene::SceneDesc& scene) {
-  const auto& sim = scene.simulation;
-  const model::Model model = model::build_model(scene);
-  return solver::make_method_plan(scene.solver.method, solver::make_sim_layout(model), sim.frame_dt / sim.substeps,
-                                  sim.iterations, method_options(scene.solver));
+  return solver::build_plan(scene, solver::method(scene.solver.method, scene.solver.method_where));
 }
 
 RunResult run_simulation(const RunOptions& options, const std::function<void(const RunProgress&)>& progress) {
   g_stop = false;
-  const scene::SceneDesc scene = scene::load_scene_file(options.scene_path, options.overrides);
-  scene::check_method_support(scene, scene.solver.method);
+  const scene::SceneDesc scene = load_scene(options.scene_path, options.overrides);
+  const solver::MethodDescription& method = solver::method(scene.solver.method);
+  const solver::MethodSettings settings = solver::method_settings(scene, method);
   const device::DeviceSet devices = device::DeviceSet::open(scene.devices);
   const auto& sim = scene.simulation;
-  const double substep_dt = sim.frame_dt / sim.substeps;
 
   // Each stage's data is released once the next holds it, so the peak memory
   // is one stage's worth, not the sum (docs/benchmarks.md: bytes per vertex).
@@ -118,11 +125,10 @@ RunResult run_simulation(const RunOptions& options, const std::function<void(con
   const std::size_t particles = model.particles.size();
   solver::SimLayout layout = solver::make_sim_layout(model);
   release_simulation_state(model);
-  plan::SubstepPlan plan =
-      solver::make_method_plan(scene.solver.method, layout, substep_dt, sim.iterations, method_options(scene.solver));
+  plan::SubstepPlan plan = method.build(layout, settings);
   layout = {};
   ExecutionOptions exec_options = execution_options(scene);
-  if (exec_options.mode == ScheduleMode::async && !solver::is_gauss_seidel(scene.solver.method)) {
+  if (exec_options.mode == ScheduleMode::async && !method.gauss_seidel) {
     throw input_error(
         fmt::format("schedule 'async' relaxes Gauss-Seidel iterations, and '{}' iterates Jacobi sweeps "
                     "that already run on every device with one synchronisation each: use --schedule "

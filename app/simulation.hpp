@@ -2,6 +2,7 @@
 // Wires the pipeline for `atssim run`: scene -> model -> XPBD plan ->
 // devices -> frames -> HDF5.
 #include <functional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -38,20 +39,19 @@ RunResult run_simulation(const RunOptions& options, const std::function<void(con
 }  // namespace atssim::app
 namespace atssim::scene {
 struct SceneDesc;
-struct SolverDesc;
 }  // namespace atssim::scene
 namespace atssim::plan {
 struct SubstepPlan;
 }
-namespace atssim::solver {
-struct MethodOptions;
-}
 namespace atssim::app {
+// A scene file as `run`, `schedule` and `converge` read it: loaded and
+// validated, its method (solver.method) and that method's options checked
+// against the method registry, the options' defaults filled in and the
+// resolved YAML written again with them.
+scene::SceneDesc load_scene(const std::string& path, std::span<const std::string> overrides);
+
 // The substep plan of a validated scene (model -> layout -> solver plan).
 plan::SubstepPlan substep_plan_for(const scene::SceneDesc& scene);
-
-// The scene's per-method settings (solver.chebyshev_rho, jacobi_step, stencil_step).
-solver::MethodOptions method_options(const scene::SolverDesc& solver);
 
 // Set from a signal handler: the run stops after the current frame, keeps
 // what it wrote and fails with "interrupted".

@@ -9,6 +9,7 @@ usage: scripts/bench_methods.py [--resolution 64] [--frames 8] [--budget-ms 10]
 Build first (scripts/test.sh). Prints one Markdown table.
 """
 import argparse
+import json
 import os
 import subprocess
 import sys
@@ -20,8 +21,12 @@ import numpy as np
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 BIN = os.path.join(ROOT, "build", "release", "atssim")
 SCENE = os.path.join(ROOT, "scenes", "hanging_cloth.yaml")
-METHODS = ["xpbd", "vbd", "sosd", "jpgd"]
-GAUSS_SEIDEL = {"xpbd", "vbd"}  # async relaxes Gauss-Seidel iterations only
+
+
+def registry():
+    """The methods atssim knows (its method registry, `atssim methods --json`)."""
+    out = subprocess.run([BIN, "methods", "--json"], check=True, capture_output=True, text=True).stdout
+    return json.loads(out)
 
 
 def frame_ms(scene, sets, method, devices, schedule, frames, out):
@@ -39,17 +44,19 @@ def main() -> int:
     ap.add_argument("--iterations", type=int, default=128, help="largest k tried for the accuracy column")
     ap.add_argument("--frames-before", type=int, default=10, help="frames simulated before the accuracy substep")
     ap.add_argument("--scene", default=SCENE, help="scene file (default: the hanging cloth, resized)")
-    ap.add_argument("--methods", default=",".join(METHODS), help="comma separated")
+    ap.add_argument("--methods", default="", help="comma separated (default: every method of `atssim methods`)")
     ap.add_argument("--set", action="append", default=[], help="scene override KEY=VALUE for every run (repeatable)")
     args = ap.parse_args()
-    methods = args.methods.split(",")
+    if not os.path.exists(BIN):
+        print(f"{BIN} is missing: build first (scripts/test.sh)", file=sys.stderr)
+        return 2
+    known = registry()
+    gauss_seidel = {m["name"] for m in known if m["iterations"] == "gauss_seidel"}  # async relaxes these only
+    methods = args.methods.split(",") if args.methods else [m["name"] for m in known]
     # --resolution resizes the default scene's grid; other scenes run as written.
     sets = ["--set", f"objects.0.grid.resolution=[{args.resolution},{args.resolution}]"] if args.scene == SCENE else []
     for kv in args.set:
         sets += ["--set", kv]
-    if not os.path.exists(BIN):
-        print(f"{BIN} is missing: build first (scripts/test.sh)", file=sys.stderr)
-        return 2
     os.environ.setdefault("POCL_CACHE_DIR", os.path.expanduser("~/.cache/atssim/pocl"))
     print(f"| method | one sub-device ms | whole device ms | best two-device ms (schedule) | vs sub-device | "
           f"vs whole | y within {args.budget_ms:g} ms/substep (k) |")
@@ -74,7 +81,7 @@ def main() -> int:
         for m in methods:
             one = frame_ms(args.scene, sets, m, "cpu/2:0", "single", args.frames, out)
             whole = frame_ms(args.scene, sets, m, "cpu", "single", args.frames, out)
-            schedules = ["split", "heft"] + (["async"] if m in GAUSS_SEIDEL else [])
+            schedules = ["split", "heft"] + (["async"] if m in gauss_seidel else [])
             two = {s: frame_ms(args.scene, sets, m, "cpu/2", s, args.frames, out) for s in schedules}
             s_best = min(two, key=two.get)
             acc = best[m]

@@ -98,20 +98,26 @@ struct ObjectDesc {
   int source_line = 0;  // 1-based line of the object in the scene file
 };
 
+// A key under `solver:` that is no schedule key: an option of a method, kept
+// as written with the line it came from; the method registry
+// (lib/solver/method_registry.hpp) checks it against the methods' options.
+struct MethodOptionDesc {
+  std::string key;
+  std::string value;
+  std::string where;  // "file:line" or the --set
+};
+
 struct SolverDesc {
   std::string method = "xpbd";
-  std::string method_where;                     // "file:line" (or the --set) that chose the method; empty = default
-  std::string schedule = "single";              // single | split | heft | async: how the substep uses the devices
-  int async_depth = 2;                          // async: iterations in flight at once (1 = serial Gauss-Seidel)
-  std::string merge = "average_displacements";  // async: how a device merges another's result
-  bool async_latest = true;                     // async: also merge the latest finished result, not only dependencies
-  bool replay = false;                          // async: run the schedule on one device, in schedule order
-  std::string executor = "auto";                // auto | fused | events: how the devices run the schedule
-  double wait_timeout_s = 10.0;                 // fused: a run in which no task finishes this long fails
-  double chebyshev_rho = 0.9;  // jpgd: spectral radius estimate of the Chebyshev acceleration (0 = off)
-  double momentum = 0.0;       // jpgd: heavy-ball momentum beta; > 0 replaces the Chebyshev acceleration
-  double jacobi_step = 0.5;    // jpgd: step length on the block-Jacobi direction
-  double stencil_step = 0.7;   // sosd: step length on the combined stencil displacements
+  std::string method_where;                      // "file:line" (or the --set) that chose the method; empty = default
+  std::string schedule = "single";               // single | split | heft | async: how the substep uses the devices
+  int async_depth = 2;                           // async: iterations in flight at once (1 = serial Gauss-Seidel)
+  std::string merge = "average_displacements";   // async: how a device merges another's result
+  bool async_latest = true;                      // async: also merge the latest finished result, not only dependencies
+  bool replay = false;                           // async: run the schedule on one device, in schedule order
+  std::string executor = "auto";                 // auto | fused | events: how the devices run the schedule
+  double wait_timeout_s = 10.0;                  // fused: a run in which no task finishes this long fails
+  std::vector<MethodOptionDesc> method_options;  // every other key, in file order (then --set ones)
 };
 
 struct OutputDesc {

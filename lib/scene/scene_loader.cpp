@@ -1,5 +1,6 @@
 #include "scene/scene_loader.hpp"
 
+#include <algorithm>
 #include <array>
 #include <filesystem>
 #include <fstream>
@@ -22,14 +23,14 @@ namespace fs = std::filesystem;
 constexpr std::array<std::string_view, 5> kRootKeys{"simulation", "objects", "solver", "output", "devices"};
 constexpr std::array<std::string_view, 7> kSimulationKeys{"fps",    "dt",      "substeps", "iterations",
                                                           "frames", "gravity", "ground"};
-constexpr std::array<std::string_view, 12> kSolverKeys{"method",       "schedule", "async_depth",   "merge",
-                                                       "async_fetch",  "replay",   "chebyshev_rho", "jacobi_step",
-                                                       "stencil_step", "momentum", "executor",      "wait_timeout"};
+// Keys under solver: that configure how the devices run a substep; every
+// other key is an option of a method (MethodOptionDesc).
+constexpr std::array<std::string_view, 8> kScheduleKeys{"method",      "schedule", "async_depth", "merge",
+                                                        "async_fetch", "replay",   "executor",    "wait_timeout"};
 constexpr std::array<std::string_view, 3> kExecutors{"auto", "fused", "events"};
 constexpr std::array<std::string_view, 4> kSchedules{"single", "split", "heft", "async"};
 constexpr std::array<std::string_view, 3> kMerges{"average_displacements", "average_positions", "main_precedence"};
 constexpr std::array<std::string_view, 2> kOutputKeys{"path", "stride"};
-constexpr std::array<std::string_view, 4> kMethods{"xpbd", "vbd", "sosd", "jpgd"};
 
 // Applies "a.b.0.c=value": walks (creating maps as needed) and replaces the
 // leaf with the value parsed as YAML.
@@ -154,15 +155,15 @@ SceneDesc parse_scene(const std::string& yaml_text, const std::string& source_na
 
   const YamlReader solver = top.child("solver");
   if (!solver.is_null()) {
-    solver.expect_map(kSolverKeys);
+    for (const std::string& key : solver.map_keys()) {
+      if (std::find(kScheduleKeys.begin(), kScheduleKeys.end(), key) != kScheduleKeys.end()) continue;
+      const YamlReader option = solver.child(key);
+      scene.solver.method_options.push_back({key, option.string(), option.where()});
+    }
     if (solver.has("method")) {
       const YamlReader m = solver.child("method");
       scene.solver.method = m.string();
       scene.solver.method_where = m.where();
-      bool known = false;
-      for (auto k : kMethods) known = known || scene.solver.method == k;
-      if (!known)
-        m.fail(fmt::format("unknown solver method '{}'", scene.solver.method), "available: xpbd, vbd, sosd, jpgd");
     }
     if (solver.has("schedule")) {
       const YamlReader m = solver.child("schedule");
@@ -175,21 +176,6 @@ SceneDesc parse_scene(const std::string& yaml_text, const std::string& source_na
       }
     }
     if (solver.has("async_depth")) scene.solver.async_depth = solver.child("async_depth").integer_in(1, 64);
-    if (solver.has("chebyshev_rho")) {
-      scene.solver.chebyshev_rho =
-          solver.child("chebyshev_rho")
-              .number_in(0.0, 0.999, false, "a spectral radius 0 ≤ rho < 1 (0 = no acceleration)");
-    }
-    if (solver.has("jacobi_step")) {
-      scene.solver.jacobi_step = solver.child("jacobi_step").number_in(0.0, 1.0, true, "a step length 0 < step ≤ 1");
-    }
-    if (solver.has("momentum")) {
-      scene.solver.momentum =
-          solver.child("momentum").number_in(0.0, 0.999, false, "a momentum 0 ≤ beta < 1 (0 = off, Chebyshev instead)");
-    }
-    if (solver.has("stencil_step")) {
-      scene.solver.stencil_step = solver.child("stencil_step").number_in(0.0, 1.0, true, "a step length 0 < step ≤ 1");
-    }
     if (solver.has("merge")) {
       const YamlReader m = solver.child("merge");
       scene.solver.merge = m.string();
@@ -241,32 +227,6 @@ SceneDesc parse_scene(const std::string& yaml_text, const std::string& source_na
 
   scene.resolved_yaml = to_resolved_yaml(scene);
   return scene;
-}
-
-void check_method_support(const SceneDesc& scene, const std::string& method) {
-  for (const ObjectDesc& o : scene.objects) {
-    if (o.type != ObjectType::solid) continue;
-    const std::string& model_where = o.material.model_where;
-    if (o.material.solid_model == SolidModel::springs) {
-      throw input_error(
-          fmt::format("{}: solid '{}' has model springs, which no solver simulates yet; use "
-                      "neo_hookean or stvk",
-                      model_where, o.name));
-    }
-    if (method == "xpbd" && o.material.solid_model == SolidModel::neo_hookean) {
-      // Blame the line that chose the model, else the one that chose xpbd,
-      // else the object (both defaults).
-      const std::string where = !model_where.empty() ? model_where
-                                : !scene.solver.method_where.empty()
-                                    ? scene.solver.method_where
-                                    : fmt::format("{}:{}", scene.source_path, o.source_line);
-      throw input_error(
-          fmt::format("{}: solid '{}' is neo_hookean{}, and solver.method xpbd simulates solids as "
-                      "StVK strain constraints only; set its material.model to stvk, or use "
-                      "solver.method vbd, sosd or jpgd",
-                      where, o.name, model_where.empty() ? " (the default)" : ""));
-    }
-  }
 }
 
 SceneDesc load_scene_file(const std::string& path, std::span<const std::string> overrides) {

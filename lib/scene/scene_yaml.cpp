@@ -116,10 +116,9 @@ std::string to_resolved_yaml(const SceneDesc& scene) {
   out << YAML::Key << "replay" << YAML::Value << (solver.replay ? "true" : "false");
   out << YAML::Key << "executor" << YAML::Value << solver.executor;
   out << YAML::Key << "wait_timeout" << YAML::Value << solver.wait_timeout_s;
-  out << YAML::Key << "chebyshev_rho" << YAML::Value << solver.chebyshev_rho;
-  out << YAML::Key << "momentum" << YAML::Value << solver.momentum;
-  out << YAML::Key << "jacobi_step" << YAML::Value << solver.jacobi_step;
-  out << YAML::Key << "stencil_step" << YAML::Value << solver.stencil_step;
+  for (const MethodOptionDesc& o : solver.method_options) {
+    out << YAML::Key << o.key << YAML::Value << YAML::Load(o.value);
+  }
   out << YAML::EndMap;
   out << YAML::Key << "output" << YAML::Value << YAML::BeginMap << YAML::Key << "path" << YAML::Value
       << scene.output.path << YAML::Key << "stride" << YAML::Value << scene.output.stride << YAML::EndMap;

@@ -34,8 +34,7 @@ std::string YamlReader::where() const {
     // The longest override that is a prefix of this path produced the node.
     for (auto it = source_->overrides.rbegin(); it != source_->overrides.rend(); ++it) {
       const std::string& p = it->first;
-      if (path_ == p || (path_.size() > p.size() && path_.compare(0, p.size(), p) == 0 &&
-                         (path_[p.size()] == '.'))) {
+      if (path_ == p || (path_.size() > p.size() && path_.compare(0, p.size(), p) == 0 && (path_[p.size()] == '.'))) {
         return fmt::format("{} (--set {})", source_->file, it->second);
       }
     }
@@ -51,8 +50,7 @@ void YamlReader::fail(std::string_view what, std::string_view fix) const {
 
 void YamlReader::expect_map(std::span<const std::string_view> allowed) const {
   if (!node_.IsMap()) {
-    fail(fmt::format("'{}' should be a map of keys, found {}", path_.empty() ? "scene" : path_,
-                     type_name(node_)),
+    fail(fmt::format("'{}' should be a map of keys, found {}", path_.empty() ? "scene" : path_, type_name(node_)),
          fmt::format("write it as 'key: value' lines (keys: {})", join(allowed)));
   }
   for (const auto& entry : node_) {
@@ -67,6 +65,16 @@ void YamlReader::expect_map(std::span<const std::string_view> allowed) const {
     }
     at.fail(fmt::format("unknown key '{}'", key), fmt::format("allowed here: {}", join(allowed)));
   }
+}
+
+std::vector<std::string> YamlReader::map_keys() const {
+  if (!node_.IsMap()) {
+    fail(fmt::format("'{}' should be a map of keys, found {}", path_.empty() ? "scene" : path_, type_name(node_)),
+         "write it as 'key: value' lines");
+  }
+  std::vector<std::string> keys;
+  for (const auto& entry : node_) keys.push_back(entry.first.as<std::string>());
+  return keys;
 }
 
 YamlReader YamlReader::child(std::string_view key) const {
@@ -99,8 +107,8 @@ double YamlReader::number() const {
 
 int YamlReader::integer() const {
   long long value = 0;
-  if (!node_.IsScalar() || !YAML::convert<long long>::decode(node_, value) ||
-      value < std::numeric_limits<int>::min() || value > std::numeric_limits<int>::max()) {
+  if (!node_.IsScalar() || !YAML::convert<long long>::decode(node_, value) || value < std::numeric_limits<int>::min() ||
+      value > std::numeric_limits<int>::max()) {
     fail(fmt::format("'{}' should be a whole number, found {}", path_, type_name(node_)),
          "write an integer such as 16");
   }

@@ -37,6 +37,8 @@ class YamlReader {
 
   // Requires a map whose keys are all in `allowed` (unknown key -> did you mean).
   void expect_map(std::span<const std::string_view> allowed) const;
+  // Requires a map; its keys in file order.
+  std::vector<std::string> map_keys() const;
   bool has(std::string_view key) const { return node_.IsMap() && node_[std::string(key)]; }
   YamlReader child(std::string_view key) const;
   std::vector<YamlReader> sequence() const;  // requires a sequence
@@ -44,7 +46,7 @@ class YamlReader {
   double number() const;
   int integer() const;
   std::string string() const;
-  std::array<double, 3> vec3() const;        // [x, y, z]
+  std::array<double, 3> vec3() const;  // [x, y, z]
   std::array<double, 2> vec2() const;
   std::vector<int> int_list() const;
 

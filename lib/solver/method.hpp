@@ -1,0 +1,52 @@
+#pragma once
+// What a simulation method tells the rest of atssim about itself: its name,
+// how its iterations run, the options it reads under `solver:`, the solid
+// models it simulates, and how it builds a substep plan. Each method folder
+// (lib/solver/<method>/) exports one MethodDescription; the registry
+// (method_registry.hpp) lists them, and nothing else names a method.
+#include <map>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "plan/substep_plan.hpp"
+#include "scene/scene_desc.hpp"
+#include "solver/layout/sim_layout.hpp"
+
+namespace atssim::solver {
+
+// A number under `solver:` that a method reads, e.g. solver.chebyshev_rho.
+struct MethodOption {
+  std::string_view key;
+  double default_value = 0.0;
+  double min = 0.0, max = 0.0;  // the accepted range
+  bool min_open = false;        // min itself excluded
+  bool max_open = false;        // max itself excluded
+  std::string_view meaning;     // for messages: "a step length 0 < step ≤ 1"
+};
+
+// The substep and the values of the method's options (defaults filled in).
+struct MethodSettings {
+  double substep_dt = 1.0 / 960.0;
+  int iterations = 8;
+  std::map<std::string, double, std::less<>> options;
+
+  // The value of one of the method's options; throws atssim::Error for a
+  // key the method does not declare (a bug, not an input error).
+  double option(std::string_view key) const;
+};
+
+struct MethodDescription {
+  std::string_view name;     // solver.method
+  std::string_view summary;  // one line for `atssim methods` and docs
+  // Gauss-Seidel iterations (async Gauss-Seidel relaxes them), or Jacobi
+  // sweeps that already run on every device with one synchronisation each.
+  bool gauss_seidel = false;
+  std::span<const MethodOption> options;
+  std::span<const scene::SolidModel> solid_models;  // the tetrahedral models it simulates
+  plan::SubstepPlan (*build)(const SimLayout& layout, const MethodSettings& settings) = nullptr;
+
+  bool simulates(scene::SolidModel model) const;
+};
+
+}  // namespace atssim::solver

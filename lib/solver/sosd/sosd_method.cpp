@@ -1,0 +1,28 @@
+#include "solver/sosd/sosd_method.hpp"
+
+#include "solver/sosd/sosd_plan.hpp"
+
+namespace atssim::solver::sosd {
+
+namespace {
+
+constexpr scene::SolidModel kSolids[] = {scene::SolidModel::neo_hookean, scene::SolidModel::stvk};
+
+constexpr MethodOption kOptions[] = {
+    {"stencil_step", 0.7, 0.0, 1.0, true, false, "a step length 0 < step ≤ 1 (sosd)"},
+};
+
+plan::SubstepPlan build(const SimLayout& layout, const MethodSettings& s) {
+  return make_sosd_plan(layout, s.substep_dt, s.iterations, s.option("stencil_step"));
+}
+
+}  // namespace
+
+// Hybrid: its Gauss-Seidel part is the main block's precedence in one
+// combine step per iteration; its stencil solves are Jacobi sweeps.
+const MethodDescription kDescription{
+    "sosd",  "second-order stencil descent: per-element Newton solves, Jacobi across stencils (Lan et al. 2023)",
+    false,   kOptions,
+    kSolids, build};
+
+}  // namespace atssim::solver::sosd

@@ -1,0 +1,22 @@
+#include "solver/vbd/vbd_method.hpp"
+
+#include "solver/vbd/vbd_plan.hpp"
+
+namespace atssim::solver::vbd {
+
+namespace {
+
+constexpr scene::SolidModel kSolids[] = {scene::SolidModel::neo_hookean, scene::SolidModel::stvk};
+
+plan::SubstepPlan build(const SimLayout& layout, const MethodSettings& s) {
+  return make_vbd_plan(layout, s.substep_dt, s.iterations);
+}
+
+}  // namespace
+
+const MethodDescription kDescription{
+    "vbd",   "vertex block descent: Gauss-Seidel over vertex colors, one 3x3 Newton step per vertex (Chen et al. 2024)",
+    true,    {},
+    kSolids, build};
+
+}  // namespace atssim::solver::vbd
