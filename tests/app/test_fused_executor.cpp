@@ -1,0 +1,163 @@
+// The fused executor against the events executor (the reference), and its
+// refusals: an unknown task function, a wait that never completes.
+#include <catch2/catch.hpp>
+
+#include <chrono>
+#include <string>
+
+#include "app/execution.hpp"
+#include "app/simulation.hpp"
+#include "device/device_set.hpp"
+#include "device/plan_executor.hpp"
+#include "scene/scene_loader.hpp"
+#include "support/scenes.hpp"
+#include "util/error.hpp"
+
+using namespace atssim;
+
+namespace {
+
+// A cloth above the ground beside a soft box lying on it: stretch, bending,
+// tetrahedra and the ground task in one substep.
+std::string cloth_and_box(const std::string& method) {
+  const std::string solid = method == "xpbd" ? "stvk" : "neo_hookean";
+  return "simulation: {fps: 60, substeps: 2, iterations: 4, ground: 0.0}\n"
+         "objects:\n"
+         "  - name: cloth\n"
+         "    grid: {size: [1, 1], resolution: [14, 14]}\n"
+         "    transform: {translate: [0, 0.3, 0]}\n"
+         "    material: {density: 0.2, stretch_stiffness: 1.0e3, bend_stiffness: 1.0e-3}\n"
+         "    pins: {boxes: [{min: [-0.51, 0.29, -0.51], max: [-0.49, 0.31, -0.49]}]}\n"
+         "  - name: box\n"
+         "    type: solid\n"
+         "    box: {size: [0.2, 0.2, 0.2], resolution: [2, 2, 2]}\n"
+         "    transform: {translate: [0.8, 0.09, 0], rotate: [0, 0, 10]}\n"
+         "    material: {density: 1000, youngs_modulus: 5.0e4, poisson_ratio: 0.3, model: " +
+         solid +
+         "}\n"
+         "solver: {method: " +
+         method + "}\n";
+}
+
+std::vector<float> run(const device::DeviceSet& devices, const plan::SubstepPlan& plan, app::ScheduleMode mode,
+                       device::ExecutorKind kind, int substeps) {
+  app::ExecutionOptions options;
+  options.mode = mode;
+  options.executor = kind;
+  options.profile_repetitions = 2;
+  app::Execution e = app::prepare_execution(devices, plan, options);
+  REQUIRE(e.executor->kind() == kind);
+  e.executor->run_substeps(substeps, true);
+  app::refit_and_reschedule(e, options);  // a heft schedule may change: the result must not
+  e.executor->run_substeps(substeps);
+  std::vector<float> xyz;
+  e.executor->read_positions(xyz);
+  return xyz;
+}
+
+}  // namespace
+
+TEST_CASE("fused execution equals events execution bit for bit for every method and schedule", "[fused]") {
+  const std::string method = GENERATE("xpbd", "vbd", "sosd", "jpgd");
+  const auto mode = GENERATE(app::ScheduleMode::single, app::ScheduleMode::split, app::ScheduleMode::heft);
+  const auto scene = scene::parse_scene(cloth_and_box(method), "s.yaml", ".");
+  const plan::SubstepPlan plan = app::substep_plan_for(scene);
+  const auto devices = device::DeviceSet::open(mode == app::ScheduleMode::single ? "cpu" : "cpu/2");
+  const std::vector<float> events = run(devices, plan, mode, device::ExecutorKind::events, 3);
+  const std::vector<float> fused = run(devices, plan, mode, device::ExecutorKind::fused, 3);
+  INFO(method << " " << app::to_string(mode));
+  REQUIRE(events.size() == fused.size());
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < events.size(); ++i) differ += events[i] != fused[i] ? 1 : 0;
+  CHECK(differ == 0);
+  // The substeps did work: the free cloth corner fell.
+  std::vector<float> start;
+  for (const auto& p : app::substep_plan_for(scene).buffers) {
+    if (p.role == plan::BufferRole::positions) start = plan::values_of<float>(p.initial);
+  }
+  CHECK(std::abs(fused[3 * 13 + 1] - start[4 * 13 + 1]) > 1e-4);
+}
+
+TEST_CASE("the fused executor times every task of a recorded substep on one clock", "[fused]") {
+  const auto scene = scene::parse_scene(test::hanging_cloth_yaml(12), "s.yaml", ".");
+  const auto devices = device::DeviceSet::open("cpu/2");
+  app::ExecutionOptions options;
+  options.mode = app::ScheduleMode::split;
+  options.executor = device::ExecutorKind::fused;
+  app::Execution e = app::prepare_execution(devices, app::substep_plan_for(scene), options);
+  REQUIRE(e.executor->has_task_clock());
+  e.executor->run_substeps(2, true);
+  const auto timings = e.executor->recorded();
+  CHECK(timings.size() == e.plan().graph.size());
+  std::vector<double> end(e.plan().graph.size(), -1.0), start(e.plan().graph.size(), -1.0);
+  for (const auto& t : timings) {
+    CHECK(t.finish_ms >= t.start_ms);
+    start[t.task] = t.start_ms;
+    end[t.task] = t.finish_ms;
+  }
+  // A consumer starts after its producer ended, on either device: the two
+  // sub-devices share one cycle counter.
+  for (sched::TaskId t = 0; t < e.plan().graph.size(); ++t) {
+    for (const auto& edge : e.plan().graph.successors(t)) CHECK(start[edge.to] >= end[edge.from]);
+  }
+}
+
+TEST_CASE("an executor refuses a launch of a task function its program does not declare", "[fused]") {
+  const auto scene = scene::parse_scene(test::hanging_cloth_yaml(6), "s.yaml", ".");
+  plan::SubstepPlan plan = app::substep_plan_for(scene);
+  const auto devices = device::DeviceSet::open("cpu");
+  SECTION("an unknown name") {
+    plan.launches[1][0].function = "xpbd_strech";
+    for (auto kind : {device::ExecutorKind::fused, device::ExecutorKind::events}) {
+      device::ExecutorOptions o;
+      o.kind = kind;
+      CHECK_THROWS_WITH(device::PlanExecutor(devices, plan, o), Catch::Contains("'xpbd_strech'") &&
+                                                                    Catch::Contains("program 'xpbd'") &&
+                                                                    Catch::Contains("xpbd_stretch"));
+    }
+  }
+  SECTION("a wrong argument list") {
+    plan.launches[1][0].args.pop_back();
+    CHECK_THROWS_WITH(device::PlanExecutor(devices, plan), Catch::Contains("takes 5"));
+    plan.launches[1][0].args.push_back(plan::KernelArg::of_float(1.0f));
+    CHECK_THROWS_WITH(device::PlanExecutor(devices, plan), Catch::Contains("expects an int"));
+  }
+}
+
+TEST_CASE("a fused wait that never completes ends in an error naming the device and task, not a hang", "[fused]") {
+  const std::string spec = GENERATE("cpu/2", "cpu");  // across sub-devices; between the work-groups of one device
+  const auto scene = scene::parse_scene(test::hanging_cloth_yaml(8), "s.yaml", ".");
+  const auto devices = device::DeviceSet::open(spec);
+  plan::SubstepPlan plan = app::substep_plan_for(scene);
+  device::ExecutorOptions o;
+  o.kind = device::ExecutorKind::fused;
+  o.wait_timeout_s = 0.3;
+  o.never_publish = 2;  // a stretch block of the first iteration
+  device::PlanExecutor exec(devices, plan, o);
+  if (devices.size() == 2) {
+    // Every task on device 0 but task 3 on device 1: it waits for task 2.
+    std::vector<std::vector<sched::Slot>> lanes(2);
+    double t = 0.0;
+    for (sched::TaskId id : plan.graph.topological_order()) {
+      lanes[id == 3 ? 1 : 0].push_back({id, t, t + 1.0});
+      t += 1.0;
+    }
+    const sched::Schedule s = sched::assemble_schedule(plan.graph.size(), std::move(lanes));
+    const auto waits = s.cross_device_waits(plan.graph);
+    exec.run_schedule(s, waits);
+  }
+  const auto begin = std::chrono::steady_clock::now();
+  exec.run_substeps(2);
+  try {
+    exec.finish();
+    FAIL("the wait completed");
+  } catch (const Error& e) {
+    INFO(e.what());
+    CHECK(e.exit_code() == 1);
+    CHECK(std::string(e.what()).find("no task finished on any device for 0.3 s") != std::string::npos);
+    CHECK(std::string(e.what()).find("'" + plan.graph.task(2).name + "'") != std::string::npos);
+  }
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  CHECK(s < 5.0);
+  CHECK_THROWS_AS(exec.run_substeps(1), Error);  // the run cannot go on after a failed wait
+}
