@@ -15,16 +15,19 @@
 
 #ifdef __OPENCL_VERSION__
 #define ATS_FN static inline
+#define ATS_UNROLL _Pragma("unroll")
 #define ATS_SQRT(x) sqrt(x)
 #define ATS_FMA(a, b, c) fma(a, b, c)
 #elif defined(__cplusplus)
 #include <math.h> /* C++ <math.h>: sqrt and fma are overloaded for float and double */
 #define ATS_FN static inline
+#define ATS_UNROLL
 #define ATS_SQRT(x) sqrt(x)
 #define ATS_FMA(a, b, c) fma(a, b, c)
 #else
 #include <tgmath.h> /* C: type-generic sqrt and fma */
 #define ATS_FN static inline
+#define ATS_UNROLL
 #define ATS_SQRT(x) sqrt(x)
 #define ATS_FMA(a, b, c) fma(a, b, c)
 #endif

@@ -14,7 +14,7 @@
 
 ATS_FN ats_vec3 ats_bend_weighted_sum(const ats_vec3 x[4], const ats_real K[4]) {
   ats_vec3 s = ats_v3(0, 0, 0);
-  for (int i = 0; i < 4; ++i) s = ats_add(s, ats_scale(x[i], K[i]));
+  ATS_UNROLL for (int i = 0; i < 4; ++i) s = ats_add(s, ats_scale(x[i], K[i]));
   return s;
 }
 

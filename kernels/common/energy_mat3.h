@@ -29,12 +29,12 @@ ATS_FN ats_mat3 ats_m3_outer(ats_vec3 a, ats_vec3 b) {
 }
 
 ATS_FN ats_mat3 ats_m3_add(ats_mat3 a, ats_mat3 b) {
-  for (int i = 0; i < 3; ++i) a.r[i] = ats_add(a.r[i], b.r[i]);
+  ATS_UNROLL for (int i = 0; i < 3; ++i) a.r[i] = ats_add(a.r[i], b.r[i]);
   return a;
 }
 
 ATS_FN ats_mat3 ats_m3_scale(ats_mat3 a, ats_real s) {
-  for (int i = 0; i < 3; ++i) a.r[i] = ats_scale(a.r[i], s);
+  ATS_UNROLL for (int i = 0; i < 3; ++i) a.r[i] = ats_scale(a.r[i], s);
   return a;
 }
 
@@ -46,7 +46,7 @@ ATS_FN ats_vec3 ats_v3_cross(ats_vec3 a, ats_vec3 b) {
 }
 
 ATS_FN ats_mat3 ats_m3_sub(ats_mat3 a, ats_mat3 b) {
-  for (int i = 0; i < 3; ++i) a.r[i] = ats_sub(a.r[i], b.r[i]);
+  ATS_UNROLL for (int i = 0; i < 3; ++i) a.r[i] = ats_sub(a.r[i], b.r[i]);
   return a;
 }
 
@@ -67,7 +67,7 @@ ATS_FN ats_vec3 ats_m3_mul_v(ats_mat3 a, ats_vec3 v) {
 ATS_FN ats_mat3 ats_m3_mul(ats_mat3 a, ats_mat3 b) {
   const ats_mat3 bt = ats_m3_transpose(b);
   ats_mat3 m;
-  for (int i = 0; i < 3; ++i) m.r[i] = ats_m3_mul_v(bt, a.r[i]);
+  ATS_UNROLL for (int i = 0; i < 3; ++i) m.r[i] = ats_m3_mul_v(bt, a.r[i]);
   return m;
 }
 
@@ -110,15 +110,15 @@ ATS_FN ats_mat3 ats_m3_project_psd(ats_mat3 m) {
   ats_real a[3][3], v[3][3];
   const ats_real row[3][3] = {
       {m.r[0].x, m.r[0].y, m.r[0].z}, {m.r[1].x, m.r[1].y, m.r[1].z}, {m.r[2].x, m.r[2].y, m.r[2].z}};
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) {
+  ATS_UNROLL for (int i = 0; i < 3; ++i) {
+    ATS_UNROLL for (int j = 0; j < 3; ++j) {
       a[i][j] = (ats_real)0.5 * (row[i][j] + row[j][i]);
       v[i][j] = i == j ? (ats_real)1 : (ats_real)0;
     }
   }
-  for (int sweep = 0; sweep < ATS_JACOBI_SWEEPS; ++sweep) {
-    for (int p = 0; p < 2; ++p) {
-      for (int q = p + 1; q < 3; ++q) {
+  ATS_UNROLL for (int sweep = 0; sweep < ATS_JACOBI_SWEEPS; ++sweep) {
+    ATS_UNROLL for (int p = 0; p < 2; ++p) {
+      ATS_UNROLL for (int q = p + 1; q < 3; ++q) {
         const ats_real apq = a[p][q];
         if (apq == 0) continue;
         /* t = tan of the rotation angle, the smaller root of t^2 + 2 theta t - 1 = 0 */
@@ -129,19 +129,19 @@ ATS_FN ats_mat3 ats_m3_project_psd(ats_mat3 m) {
         const ats_real c = (ats_real)1 / ATS_SQRT(t * t + 1);
         const ats_real s = t * c;
         /* a <- J^T a J with J the rotation in the (p, q) plane */
-        for (int k = 0; k < 3; ++k) {
+        ATS_UNROLL for (int k = 0; k < 3; ++k) {
           const ats_real akp = a[k][p], akq = a[k][q];
           a[k][p] = c * akp - s * akq;
           a[k][q] = s * akp + c * akq;
         }
-        for (int k = 0; k < 3; ++k) {
+        ATS_UNROLL for (int k = 0; k < 3; ++k) {
           const ats_real apk = a[p][k], aqk = a[q][k];
           a[p][k] = c * apk - s * aqk;
           a[q][k] = s * apk + c * aqk;
         }
         a[p][q] = 0;
         a[q][p] = 0;
-        for (int k = 0; k < 3; ++k) {
+        ATS_UNROLL for (int k = 0; k < 3; ++k) {
           const ats_real vkp = v[k][p], vkq = v[k][q];
           v[k][p] = c * vkp - s * vkq;
           v[k][q] = s * vkp + c * vkq;
@@ -151,7 +151,7 @@ ATS_FN ats_mat3 ats_m3_project_psd(ats_mat3 m) {
   }
   /* sum over eigenpairs of max(lambda, 0) v v^T; the columns of v are the eigenvectors */
   ats_mat3 out = ats_m3_diag(0);
-  for (int e = 0; e < 3; ++e) {
+  ATS_UNROLL for (int e = 0; e < 3; ++e) {
     const ats_real l = a[e][e];
     if (l <= 0) continue;
     const ats_vec3 ve = ats_v3(v[0][e], v[1][e], v[2][e]);

@@ -20,12 +20,12 @@ ATS_FN ats_solve3 ats_m3_solve(ats_mat3 h, ats_vec3 b) {
   s.x = ats_v3(0, 0, 0);
   s.ok = 0;
   ats_real m = 0;
-  for (int i = 0; i < 3; ++i) {
+  ATS_UNROLL for (int i = 0; i < 3; ++i) {
     m = fmax(m, fmax(fabs(h.r[i].x), fmax(fabs(h.r[i].y), fabs(h.r[i].z))));
   }
   if (!(m > 0)) return s;
   const ats_real inv_m = (ats_real)1 / m;
-  for (int i = 0; i < 3; ++i) h.r[i] = ats_scale(h.r[i], inv_m);
+  ATS_UNROLL for (int i = 0; i < 3; ++i) h.r[i] = ats_scale(h.r[i], inv_m);
   const ats_vec3 c0 = ats_v3_cross(h.r[1], h.r[2]);
   const ats_vec3 c1 = ats_v3_cross(h.r[2], h.r[0]);
   const ats_vec3 c2 = ats_v3_cross(h.r[0], h.r[1]);

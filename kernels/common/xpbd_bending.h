@@ -15,7 +15,7 @@ typedef struct {
 
 ATS_FN ats_vec3 ats_bend_curvature(const ats_vec3 x[4], const float K[4], float scale) {
   ats_vec3 c = ats_v3(0.0f, 0.0f, 0.0f);
-  for (int i = 0; i < 4; ++i) c = ats_add(c, ats_scale(x[i], K[i]));
+  ATS_UNROLL for (int i = 0; i < 4; ++i) c = ats_add(c, ats_scale(x[i], K[i]));
   return ats_scale(c, ATS_SQRT(scale));
 }
 
@@ -24,7 +24,7 @@ ATS_FN ats_bend_step ats_xpbd_bend(const ats_vec3 x[4], const float w[4], const 
   ats_bend_step s;
   const float alpha = compliance / (dt * dt);
   float denom = alpha;
-  for (int i = 0; i < 4; ++i) denom += scale * w[i] * K[i] * K[i];
+  ATS_UNROLL for (int i = 0; i < 4; ++i) denom += scale * w[i] * K[i] * K[i];
   const ats_vec3 c = ats_bend_curvature(x, K, scale);
   if (denom <= 0.0f) {
     s.dlambda = ats_v3(0.0f, 0.0f, 0.0f);
@@ -32,7 +32,7 @@ ATS_FN ats_bend_step ats_xpbd_bend(const ats_vec3 x[4], const float w[4], const 
     s.dlambda = ats_scale(ats_add(c, ats_scale(lambda, alpha)), -1.0f / denom);
   }
   const float root = ATS_SQRT(scale);
-  for (int i = 0; i < 4; ++i) s.dx[i] = ats_scale(s.dlambda, w[i] * root * K[i]);
+  ATS_UNROLL for (int i = 0; i < 4; ++i) s.dx[i] = ats_scale(s.dlambda, w[i] * root * K[i]);
   return s;
 }
 

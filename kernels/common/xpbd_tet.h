@@ -63,7 +63,7 @@ ATS_FN ats_real ats_tet_strain_energy(const ats_vec3 x[4], ats_mat3 dm_inv, ats_
                                       ats_real lambda) {
   const ats_mat3 e = ats_tet_green_strain(ats_tet_deformation(x, dm_inv));
   ats_real sum = 0;
-  for (int c = 0; c < ATS_TET_STRAIN_CONSTRAINTS; ++c) {
+  ATS_UNROLL for (int c = 0; c < ATS_TET_STRAIN_CONSTRAINTS; ++c) {
     const ats_real v = ats_tet_strain_value(e, c);
     sum += (ats_real)0.5 * ats_tet_strain_stiffness(c, volume, mu, lambda) * v * v;
   }
@@ -75,7 +75,7 @@ ATS_FN ats_real ats_tet_strain_energy(const ats_vec3 x[4], ats_mat3 dm_inv, ats_
  * with k = 0 (lambda = 0 for Poisson ratio 0) has no energy and is skipped. */
 ATS_FN void ats_xpbd_tet(ats_vec3 x[4], const ats_real w[4], ats_mat3 dm_inv, ats_real volume, ats_real mu,
                          ats_real lambda, ats_real lam[ATS_TET_LAMBDA_STRIDE], ats_real dt) {
-  for (int c = 0; c < ATS_TET_STRAIN_CONSTRAINTS; ++c) {
+  ATS_UNROLL for (int c = 0; c < ATS_TET_STRAIN_CONSTRAINTS; ++c) {
     const ats_real k = ats_tet_strain_stiffness(c, volume, mu, lambda);
     if (!(k > 0)) continue;
     const ats_real alpha = (ats_real)1 / (k * dt * dt);
@@ -83,13 +83,13 @@ ATS_FN void ats_xpbd_tet(ats_vec3 x[4], const ats_real w[4], ats_mat3 dm_inv, at
     const ats_real value = ats_tet_strain_value(ats_tet_green_strain(f), c);
     ats_vec3 g[4];
     ats_real denom = alpha;
-    for (int a = 0; a < 4; ++a) {
+    ATS_UNROLL for (int a = 0; a < 4; ++a) {
       g[a] = ats_tet_strain_gradient(f, dm_inv, c, a);
       denom += w[a] * ats_dot(g[a], g[a]);
     }
     const ats_real dl = (-value - alpha * lam[c]) / denom;
     lam[c] += dl;
-    for (int a = 0; a < 4; ++a) x[a] = ats_add(x[a], ats_scale(g[a], w[a] * dl));
+    ATS_UNROLL for (int a = 0; a < 4; ++a) x[a] = ats_add(x[a], ats_scale(g[a], w[a] * dl));
   }
 }
 

@@ -30,17 +30,17 @@ ATS_TASK void sosd_vertex_systems(int i, __global const float4* x, __global cons
   if (x[i].w == 0.0f) return; /* pinned: never read */
   const vertex_system s = gather_vertex_system(i, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend, tets);
   sys[4 * i] = (float4)(s.f.x, s.f.y, s.f.z, 0.0f);
-  for (int r = 0; r < 3; ++r) sys[4 * i + 1 + r] = (float4)(s.h.r[r].x, s.h.r[r].y, s.h.r[r].z, 0.0f);
+  ATS_UNROLL for (int r = 0; r < 3; ++r) sys[4 * i + 1 + r] = (float4)(s.h.r[r].x, s.h.r[r].y, s.h.r[r].z, 0.0f);
 }
 
 static inline ats_mat3 sosd_block(__global const float4* sys, int i) {
   ats_mat3 h;
-  for (int r = 0; r < 3; ++r) h.r[r] = vs_xyz(sys[4 * i + 1 + r]);
+  ATS_UNROLL for (int r = 0; r < 3; ++r) h.r[r] = vs_xyz(sys[4 * i + 1 + r]);
   return h;
 }
 
 static inline void sosd_set_block(float a[SOSD_MAX][SOSD_MAX], int row, int col, ats_mat3 h) {
-  for (int r = 0; r < 3; ++r) {
+  ATS_UNROLL for (int r = 0; r < 3; ++r) {
     a[row + r][col] = h.r[r].x;
     a[row + r][col + 1] = h.r[r].y;
     a[row + r][col + 2] = h.r[r].z;
@@ -65,7 +65,7 @@ static void sosd_solve(const int* v, int n, ats_mat3 off[4][4], __global const f
   }
   for (int p = 0; p < n; ++p) {
     if (!movable[p]) {
-      for (int r = 0; r < 3; ++r) a[3 * p + r][3 * p + r] = 1.0f;
+      ATS_UNROLL for (int r = 0; r < 3; ++r) a[3 * p + r][3 * p + r] = 1.0f;
       continue;
     }
     const ats_vec3 f = vs_xyz(sys[4 * v[p]]);
@@ -135,8 +135,8 @@ ATS_TASK void sosd_stretch(int e, __global const float4* x, __global const float
 ATS_TASK void sosd_bend(int e, __global const float4* x, __global const float4* sys, __global const ats_bend_c* bend, __global float4* d) {
   const ats_bend_c c = bend[e];
   ats_mat3 off[4][4];
-  for (int p = 0; p < 4; ++p) {
-    for (int q = p + 1; q < 4; ++q) off[p][q] = ats_bend_hessian(c.K, c.scale, 1.0f / c.compliance, p, q);
+  ATS_UNROLL for (int p = 0; p < 4; ++p) {
+    ATS_UNROLL for (int q = p + 1; q < 4; ++q) off[p][q] = ats_bend_hessian(c.K, c.scale, 1.0f / c.compliance, p, q);
   }
   sosd_solve(c.v, 4, off, x, sys, d, 4 * e);
 }
@@ -144,12 +144,12 @@ ATS_TASK void sosd_bend(int e, __global const float4* x, __global const float4* 
 ATS_TASK void sosd_tet(int e, __global const float4* x, __global const float4* sys, __global const ats_tet_c* tets, __global float4* d) {
   const ats_tet_c t = tets[e];
   ats_vec3 q[4];
-  for (int j = 0; j < 4; ++j) q[j] = vs_xyz(x[t.v[j]]);
+  ATS_UNROLL for (int j = 0; j < 4; ++j) q[j] = vs_xyz(x[t.v[j]]);
   ats_mat3 dm;
-  for (int r = 0; r < 3; ++r) dm.r[r] = ats_v3(t.dm_inv[3 * r], t.dm_inv[3 * r + 1], t.dm_inv[3 * r + 2]);
+  ATS_UNROLL for (int r = 0; r < 3; ++r) dm.r[r] = ats_v3(t.dm_inv[3 * r], t.dm_inv[3 * r + 1], t.dm_inv[3 * r + 2]);
   ats_mat3 off[4][4];
-  for (int p = 0; p < 4; ++p) {
-    for (int s = p + 1; s < 4; ++s) {
+  ATS_UNROLL for (int p = 0; p < 4; ++p) {
+    ATS_UNROLL for (int s = p + 1; s < 4; ++s) {
       off[p][s] = t.model == ATS_TET_STVK ? ats_tet_stvk_hessian(q, dm, t.volume, t.mu, t.lambda, p, s)
                                           : ats_tet_nh_hessian(q, dm, t.volume, t.mu, t.lambda, p, s);
     }

@@ -35,7 +35,7 @@ ATS_TASK void xpbd_bend(int i, __global float4* x, __global const ats_bend_c* c,
   ats_vec3 p[4];
   float w[4];
   float4 q[4];
-  for (int j = 0; j < 4; ++j) {
+  ATS_UNROLL for (int j = 0; j < 4; ++j) {
     q[j] = x[con.v[j]];
     p[j] = xyz(q[j]);
     w[j] = q[j].w;
@@ -43,7 +43,7 @@ ATS_TASK void xpbd_bend(int i, __global float4* x, __global const ats_bend_c* c,
   const float4 l4 = reset ? (float4)(0.0f) : lambda[i];
   const ats_bend_step s = ats_xpbd_bend(p, w, con.K, con.scale, con.compliance, xyz(l4), dt);
   lambda[i] = (float4)(l4.x + s.dlambda.x, l4.y + s.dlambda.y, l4.z + s.dlambda.z, 0.0f);
-  for (int j = 0; j < 4; ++j) x[con.v[j]] = add_xyz(q[j], s.dx[j]);
+  ATS_UNROLL for (int j = 0; j < 4; ++j) x[con.v[j]] = add_xyz(q[j], s.dx[j]);
 }
 
 /* One StVK tet per work-item: its seven strain constraints in sequence
@@ -54,16 +54,16 @@ ATS_TASK void xpbd_tet(int i, __global float4* x, __global const ats_tet_c* c, _
   ats_vec3 p[4];
   float w[4];
   float4 q[4];
-  for (int j = 0; j < 4; ++j) {
+  ATS_UNROLL for (int j = 0; j < 4; ++j) {
     q[j] = x[t.v[j]];
     p[j] = xyz(q[j]);
     w[j] = q[j].w;
   }
   ats_mat3 dm_inv;
-  for (int r = 0; r < 3; ++r) dm_inv.r[r] = ats_v3(t.dm_inv[3 * r], t.dm_inv[3 * r + 1], t.dm_inv[3 * r + 2]);
+  ATS_UNROLL for (int r = 0; r < 3; ++r) dm_inv.r[r] = ats_v3(t.dm_inv[3 * r], t.dm_inv[3 * r + 1], t.dm_inv[3 * r + 2]);
   float lam[ATS_TET_LAMBDA_STRIDE];
-  for (int j = 0; j < ATS_TET_LAMBDA_STRIDE; ++j) lam[j] = reset ? 0.0f : lambda[ATS_TET_LAMBDA_STRIDE * i + j];
+  ATS_UNROLL for (int j = 0; j < ATS_TET_LAMBDA_STRIDE; ++j) lam[j] = reset ? 0.0f : lambda[ATS_TET_LAMBDA_STRIDE * i + j];
   ats_xpbd_tet(p, w, dm_inv, t.volume, t.mu, t.lambda, lam, dt);
-  for (int j = 0; j < ATS_TET_LAMBDA_STRIDE; ++j) lambda[ATS_TET_LAMBDA_STRIDE * i + j] = lam[j];
-  for (int j = 0; j < 4; ++j) x[t.v[j]] = (float4)(p[j].x, p[j].y, p[j].z, q[j].w);
+  ATS_UNROLL for (int j = 0; j < ATS_TET_LAMBDA_STRIDE; ++j) lambda[ATS_TET_LAMBDA_STRIDE * i + j] = lam[j];
+  ATS_UNROLL for (int j = 0; j < 4; ++j) x[t.v[j]] = (float4)(p[j].x, p[j].y, p[j].z, q[j].w);
 }

@@ -38,7 +38,7 @@ ATS_TASK void energy_stretch(int i, __global const float4* x, __global const ats
 ATS_TASK void energy_bend(int i, __global const float4* x, __global const ats_bend_c* c, __global float* out, int out_first) {
   const ats_bend_c con = c[i];
   ats_vec3 p[4];
-  for (int j = 0; j < 4; ++j) p[j] = energy_xyz(x[con.v[j]]);
+  ATS_UNROLL for (int j = 0; j < 4; ++j) p[j] = energy_xyz(x[con.v[j]]);
   out[out_first + i] = ats_bend_energy(p, con.K, con.scale, 1.0f / con.compliance);
 }
 
@@ -47,9 +47,9 @@ ATS_TASK void energy_bend(int i, __global const float4* x, __global const ats_be
 ATS_TASK void energy_tet(int i, __global const float4* x, __global const ats_tet_c* c, __global float* out, int out_first) {
   const ats_tet_c t = c[i];
   ats_vec3 p[4];
-  for (int j = 0; j < 4; ++j) p[j] = energy_xyz(x[t.v[j]]);
+  ATS_UNROLL for (int j = 0; j < 4; ++j) p[j] = energy_xyz(x[t.v[j]]);
   ats_mat3 dm_inv;
-  for (int r = 0; r < 3; ++r) dm_inv.r[r] = ats_v3(t.dm_inv[3 * r], t.dm_inv[3 * r + 1], t.dm_inv[3 * r + 2]);
+  ATS_UNROLL for (int r = 0; r < 3; ++r) dm_inv.r[r] = ats_v3(t.dm_inv[3 * r], t.dm_inv[3 * r + 1], t.dm_inv[3 * r + 2]);
   out[out_first + i] = t.model == ATS_TET_STVK ? ats_tet_stvk_energy(p, dm_inv, t.volume, t.mu, t.lambda)
                                                : ats_tet_nh_energy(p, dm_inv, t.volume, t.mu, t.lambda);
 }
