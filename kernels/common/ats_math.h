@@ -32,6 +32,21 @@
 #define ATS_FMA(a, b, c) fma(a, b, c)
 #endif
 
+/* The address space of the arrays a kernel is handed; host code has only
+ * one. Lets a function over particle and element arrays compile both ways. */
+#ifdef __OPENCL_VERSION__
+#define ATS_GLOBAL __global
+#else
+#define ATS_GLOBAL
+#endif
+
+/* A particle, four floats x, y, z, w (w = inverse mass): OpenCL's float4 in
+ * kernels; host code that shares such arrays defines ats_float4 first as its
+ * own 16-byte struct with those fields (solver::Float4). */
+#if defined(__OPENCL_VERSION__) && !defined(ats_float4)
+#define ats_float4 float4
+#endif
+
 typedef struct {
   ats_real x, y, z;
 } ats_vec3;

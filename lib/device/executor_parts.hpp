@@ -18,6 +18,8 @@ struct Step {
   sched::TaskId task = 0;
   std::size_t device = 0;
   std::vector<sched::TaskId> waits;
+
+  friend bool operator==(const Step&, const Step&) = default;
 };
 
 struct PlanResources {

@@ -108,6 +108,8 @@ struct PlanExecutor::Impl {
   }
 
   void set_steps(std::vector<Step> new_steps) {
+    // A refit that kept the schedule (the usual frame) changes nothing.
+    if (new_steps == steps && !steps.empty()) return;
     steps = std::move(new_steps);
     if (fused) fused->set_steps(steps);
     if (events) events->set_steps(steps);

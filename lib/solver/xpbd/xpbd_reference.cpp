@@ -2,10 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "common/xpbd_bending.h"
 #include "common/xpbd_distance.h"
 #include "common/xpbd_tet.h"
+#include "util/error.hpp"
 
 namespace atssim::solver::xpbd {
 
@@ -16,20 +22,49 @@ ats_mat3 dm_inv_of(const ats_tet_c& t) {
   for (int r = 0; r < 3; ++r) m.r[r] = ats_v3(t.dm_inv[3 * r], t.dm_inv[3 * r + 1], t.dm_inv[3 * r + 2]);
   return m;
 }
+// Pinned particles are shared inside a color block (they create no
+// conflict, graph/color_blocks.hpp) and get no correction: they are not
+// written, so that two threads never write one particle.
 void add_xyz(Float4& p, ats_vec3 d) {
+  if (p.w == 0.0f) return;
   p.x += d.x;
   p.y += d.y;
   p.z += d.z;
 }
 }  // namespace
 
-XpbdReference::XpbdReference(SimLayout layout, XpbdSettings settings)
+struct XpbdReference::Arena {
+  explicit Arena(int threads) : arena(threads) {}
+  tbb::task_arena arena;
+};
+
+XpbdReference::XpbdReference(SimLayout layout, XpbdSettings settings, int threads)
     : layout_(std::move(layout)),
       settings_(settings),
       x_prev_(layout_.x),
       stretch_lambda_(layout_.stretch.size(), 0.0f),
       bend_lambda_(layout_.bend.size() * 3, 0.0f),
-      tet_lambda_(layout_.tets.size() * ATS_TET_LAMBDA_STRIDE, 0.0f) {}
+      tet_lambda_(layout_.tets.size() * ATS_TET_LAMBDA_STRIDE, 0.0f) {
+  if (threads < 1) throw input_error("the XPBD reference needs threads >= 1, got " + std::to_string(threads));
+  if (threads > 1) arena_ = std::make_unique<Arena>(threads);
+}
+
+XpbdReference::XpbdReference(XpbdReference&&) noexcept = default;
+XpbdReference& XpbdReference::operator=(XpbdReference&&) noexcept = default;
+XpbdReference::~XpbdReference() = default;
+
+template <class Body>
+void XpbdReference::sweep(int first, int last, const Body& body) {
+  if (!arena_) {
+    for (int i = first; i < last; ++i) body(i);
+    return;
+  }
+  arena_->arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<int>(first, last), [&](const tbb::blocked_range<int>& r) {
+      for (int i = r.begin(); i < r.end(); ++i) body(i);
+    });
+  });
+}
 
 void XpbdReference::substep() {
   predict();
@@ -37,11 +72,7 @@ void XpbdReference::substep() {
     solve_stretch(it == 0);
     solve_bend(it == 0);
     solve_tets(it == 0);
-    if (layout_.has_ground) {
-      for (Float4& p : layout_.x) {
-        if (p.w > 0.0f && p.y < layout_.ground_y) p.y = layout_.ground_y;
-      }
-    }
+    if (layout_.has_ground) project_ground();
   }
   update_velocity();
 }
@@ -49,13 +80,13 @@ void XpbdReference::substep() {
 void XpbdReference::predict() {
   const float dt = static_cast<float>(settings_.substep_dt);
   const Float4 g = layout_.gravity;
-  for (std::size_t i = 0; i < layout_.x.size(); ++i) {
+  sweep(0, static_cast<int>(layout_.x.size()), [&](int i) {
     Float4& p = layout_.x[i];
     Float4& v = layout_.v[i];
     x_prev_[i] = p;
     if (p.w == 0.0f) {
       v = {};
-      continue;
+      return;
     }
     v.x += dt * g.x;
     v.y += dt * g.y;
@@ -63,75 +94,89 @@ void XpbdReference::predict() {
     p.x += dt * v.x;
     p.y += dt * v.y;
     p.z += dt * v.z;
-  }
+  });
 }
 
 // Blocks in order; inside a block no two constraints share a movable
-// particle, so the sequential order here equals the parallel kernel's.
+// particle, so any order (or thread) inside a block gives the same result.
 void XpbdReference::solve_stretch(bool reset) {
   const float dt = static_cast<float>(settings_.substep_dt);
-  for (std::size_t i = 0; i < layout_.stretch.size(); ++i) {
-    const ats_distance_c& c = layout_.stretch[i];
-    Float4& pa = layout_.x[c.a];
-    Float4& pb = layout_.x[c.b];
-    const float l = reset ? 0.0f : stretch_lambda_[i];
-    const ats_distance_step s = ats_xpbd_distance(xyz(pa), pa.w, xyz(pb), pb.w, c.rest, c.compliance, l, dt);
-    stretch_lambda_[i] = l + s.dlambda;
-    add_xyz(pa, s.dxa);
-    add_xyz(pb, s.dxb);
+  for (std::size_t b = 0; b + 1 < layout_.stretch_blocks.size(); ++b) {
+    sweep(layout_.stretch_blocks[b], layout_.stretch_blocks[b + 1], [&](int i) {
+      const ats_distance_c& c = layout_.stretch[i];
+      Float4& pa = layout_.x[c.a];
+      Float4& pb = layout_.x[c.b];
+      const float l = reset ? 0.0f : stretch_lambda_[i];
+      const ats_distance_step s = ats_xpbd_distance(xyz(pa), pa.w, xyz(pb), pb.w, c.rest, c.compliance, l, dt);
+      stretch_lambda_[i] = l + s.dlambda;
+      add_xyz(pa, s.dxa);
+      add_xyz(pb, s.dxb);
+    });
   }
 }
 
 void XpbdReference::solve_bend(bool reset) {
   const float dt = static_cast<float>(settings_.substep_dt);
-  for (std::size_t i = 0; i < layout_.bend.size(); ++i) {
-    const ats_bend_c& c = layout_.bend[i];
-    ats_vec3 p[4];
-    float w[4];
-    for (int j = 0; j < 4; ++j) {
-      p[j] = xyz(layout_.x[c.v[j]]);
-      w[j] = layout_.x[c.v[j]].w;
-    }
-    float* lam = &bend_lambda_[3 * i];
-    const ats_vec3 l = reset ? ats_v3(0, 0, 0) : ats_v3(lam[0], lam[1], lam[2]);
-    const ats_bend_step s = ats_xpbd_bend(p, w, c.K, c.scale, c.compliance, l, dt);
-    lam[0] = l.x + s.dlambda.x;
-    lam[1] = l.y + s.dlambda.y;
-    lam[2] = l.z + s.dlambda.z;
-    for (int j = 0; j < 4; ++j) add_xyz(layout_.x[c.v[j]], s.dx[j]);
+  for (std::size_t b = 0; b + 1 < layout_.bend_blocks.size(); ++b) {
+    sweep(layout_.bend_blocks[b], layout_.bend_blocks[b + 1], [&](int i) {
+      const ats_bend_c& c = layout_.bend[i];
+      ats_vec3 p[4];
+      float w[4];
+      for (int j = 0; j < 4; ++j) {
+        p[j] = xyz(layout_.x[c.v[j]]);
+        w[j] = layout_.x[c.v[j]].w;
+      }
+      float* lam = &bend_lambda_[3 * i];
+      const ats_vec3 l = reset ? ats_v3(0, 0, 0) : ats_v3(lam[0], lam[1], lam[2]);
+      const ats_bend_step s = ats_xpbd_bend(p, w, c.K, c.scale, c.compliance, l, dt);
+      lam[0] = l.x + s.dlambda.x;
+      lam[1] = l.y + s.dlambda.y;
+      lam[2] = l.z + s.dlambda.z;
+      for (int j = 0; j < 4; ++j) add_xyz(layout_.x[c.v[j]], s.dx[j]);
+    });
   }
 }
 
 void XpbdReference::solve_tets(bool reset) {
   const float dt = static_cast<float>(settings_.substep_dt);
-  for (std::size_t i = 0; i < layout_.tets.size(); ++i) {
-    const ats_tet_c& t = layout_.tets[i];
-    ats_vec3 p[4];
-    float w[4];
-    for (int j = 0; j < 4; ++j) {
-      p[j] = xyz(layout_.x[t.v[j]]);
-      w[j] = layout_.x[t.v[j]].w;
-    }
-    const ats_mat3 dm_inv = dm_inv_of(t);
-    float* lam = &tet_lambda_[ATS_TET_LAMBDA_STRIDE * i];
-    if (reset) std::fill(lam, lam + ATS_TET_LAMBDA_STRIDE, 0.0f);
-    ats_xpbd_tet(p, w, dm_inv, t.volume, t.mu, t.lambda, lam, dt);
-    for (int j = 0; j < 4; ++j) {
-      Float4& q = layout_.x[t.v[j]];
-      q.x = p[j].x;
-      q.y = p[j].y;
-      q.z = p[j].z;
-    }
+  for (std::size_t b = 0; b + 1 < layout_.tet_blocks.size(); ++b) {
+    sweep(layout_.tet_blocks[b], layout_.tet_blocks[b + 1], [&](int i) {
+      const ats_tet_c& t = layout_.tets[i];
+      ats_vec3 p[4];
+      float w[4];
+      for (int j = 0; j < 4; ++j) {
+        p[j] = xyz(layout_.x[t.v[j]]);
+        w[j] = layout_.x[t.v[j]].w;
+      }
+      const ats_mat3 dm_inv = dm_inv_of(t);
+      float* lam = &tet_lambda_[ATS_TET_LAMBDA_STRIDE * i];
+      if (reset) std::fill(lam, lam + ATS_TET_LAMBDA_STRIDE, 0.0f);
+      ats_xpbd_tet(p, w, dm_inv, t.volume, t.mu, t.lambda, lam, dt);
+      for (int j = 0; j < 4; ++j) {
+        Float4& q = layout_.x[t.v[j]];
+        if (q.w == 0.0f) continue;  // pinned: shared inside a block, never moved (see add_xyz)
+        q.x = p[j].x;
+        q.y = p[j].y;
+        q.z = p[j].z;
+      }
+    });
   }
+}
+
+void XpbdReference::project_ground() {
+  sweep(0, static_cast<int>(layout_.x.size()), [&](int i) {
+    Float4& p = layout_.x[i];
+    if (p.w > 0.0f && p.y < layout_.ground_y) p.y = layout_.ground_y;
+  });
 }
 
 void XpbdReference::update_velocity() {
   const float inv_dt = 1.0f / static_cast<float>(settings_.substep_dt);
-  for (std::size_t i = 0; i < layout_.x.size(); ++i) {
+  sweep(0, static_cast<int>(layout_.x.size()), [&](int i) {
     const Float4& p = layout_.x[i];
     const Float4& q = x_prev_[i];
     layout_.v[i] = {(p.x - q.x) * inv_dt, (p.y - q.y) * inv_dt, (p.z - q.z) * inv_dt, 0.0f};
-  }
+  });
 }
 
 double XpbdReference::residual_rms() const {

@@ -1,7 +1,10 @@
 #pragma once
 // Host reference implementation of the XPBD substep, on the same layout and
 // the same element math headers as the kernels; the OpenCL result is tested
-// against it.
+// against it. With threads > 1 each color block runs as a tbb::parallel_for,
+// the native multi-threaded loop that atssim's devices are compared with
+// (bench/bench_native.cpp); the result is bit-identical to 1 thread.
+#include <memory>
 #include <vector>
 
 #include "solver/layout/sim_layout.hpp"
@@ -11,7 +14,12 @@ namespace atssim::solver::xpbd {
 
 class XpbdReference {
  public:
-  XpbdReference(SimLayout layout, XpbdSettings settings);
+  // threads: 1 runs plain loops; more run the particle loops and each color
+  // block in a tbb::task_arena of that many threads.
+  XpbdReference(SimLayout layout, XpbdSettings settings, int threads = 1);
+  XpbdReference(XpbdReference&&) noexcept;
+  XpbdReference& operator=(XpbdReference&&) noexcept;
+  ~XpbdReference();
 
   void substep();
   const SimLayout& state() const { return layout_; }
@@ -26,7 +34,11 @@ class XpbdReference {
   void solve_stretch(bool reset);
   void solve_bend(bool reset);
   void solve_tets(bool reset);
+  void project_ground();
   void update_velocity();
+  // body(i) for i in [first, last): in order, or in parallel in the arena.
+  template <class Body>
+  void sweep(int first, int last, const Body& body);
 
   SimLayout layout_;
   XpbdSettings settings_;
@@ -34,6 +46,8 @@ class XpbdReference {
   std::vector<float> stretch_lambda_;
   std::vector<float> bend_lambda_;  // 3 per stencil
   std::vector<float> tet_lambda_;   // ATS_TET_LAMBDA_STRIDE per tet
+  struct Arena;                     // a tbb::task_arena, kept out of this header
+  std::unique_ptr<Arena> arena_;    // null: 1 thread
 };
 
 }  // namespace atssim::solver::xpbd

@@ -1,0 +1,130 @@
+// Frame time of the native host loop a user would write instead of atssim:
+// the XPBD or VBD substep of the host references (lib/solver/*/
+// *_reference.hpp, the kernels' own math), on 1 thread, or with a
+// tbb::parallel_for per color in an arena of N threads. scripts/ compares it
+// with atssim's device runs on the same scene.
+//
+//   bench_native --scene scenes/hanging_cloth.yaml --method xpbd|vbd --resolution N
+//                --threads 1|2 --frames F [--warmup W]
+//
+// Prints one line of JSON: method, resolution, threads, frames, median_ms and
+// min_ms of a frame (the scene's substeps), and checksum, the sum of the
+// final positions (shows the work was done and lets runs be compared).
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <CLI/CLI.hpp>
+
+#include "model/cloth_builder.hpp"
+#include "scene/scene_loader.hpp"
+#include "solver/layout/sim_layout.hpp"
+#include "solver/method_registry.hpp"
+#include "solver/vbd/vbd_reference.hpp"
+#include "solver/xpbd/xpbd_reference.hpp"
+#include "util/error.hpp"
+
+using namespace atssim;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+enum class Method { xpbd, vbd };
+
+struct Options {
+  std::string scene;
+  std::string method = "xpbd";
+  int resolution = 64;
+  int threads = 1;
+  int frames = 10;
+  int warmup = 3;
+};
+
+struct FrameTimes {
+  double median_ms = 0.0;
+  double min_ms = 0.0;
+};
+
+// W untimed frames (first touch, TBB workers starting), then F timed ones.
+template <class Reference>
+FrameTimes time_frames(Reference& reference, int substeps, const Options& o) {
+  for (int f = 0; f < o.warmup; ++f) {
+    for (int s = 0; s < substeps; ++s) reference.substep();
+  }
+  std::vector<double> ms;
+  for (int f = 0; f < o.frames; ++f) {
+    const auto t0 = Clock::now();
+    for (int s = 0; s < substeps; ++s) reference.substep();
+    ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+  }
+  std::sort(ms.begin(), ms.end());
+  const std::size_t n = ms.size();
+  return {n % 2 ? ms[n / 2] : 0.5 * (ms[n / 2 - 1] + ms[n / 2]), ms.front()};
+}
+
+double checksum(const solver::SimLayout& state) {
+  double sum = 0.0;
+  for (const solver::Float4& p : state.x) sum += double(p.x) + double(p.y) + double(p.z);
+  return sum;
+}
+
+int run(const Options& o) {
+  const Method method = o.method == "vbd" ? Method::vbd : Method::xpbd;
+  const std::vector<std::string> overrides{fmt::format("objects.0.grid.resolution=[{0},{0}]", o.resolution),
+                                           "solver.method=" + o.method};
+  const scene::SceneDesc scene = scene::load_scene_file(o.scene, overrides);
+  solver::check_scene(scene, solver::method(o.method));
+  const solver::SimLayout layout = solver::make_sim_layout(model::build_model(scene));
+  const auto& sim = scene.simulation;
+  const double h = sim.frame_dt / sim.substeps;
+
+  FrameTimes times;
+  double sum = 0.0;
+  if (method == Method::xpbd) {
+    solver::xpbd::XpbdReference reference(layout, {h, sim.iterations}, o.threads);
+    times = time_frames(reference, sim.substeps, o);
+    sum = checksum(reference.state());
+  } else {
+    solver::vbd::VbdReference reference(layout, h, sim.iterations, o.threads);
+    times = time_frames(reference, sim.substeps, o);
+    sum = checksum(reference.state());
+  }
+  fmt::print(
+      "{{\"method\": \"{}\", \"resolution\": {}, \"threads\": {}, \"frames\": {}, \"median_ms\": {:.4f}, "
+      "\"min_ms\": {:.4f}, \"checksum\": {:.9g}}}\n",
+      o.method, o.resolution, o.threads, o.frames, times.median_ms, times.min_ms, sum);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  CLI::App cli{"Frame time of the native host XPBD / VBD loop (the host references) on 1 or more threads"};
+  cli.add_option("--scene", o.scene, "Scene file (YAML); its first object must be a grid cloth")->required();
+  cli.add_option("--method", o.method, "xpbd or vbd")->required()->check(CLI::IsMember({"xpbd", "vbd"}));
+  cli.add_option("--resolution", o.resolution, "Grid vertices along x and along z")
+      ->required()
+      ->check(CLI::Range(2, 1 << 15));
+  cli.add_option("--threads", o.threads, "1: plain loops; more: tbb::parallel_for per color in an arena")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cli.add_option("--frames", o.frames, "Timed frames")->check(CLI::PositiveNumber)->capture_default_str();
+  cli.add_option("--warmup", o.warmup, "Untimed frames first")->check(CLI::NonNegativeNumber)->capture_default_str();
+  try {
+    cli.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = cli.exit(e);  // prints help, or the error
+    return code == 0 ? 0 : 2;      // bad usage: exit 2, like atssim
+  }
+  try {
+    return run(o);
+  } catch (const Error& e) {
+    std::fprintf(stderr, "bench_native: %s\n", e.what());
+    return e.exit_code();
+  }
+}

@@ -1,0 +1,126 @@
+#include "solver/vbd/vbd_reference.hpp"
+
+#include <string>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "solver/energy/finite_stiffness.hpp"
+#include "util/error.hpp"
+
+// The kernels' particle type is float4; here the layout's own (same fields).
+#define ats_float4 ::atssim::solver::Float4
+#include "common/vertex_solve.h"
+#include "common/vertex_system.h"
+
+namespace atssim::solver::vbd {
+
+struct VbdReference::Arena {
+  explicit Arena(int threads) : arena(threads) {}
+  tbb::task_arena arena;
+};
+
+VbdReference::VbdReference(SimLayout layout, double substep_dt, int iterations, int threads)
+    : layout_(std::move(layout)),
+      vertices_(vertex::make_vertex_layout(layout_)),
+      substep_dt_(substep_dt),
+      iterations_(iterations),
+      x_prev_(layout_.x),
+      x_tilde_(layout_.x) {
+  energy::require_finite_stiffness(layout_);
+  if (threads < 1) throw input_error("the VBD reference needs threads >= 1, got " + std::to_string(threads));
+  if (threads > 1) arena_ = std::make_unique<Arena>(threads);
+}
+
+VbdReference::VbdReference(VbdReference&&) noexcept = default;
+VbdReference& VbdReference::operator=(VbdReference&&) noexcept = default;
+VbdReference::~VbdReference() = default;
+
+template <class Body>
+void VbdReference::sweep(int first, int last, const Body& body) {
+  if (!arena_) {
+    for (int i = first; i < last; ++i) body(i);
+    return;
+  }
+  arena_->arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<int>(first, last), [&](const tbb::blocked_range<int>& r) {
+      for (int i = r.begin(); i < r.end(); ++i) body(i);
+    });
+  });
+}
+
+// The task order of make_vbd_plan (lib/solver/vbd/vbd_plan.cpp).
+void VbdReference::substep() {
+  predict();
+  for (int it = 0; it < iterations_; ++it) {
+    for (int c = 0; c < vertices_.colors.count(); ++c) solve_color(c);
+    if (layout_.has_ground) project_ground();
+  }
+  update_velocity();
+}
+
+// particles_predict (kernels/common/particle_steps.cl).
+void VbdReference::predict() {
+  const float dt = static_cast<float>(substep_dt_);
+  const Float4 g = layout_.gravity;
+  sweep(0, static_cast<int>(layout_.x.size()), [&](int i) {
+    Float4& p = layout_.x[i];
+    Float4& v = layout_.v[i];
+    x_prev_[i] = p;
+    if (p.w != 0.0f) {
+      v.x += dt * g.x;
+      v.y += dt * g.y;
+      v.z += dt * g.z;
+      p.x += dt * v.x;
+      p.y += dt * v.y;
+      p.z += dt * v.z;
+    } else {
+      v = {};
+    }
+    x_tilde_[i] = p;
+  });
+}
+
+// vbd_solve (kernels/vbd/vbd.cl): one 3x3 Newton step per vertex of the
+// color, its neighbours (other colors) held fixed.
+void VbdReference::solve_color(int color) {
+  const float inv_h2 = static_cast<float>(1.0 / (substep_dt_ * substep_dt_));
+  const Float4* x = layout_.x.data();
+  const int* order = vertices_.colors.order.data();
+  sweep(vertices_.colors.offsets[color], vertices_.colors.offsets[color + 1], [&](int k) {
+    const int i = order[k];
+    const vertex_system s = gather_vertex_system(i, x, x_tilde_.data(), inv_h2, vertices_.adjacency_offsets.data(),
+                                                 vertices_.adjacency.data(), layout_.stretch.data(),
+                                                 layout_.bend.data(), layout_.tets.data());
+    const ats_solve3 d = ats_m3_solve(s.h, s.f);
+    if (!d.ok) return;
+    Float4& p = layout_.x[i];
+    ats_vec3 step = d.x;
+    if (layout_.has_ground && p.y + step.y < layout_.ground_y) {
+      step = ats_vertex_step_above_ground(s.h, s.f, step, p.y, layout_.ground_y);
+    }
+    p = {p.x + step.x, p.y + step.y, p.z + step.z, p.w};
+  });
+}
+
+// particles_ground (kernels/common/particle_steps.cl).
+void VbdReference::project_ground() {
+  sweep(0, static_cast<int>(layout_.x.size()), [&](int i) {
+    Float4& p = layout_.x[i];
+    if (p.w > 0.0f && p.y < layout_.ground_y) p.y = layout_.ground_y;
+  });
+}
+
+// particles_update_velocity (kernels/common/particle_steps.cl), with the
+// plan's 1/h rounded from double.
+void VbdReference::update_velocity() {
+  const float inv_dt = static_cast<float>(1.0 / substep_dt_);
+  sweep(0, static_cast<int>(layout_.x.size()), [&](int i) {
+    const Float4& p = layout_.x[i];
+    const Float4& q = x_prev_[i];
+    layout_.v[i] = {(p.x - q.x) * inv_dt, (p.y - q.y) * inv_dt, (p.z - q.z) * inv_dt, 0.0f};
+  });
+}
+
+}  // namespace atssim::solver::vbd
