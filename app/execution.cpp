@@ -210,6 +210,9 @@ Execution prepare_execution(const device::DeviceSet& devices, plan::SubstepPlan 
     for (sched::TaskId t = 0; t < graph.size(); ++t) {
       e.assignment[t] = static_cast<sched::DeviceId>(std::max(0, graph.task(t).part));
     }
+    // A fused dispatcher has no work-group size to fill: cut finer.
+    e.split_granule = e.executor->kind() == device::ExecutorKind::fused ? 8 : 64;
+    e.part_shares = e.executor->recut(fractions, e.split_granule);
   }
   make_schedule(e, options, true);
   return e;
@@ -292,6 +295,25 @@ FrameMeasurement measure_frame(Execution& e) {
   return m;
 }
 
+namespace {
+
+// Split: when the refitted costs say one device has become busier, move the
+// cut (the result does not change: the blocks are exact Gauss-Seidel).
+void rebalance_split(Execution& e) {
+  const std::vector<double> fractions = sched::balanced_fractions(e.costs.costs(), e.assignment, e.split_fractions);
+  if (fractions == e.split_fractions) return;
+  const std::vector<double> shares = e.executor->recut(fractions, e.split_granule);
+  std::vector<double> factor(shares.size(), 1.0);
+  for (std::size_t t = 0; t < shares.size(); ++t) {
+    if (e.part_shares[t] > 0.0) factor[t] = shares[t] / e.part_shares[t];
+  }
+  e.costs.rescale(factor);
+  e.split_fractions = fractions;
+  e.part_shares = shares;
+}
+
+}  // namespace
+
 FrameMeasurement refit_and_reschedule(Execution& e, const ExecutionOptions& options) {
   FrameMeasurement m = measure_frame(e);
   if (!m.timings.empty()) {
@@ -299,6 +321,7 @@ FrameMeasurement refit_and_reschedule(Execution& e, const ExecutionOptions& opti
   } else {
     e.costs.observe_launches(e.schedule, e.executor->launches());
   }
+  if (e.mode == ScheduleMode::split) rebalance_split(e);
   make_schedule(e, options, e.mode == ScheduleMode::heft && e.costs.drifted());
   return m;
 }

@@ -57,6 +57,8 @@ struct Execution {
   sched::Schedule schedule;                        // predicted times under the current costs
   std::vector<sched::Wait> waits;
   std::vector<double> split_fractions;  // split mode: share of each device
+  std::vector<double> part_shares;      // split mode: each task's share of its whole task
+  std::size_t split_granule = 64;       // split mode: parts end on multiples of this
   sched::DeviceId main_device = 0;      // async: the device that keeps the stream
   int async_slots = 0;                  // async: snapshot buffers
   std::size_t async_merges = 0;         // async: merges per substep
@@ -102,8 +104,9 @@ struct FrameMeasurement {
 FrameMeasurement measure_frame(Execution& execution);
 
 // After a recorded frame: refits the costs from what it measured (the cost
-// model), recomputes the predicted times, and for `heft` re-runs HEFT when
-// the costs drifted.
+// model), recomputes the predicted times, for `heft` re-runs HEFT when the
+// costs drifted, and for `split` moves the cut when one device has become
+// busier than the other (sched::balanced_fractions).
 FrameMeasurement refit_and_reschedule(Execution& execution, const ExecutionOptions& options);
 
 }  // namespace atssim::app

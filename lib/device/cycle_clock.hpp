@@ -17,9 +17,11 @@ struct CycleClock {
 };
 
 // One per device of the set, or empty when its compiler has no cycle counter
-// (or the counter does not advance). Devices whose readings fit one line
-// (the sub-devices of one CPU share its counter) share one calibration, so
-// their stamps compare exactly. Measured once per set and process (~20 ms).
+// (or the counter does not advance). Where every device reads the host's own
+// time-stamp counter (pocl's CPU devices on x86), the host calibrates it
+// and all share that line, so their stamps compare exactly; else each device
+// gets a two-point calibration from its launches, shared by devices whose
+// readings fit one line. Measured once per set and process (~20 ms).
 const std::vector<CycleClock>& cycle_clocks(const DeviceSet::Impl& set, SvmArena& arena);
 
 // Host steady clock in ms.

@@ -13,6 +13,7 @@
 #include "device/launch_binding.hpp"
 #include "device/program_builder.hpp"
 #include "device/svm_arena.hpp"
+#include "plan/split_plan.hpp"
 #include "sched/cost_refit.hpp"
 #include "util/error.hpp"
 
@@ -242,6 +243,19 @@ void PlanExecutor::run_schedule(const sched::Schedule& schedule, std::span<const
   for (std::size_t i = 0; i < steps.size(); ++i) position[steps[i].task] = i;
   for (const sched::Wait& w : waits) steps[position[w.consumer]].waits.push_back(w.producer);
   impl_->set_steps(std::move(steps));
+}
+
+std::vector<double> PlanExecutor::recut(std::span<const double> fractions, std::size_t granule) {
+  auto& impl = *impl_;
+  impl.finish();
+  std::vector<double> shares = plan::recut_plan(impl.plan, fractions, granule);
+  // The ranges live in the dispatcher tables and in the events kernels' arguments.
+  if (impl.fused) impl.fused->set_steps(impl.steps);
+  if (impl.events) {
+    impl.events = std::make_unique<EventRunner>(impl.resources, impl.options.local_size);
+    impl.events->set_steps(impl.steps);
+  }
+  return shares;
 }
 
 void PlanExecutor::run_substeps(int count, bool record) { impl_->run(count, record); }

@@ -59,6 +59,11 @@ class PlanExecutor {
   // substeps, for the other devices' last task).
   void run_schedule(const sched::Schedule& schedule, std::span<const sched::Wait> waits);
 
+  // Moves the boundaries between the parts of the (split) plan it runs to
+  // `fractions` (plan::recut_plan); the schedule stays. Returns each task's
+  // new share of its whole task.
+  std::vector<double> recut(std::span<const double> fractions, std::size_t granule);
+
   // Starts `count` substeps and returns without waiting for them. With
   // `record`, the last one is timed task by task (see recorded()).
   void run_substeps(int count, bool record = false);

@@ -32,13 +32,39 @@ std::vector<std::pair<std::int32_t, std::int32_t>> part_ranges(std::int32_t coun
   return ranges;
 }
 
-}  // namespace
-
-SubstepPlan split_plan(const SubstepPlan& plan, std::span<const double> fractions, std::size_t granule) {
+void check_fractions(std::span<const double> fractions) {
   const double total = std::accumulate(fractions.begin(), fractions.end(), 0.0);
   if (fractions.empty() || std::abs(total - 1.0) > 1e-9) {
     throw Error(fmt::format("split_plan: {} fractions summing to {} (must sum to 1)", fractions.size(), total));
   }
+}
+
+}  // namespace
+
+std::vector<double> recut_plan(SubstepPlan& plan, std::span<const double> fractions, std::size_t granule) {
+  check_fractions(fractions);
+  const std::size_t n = fractions.size();
+  std::vector<double> share(plan.graph.size(), 1.0);
+  // split_plan adds the parts of one task as consecutive ids 0, 1, …
+  for (sched::TaskId t = 0; t + n <= plan.graph.size(); ++t) {
+    bool whole_group = true;
+    for (std::size_t p = 0; p < n; ++p) whole_group = whole_group && plan.graph.task(t + p).part == static_cast<int>(p);
+    if (!whole_group) continue;
+    const std::int32_t first = plan.launches[t].at(0).range.first;
+    const Range& last = plan.launches[t + n - 1].at(0).range;
+    const std::int32_t count = last.first + last.count - first;
+    const auto ranges = part_ranges(count, fractions, granule);
+    for (std::size_t p = 0; p < n; ++p) {
+      plan.launches[t + p][0].range = {first + ranges[p].first, ranges[p].second - ranges[p].first};
+      share[t + p] = count > 0 ? static_cast<double>(ranges[p].second - ranges[p].first) / count : 0.0;
+    }
+    t += n - 1;
+  }
+  return share;
+}
+
+SubstepPlan split_plan(const SubstepPlan& plan, std::span<const double> fractions, std::size_t granule) {
+  check_fractions(fractions);
   SubstepPlan out;
   out.program = plan.program;
   out.buffers = plan.buffers;

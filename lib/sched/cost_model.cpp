@@ -74,6 +74,31 @@ void refit_from_launches(CostTable& costs, const Schedule& predicted, std::span<
   }
 }
 
+std::vector<double> balanced_fractions(const CostTable& costs, std::span<const DeviceId> assignment,
+                                       std::span<const double> fractions, double tolerance) {
+  std::vector<double> busy(fractions.size(), 0.0);
+  for (TaskId t = 0; t < assignment.size(); ++t) {
+    if (assignment[t] < busy.size() && costs.at(t, assignment[t]) < kCannotRun)
+      busy[assignment[t]] += costs.at(t, assignment[t]);
+  }
+  const auto [lo, hi] = std::minmax_element(busy.begin(), busy.end());
+  if (*lo <= 0.0 || *hi / *lo - 1.0 <= tolerance) return {fractions.begin(), fractions.end()};
+  std::vector<double> out(fractions.size());
+  double sum = 0.0;
+  for (std::size_t d = 0; d < out.size(); ++d) sum += out[d] = fractions[d] / busy[d];
+  for (double& f : out) f /= sum;
+  return out;
+}
+
+void CostModel::rescale(std::span<const double> factor) {
+  for (TaskId t = 0; t < costs_.tasks && t < factor.size(); ++t) {
+    for (DeviceId d = 0; d < costs_.devices; ++d) {
+      if (costs_.at(t, d) < kCannotRun) costs_.at(t, d) *= factor[t];
+      if (planned_.at(t, d) < kCannotRun) planned_.at(t, d) *= factor[t];
+    }
+  }
+}
+
 CostModel::CostModel(CostTable profiled, DeviceLinks links, double drift_threshold)
     : profiled_(profiled),
       costs_(profiled),

@@ -41,6 +41,16 @@ void refit_latency(DeviceLinks& links, std::span<const TaskTiming> timings, std:
 void refit_from_launches(CostTable& costs, const Schedule& predicted, std::span<const LaunchTiming> launches,
                          double weight = 0.5);
 
+// Split schedules (every block cut between the devices by a fraction each):
+// the fractions that balance the devices' measured busy time, given the
+// fractions now in use. Device d does a share f_d of the cut work in the
+// time its tasks cost (`assignment` gives each task's device), so its speed
+// is f_d / busy_d and the new f_d is proportional to it. Returns the current
+// fractions when no device is busier than another by more than `tolerance`
+// (relative), so noise does not move the cut every frame.
+std::vector<double> balanced_fractions(const CostTable& costs, std::span<const DeviceId> assignment,
+                                       std::span<const double> fractions, double tolerance = 0.03);
+
 class CostModel {
  public:
   CostModel() = default;
@@ -58,6 +68,9 @@ class CostModel {
   bool drifted() const;
   // The current costs are those the schedule was just made with.
   void plan_made();
+  // Multiplies every device's cost of task t by factor[t] (a task cut to
+  // another share of its elements).
+  void rescale(std::span<const double> factor);
 
  private:
   CostTable profiled_, costs_, planned_;

@@ -86,3 +86,30 @@ TEST_CASE("one fraction leaves the plan as it is") {
   CHECK(same.graph.size() == plan.graph.size());
   CHECK(coverage(same) == coverage(plan));
 }
+
+TEST_CASE("recut moves the boundaries between parts and keeps every element covered once") {
+  const auto plan = cloth_plan();
+  const std::vector<double> halves{0.5, 0.5}, uneven{0.25, 0.75};
+  auto split = plan::split_plan(plan, halves, 8);
+  const auto tasks = split.graph.size();
+  const auto shares = plan::recut_plan(split, uneven, 8);
+  CHECK(split.graph.size() == tasks);
+  CHECK(coverage(split) == coverage(plan));
+  REQUIRE(shares.size() == tasks);
+  for (sched::TaskId t = 0; t < tasks; ++t) {
+    const auto& task = split.graph.task(t);
+    if (task.part < 0) continue;
+    const int count = split.launches[t][0].range.count;
+    const int whole = count + split.launches[task.part == 0 ? t + 1 : t - 1][0].range.count;
+    if (whole < 64) continue;  // rounding to 8 dominates small blocks
+    CHECK(shares[t] == Approx(uneven[task.part]).margin(8.0 / whole));
+    CHECK(shares[t] == Approx(double(count) / whole));
+  }
+  // Back to halves: the same cut split_plan makes.
+  plan::recut_plan(split, halves, 8);
+  const auto again = plan::split_plan(plan, halves, 8);
+  for (sched::TaskId t = 0; t < tasks; ++t) {
+    CHECK(split.launches[t][0].range.first == again.launches[t][0].range.first);
+    CHECK(split.launches[t][0].range.count == again.launches[t][0].range.count);
+  }
+}

@@ -1,0 +1,44 @@
+#include <catch2/catch.hpp>
+
+#include "sched/cost_model.hpp"
+
+using namespace atssim::sched;
+
+TEST_CASE("balanced fractions give the slower device a smaller share, in proportion to its speed") {
+  // Tasks 0, 2 on device 0 and 1, 3 on device 1; each device has half the
+  // work, and device 1 needs twice as long for it.
+  const CostTable costs = CostTable::from_rows({{1.0, 9.0}, {9.0, 2.0}, {1.0, 9.0}, {9.0, 2.0}});
+  const std::vector<DeviceId> assignment{0, 1, 0, 1};
+  const std::vector<double> halves{0.5, 0.5};
+  const auto f = balanced_fractions(costs, assignment, halves);
+  REQUIRE(f.size() == 2);
+  CHECK(f[0] == Approx(2.0 / 3.0));
+  CHECK(f[1] == Approx(1.0 / 3.0));
+}
+
+TEST_CASE("balanced fractions stay put while the devices are within the tolerance") {
+  const CostTable costs = CostTable::from_rows({{1.0, 9.0}, {9.0, 1.02}});
+  const std::vector<DeviceId> assignment{0, 1};
+  const std::vector<double> f{0.4, 0.6};
+  CHECK(balanced_fractions(costs, assignment, f, 0.03) == f);
+}
+
+TEST_CASE("a task's cost is its device's time from the end of the task before it there") {
+  const std::vector<TaskTiming> timings{{0, 0, 0.0, 1.0}, {1, 1, 0.5, 2.0}, {2, 0, 3.0, 4.0}, {3, 0, 3.5, 5.0}};
+  const auto m = task_costs(timings, 2);
+  REQUIRE(m.size() == 4);
+  CHECK(m[0].ms == Approx(1.0));
+  CHECK(m[1].ms == Approx(1.5));
+  CHECK(m[2].ms == Approx(1.0));  // the wait for another device is not its cost
+  CHECK(m[3].ms == Approx(1.0));  // it could start only when task 2 ended
+}
+
+TEST_CASE("without task timings each device's costs scale to its measured launch") {
+  CostTable costs = CostTable::from_rows({{1.0, 1.0}, {1.0, 1.0}, {2.0, 2.0}});
+  const Schedule s = assemble_schedule(3, {{{0, 0.0, 1.0}, {1, 1.0, 2.0}}, {{2, 0.0, 2.0}}});
+  const std::vector<LaunchTiming> launches{{0, 4, 16.0}, {1, 4, 8.0}};  // 4 vs 2 ms per substep
+  refit_from_launches(costs, s, launches, 1.0);
+  CHECK(costs.at(0, 0) == Approx(2.0));
+  CHECK(costs.at(1, 0) == Approx(2.0));
+  CHECK(costs.at(2, 1) == Approx(2.0));  // already right
+}
