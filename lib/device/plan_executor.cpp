@@ -150,7 +150,9 @@ struct PlanExecutor::Impl {
           event_runner().enqueue(1, true);
           timings = event_runner().timings();
         } else {
-          run(1, true);
+          // Two substeps, the last timed: a launch's first substep also
+          // waits for its work-groups to be started.
+          run(2, true);
           timings = recorded();
         }
         if (r == 0) continue;  // warm-up: first launches may compile

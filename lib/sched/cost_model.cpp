@@ -5,11 +5,17 @@
 
 namespace atssim::sched {
 
-std::vector<Measurement> task_costs(std::span<const TaskTiming> timings, std::size_t devices) {
-  std::vector<double> device_end(devices, 0.0);
+std::vector<Measurement> task_costs(std::span<const TaskTiming> timings, std::size_t devices,
+                                    std::span<const Wait> waits) {
+  std::vector<TaskId> waited;
+  for (const Wait& w : waits) waited.push_back(w.consumer);
+  std::sort(waited.begin(), waited.end());
+  std::vector<double> device_end(devices, -1.0);  // -1: no task ran there yet
   std::vector<Measurement> out;
   for (const TaskTiming& t : timings) {
-    const double from = std::max(t.start_ms, device_end.at(t.device));
+    const double previous = device_end.at(t.device);
+    const bool waits_for_other = std::binary_search(waited.begin(), waited.end(), t.task);
+    const double from = previous < 0.0 || waits_for_other ? std::max(t.start_ms, previous) : previous;
     device_end[t.device] = t.finish_ms;
     out.push_back({t.task, t.device, std::max(t.finish_ms - from, 1e-6)});
   }
@@ -107,7 +113,7 @@ CostModel::CostModel(CostTable profiled, DeviceLinks links, double drift_thresho
       threshold_(drift_threshold) {}
 
 void CostModel::observe(std::span<const TaskTiming> timings, std::span<const Wait> waits) {
-  const std::vector<Measurement> measured = task_costs(timings, costs_.devices);
+  const std::vector<Measurement> measured = task_costs(timings, costs_.devices, waits);
   refit_costs(costs_, measured);
   refit_latency(links_, timings, waits, costs_.tasks);
 }

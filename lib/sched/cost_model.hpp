@@ -14,11 +14,14 @@
 
 namespace atssim::sched {
 
-// What each task of a recorded substep cost its device: from the later of
-// its start and the end of the device's previous task, to its end (so a
-// wait for another device is not the task's cost). `timings` are in the
-// order the tasks ran on each device.
-std::vector<Measurement> task_costs(std::span<const TaskTiming> timings, std::size_t devices);
+// What each task of a recorded substep cost its device: from the end of the
+// device's previous task to its own end, so the gap an executor leaves
+// between two tasks (a launch on an in-order queue) is part of the cost, as
+// pre-profiling measures it; but a task that waited for another device
+// (`waits`) counts from its start, since that wait is not its cost.
+// `timings` are in the order the tasks ran on each device.
+std::vector<Measurement> task_costs(std::span<const TaskTiming> timings, std::size_t devices,
+                                    std::span<const Wait> waits = {});
 
 // Largest relative change of a device's total cost of the substep: single
 // tasks are noisy (a few µs), a device's total is what HEFT balances.

@@ -24,13 +24,17 @@ TEST_CASE("balanced fractions stay put while the devices are within the toleranc
 }
 
 TEST_CASE("a task's cost is its device's time from the end of the task before it there") {
-  const std::vector<TaskTiming> timings{{0, 0, 0.0, 1.0}, {1, 1, 0.5, 2.0}, {2, 0, 3.0, 4.0}, {3, 0, 3.5, 5.0}};
-  const auto m = task_costs(timings, 2);
-  REQUIRE(m.size() == 4);
-  CHECK(m[0].ms == Approx(1.0));
+  const std::vector<TaskTiming> timings{
+      {0, 0, 0.0, 1.0}, {1, 1, 0.5, 2.0}, {2, 0, 3.0, 4.0}, {3, 0, 4.25, 5.0}, {4, 0, 5.5, 6.0}};
+  // Task 2 waited for task 1 on device 1; the others only for their queue.
+  const std::vector<Wait> waits{{1, 1, 2, 0}};
+  const auto m = task_costs(timings, 2, waits);
+  REQUIRE(m.size() == 5);
+  CHECK(m[0].ms == Approx(1.0));  // the first on its device: from its start
   CHECK(m[1].ms == Approx(1.5));
   CHECK(m[2].ms == Approx(1.0));  // the wait for another device is not its cost
-  CHECK(m[3].ms == Approx(1.0));  // it could start only when task 2 ended
+  CHECK(m[3].ms == Approx(1.0));  // the launch gap after task 2 is
+  CHECK(m[4].ms == Approx(1.0));
 }
 
 TEST_CASE("without task timings each device's costs scale to its measured launch") {
