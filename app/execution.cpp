@@ -67,6 +67,7 @@ device::ExecutorOptions executor_options(const ExecutionOptions& o) {
   x.kind = o.executor;
   x.svm = o.svm;
   x.wait_timeout_s = o.wait_timeout_s;
+  x.task_clock = o.task_clock;
   return x;
 }
 

@@ -102,6 +102,40 @@ TEST_CASE("the fused executor times every task of a recorded substep on one cloc
   }
 }
 
+TEST_CASE("without a task clock the fused executor times launches, and its costs follow them", "[fused]") {
+  const auto scene = scene::parse_scene(test::hanging_cloth_yaml(12), "s.yaml", ".");
+  const plan::SubstepPlan plan = app::substep_plan_for(scene);
+  const auto devices = device::DeviceSet::open("cpu/2");
+  app::ExecutionOptions options;
+  options.mode = app::ScheduleMode::split;
+  options.executor = device::ExecutorKind::fused;
+  options.task_clock = false;
+  options.profile_repetitions = 2;
+  app::Execution e = app::prepare_execution(devices, plan, options);
+  REQUIRE_FALSE(e.executor->has_task_clock());
+  for (std::size_t t = 0; t < e.plan().graph.size(); ++t) CHECK(e.costs.costs().at(t, 0) > 0.0);
+  e.executor->run_substeps(4, true);
+  const app::FrameMeasurement m = app::refit_and_reschedule(e, options);
+  CHECK(m.timings.empty());
+  const auto launches = e.executor->launches();
+  REQUIRE(launches.size() == 2);
+  for (const auto& l : launches) {
+    CHECK(l.substeps == 4);
+    CHECK(l.ms > 0.0);
+  }
+  CHECK(m.makespan_ms > 0.0);
+  // The same bits as with the clock: timing does not touch the simulation.
+  e.executor->run_substeps(2);
+  std::vector<float> without;
+  e.executor->read_positions(without);
+  options.task_clock = true;
+  app::Execution with_clock = app::prepare_execution(devices, plan, options);
+  with_clock.executor->run_substeps(6);
+  std::vector<float> with;
+  with_clock.executor->read_positions(with);
+  CHECK(with == without);
+}
+
 TEST_CASE("an executor refuses a launch of a task function its program does not declare", "[fused]") {
   const auto scene = scene::parse_scene(test::hanging_cloth_yaml(6), "s.yaml", ".");
   plan::SubstepPlan plan = app::substep_plan_for(scene);
