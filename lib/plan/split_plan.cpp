@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <numeric>
+#include <string_view>
 
 #include <fmt/format.h>
 
@@ -45,13 +46,21 @@ std::vector<double> recut_plan(SubstepPlan& plan, std::span<const double> fracti
   check_fractions(fractions);
   const std::size_t n = fractions.size();
   std::vector<double> share(plan.graph.size(), 1.0);
-  // split_plan adds the parts of one task as consecutive ids 0, 1, …
+  // split_plan adds the parts of one task as consecutive ids 0 … n−1, named
+  // "<task>#<part>".
+  const auto base = [&](sched::TaskId t) {
+    const std::string& name = plan.graph.task(t).name;
+    return std::string_view(name).substr(0, name.rfind('#'));
+  };
   for (sched::TaskId t = 0; t + n <= plan.graph.size(); ++t) {
     bool whole_group = true;
-    for (std::size_t p = 0; p < n; ++p) whole_group = whole_group && plan.graph.task(t + p).part == static_cast<int>(p);
+    for (std::size_t p = 0; p < n && whole_group; ++p) {
+      whole_group = plan.graph.task(t + p).part == static_cast<int>(p) && base(t + p) == base(t) &&
+                    plan.launches[t + p].size() == 1;
+    }
     if (!whole_group) continue;
-    const std::int32_t first = plan.launches[t].at(0).range.first;
-    const Range& last = plan.launches[t + n - 1].at(0).range;
+    const std::int32_t first = plan.launches[t][0].range.first;
+    const Range& last = plan.launches[t + n - 1][0].range;
     const std::int32_t count = last.first + last.count - first;
     const auto ranges = part_ranges(count, fractions, granule);
     for (std::size_t p = 0; p < n; ++p) {
@@ -81,9 +90,10 @@ SubstepPlan split_plan(const SubstepPlan& plan, std::span<const double> fraction
     } else {
       const KernelLaunch& whole = launches[0];
       const auto ranges = part_ranges(whole.range.count, fractions, granule);
+      // Every part is kept, an empty one too (it runs nothing), so that each
+      // split task has one part per fraction and recut_plan can move the cut.
       for (std::size_t p = 0; p < ranges.size(); ++p) {
         const auto [b, e] = ranges[p];
-        if (e <= b) continue;
         KernelLaunch piece = whole;
         piece.range = {whole.range.first + b, e - b};
         sched::Task named = task;
@@ -91,8 +101,6 @@ SubstepPlan split_plan(const SubstepPlan& plan, std::span<const double> fraction
         named.part = static_cast<int>(p);
         parts[t].push_back(out.add_task(std::move(named), {std::move(piece)}));
       }
-      // Nothing to cut (no elements): keep the task so the dependency chain holds.
-      if (parts[t].empty()) parts[t].push_back(out.add_task(task, launches));
     }
     for (const sched::Edge& edge : plan.graph.predecessors(t)) {
       for (sched::TaskId from : parts[edge.from]) {

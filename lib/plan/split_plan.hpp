@@ -18,10 +18,9 @@ SubstepPlan split_plan(const SubstepPlan& plan, std::span<const double> fraction
 
 // Moves the boundaries between the parts of a split plan to `fractions`
 // (one per part), as split_plan would have cut: the tasks, their devices and
-// edges stay; only the parts' ranges change (a part may become empty). A
-// task whose parts split_plan dropped (they would have been empty) keeps its
-// ranges. Returns the new share of every task, per task id: its elements
-// over the elements of its whole (1 for tasks that are not parts).
+// edges stay; only the parts' ranges change (a part may become empty).
+// Returns the new share of every task, per task id: its elements over the
+// elements of its whole (1 for tasks that are not parts).
 std::vector<double> recut_plan(SubstepPlan& plan, std::span<const double> fractions, std::size_t granule = 64);
 
 }  // namespace atssim::plan

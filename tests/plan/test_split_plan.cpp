@@ -113,3 +113,16 @@ TEST_CASE("recut moves the boundaries between parts and keeps every element cove
     CHECK(split.launches[t][0].range.count == again.launches[t][0].range.count);
   }
 }
+
+TEST_CASE("a block smaller than a granule still gets one part per fraction, the empty one running nothing") {
+  const auto plan = cloth_plan();
+  const std::vector<double> halves{0.5, 0.5};
+  const auto split = plan::split_plan(plan, halves, 1 << 20);  // every block smaller than the granule
+  std::size_t cut = 0;
+  for (sched::TaskId t = 0; t < plan.graph.size(); ++t) cut += plan.launches[t].size() == 1 ? 1 : 0;
+  CHECK(split.graph.size() == plan.graph.size() + cut);
+  for (sched::TaskId t = 0; t < split.graph.size(); ++t) {
+    if (split.graph.task(t).part == 0) CHECK(split.launches[t][0].range.count == 0);
+  }
+  CHECK(coverage(split) == coverage(plan));
+}
