@@ -19,6 +19,7 @@ struct RunArgs {
   std::string devices;
   std::string schedule;
   std::string executor;
+  std::string memory;
   std::vector<std::string> sets;
   bool quiet = false;
   std::string svm;
@@ -46,6 +47,10 @@ Action add_run_command(CLI::App& cli, const std::string& command_line) {
   cmd->add_option("--executor", args->executor,
                   "How devices run the schedule: auto (fused where SVM atomics allow), fused, events")
       ->check(CLI::IsMember({"auto", "fused", "events"}));
+  cmd->add_option("--memory", args->memory,
+                  "shared (a platform's devices share SVM) or separate (every device its own memory, copies "
+                  "through the host)")
+      ->check(CLI::IsMember({"shared", "separate"}));
   cmd->add_option("--set", args->sets, "Override a scene key, e.g. --set simulation.substeps=32 (repeatable)");
   cmd->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
   cmd->add_option("--svm", args->svm, "Shared virtual memory: auto (fine grain when offered) or coarse")
@@ -61,6 +66,7 @@ Action add_run_command(CLI::App& cli, const std::string& command_line) {
     if (!args->devices.empty()) options.overrides.push_back("devices=" + args->devices);
     if (!args->schedule.empty()) options.overrides.push_back("solver.schedule=" + args->schedule);
     if (!args->executor.empty()) options.overrides.push_back("solver.executor=" + args->executor);
+    if (!args->memory.empty()) options.overrides.push_back("memory=" + args->memory);
 
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);

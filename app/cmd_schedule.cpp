@@ -17,7 +17,7 @@ namespace atssim::app {
 namespace {
 
 struct ScheduleArgs {
-  std::string scene, devices, schedule, executor, costs;
+  std::string scene, devices, schedule, executor, memory, costs;
   std::vector<std::string> sets;
   bool json = false, dot = false, csv = false;
 };
@@ -116,6 +116,10 @@ Action add_schedule_command(CLI::App& cli) {
   cmd->add_option("--schedule", args->schedule, "single, split or heft (default: the scene's solver.schedule)");
   cmd->add_option("--executor", args->executor, "auto, fused or events (default: the scene's solver.executor)")
       ->check(CLI::IsMember({"auto", "fused", "events"}));
+  cmd->add_option("--memory", args->memory,
+                  "shared (a platform's devices share SVM) or separate (every device its own memory, copies "
+                  "through the host)")
+      ->check(CLI::IsMember({"shared", "separate"}));
   cmd->add_option("--costs", args->costs, "Cost table CSV (as --csv prints it) instead of profiling the devices");
   cmd->add_option("--set", args->sets, "Override a scene key (repeatable)");
   auto* json = cmd->add_flag("--json", args->json, "Print JSON");
@@ -128,6 +132,7 @@ Action add_schedule_command(CLI::App& cli) {
     if (!args->devices.empty()) overrides.push_back("devices=" + args->devices);
     if (!args->schedule.empty()) overrides.push_back("solver.schedule=" + args->schedule);
     if (!args->executor.empty()) overrides.push_back("solver.executor=" + args->executor);
+    if (!args->memory.empty()) overrides.push_back("memory=" + args->memory);
     const scene::SceneDesc scene = load_scene(args->scene, overrides);
     const ScheduleMode mode = parse_schedule_mode(scene.solver.schedule);
     const plan::SubstepPlan base = substep_plan_for(scene);
@@ -140,7 +145,7 @@ Action add_schedule_command(CLI::App& cli) {
       const auto file = io::read_cost_file(args->costs, cut_for_mode(base, mode, columns).graph);
       planned = schedule_from_costs(base, mode, file.costs, file.latency_ms);
     } else {
-      const device::DeviceSet devices = device::DeviceSet::open(scene.devices);
+      const device::DeviceSet devices = device::DeviceSet::open(scene.devices, device::parse_memory_mode(scene.memory));
       Execution e = prepare_execution(devices, base, execution_options(scene));
       planned.plan = e.plan();
       planned.costs = e.costs.costs();

@@ -77,7 +77,7 @@ io::ConvergenceResult run_convergence(const ConvergeOptions& o) {
   for (const std::string& method : o.methods) solver::check_scene(scene, solver::method(method));
   const auto& sim = scene.simulation;
   const double h = sim.frame_dt / sim.substeps;
-  const device::DeviceSet devices = device::DeviceSet::open(scene.devices);
+  const device::DeviceSet devices = device::DeviceSet::open(scene.devices, device::parse_memory_mode(scene.memory));
 
   // The state after `frames_before` frames of the scene's own method
   // (solver.method), on one device.

@@ -171,6 +171,7 @@ ExecutionOptions execution_options(const scene::SceneDesc& scene) {
   ExecutionOptions o;
   o.mode = parse_schedule_mode(scene.solver.schedule);
   o.executor = device::parse_executor_kind(scene.solver.executor);
+  o.memory = device::parse_memory_mode(scene.memory);
   o.wait_timeout_s = scene.solver.wait_timeout_s;
   o.async_depth = scene.solver.async_depth;
   o.merge = plan::parse_merge_strategy(scene.solver.merge);
@@ -317,8 +318,10 @@ void rebalance_split(Execution& e) {
 
 FrameMeasurement refit_and_reschedule(Execution& e, const ExecutionOptions& options) {
   FrameMeasurement m = measure_frame(e);
+  m.bytes_moved = e.executor->take_bytes_moved();
   if (!m.timings.empty()) {
     e.costs.observe(m.timings, e.waits);
+    e.costs.observe_copies(e.executor->copies());
   } else {
     e.costs.observe_launches(e.schedule, e.executor->launches());
   }

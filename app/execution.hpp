@@ -31,6 +31,7 @@ std::string to_string(ScheduleMode mode);
 struct ExecutionOptions {
   ScheduleMode mode = ScheduleMode::single;
   device::ExecutorKind executor = device::ExecutorKind::automatic;
+  device::MemoryMode memory = device::MemoryMode::shared;  // which DeviceSet to open (devices of the scene)
   device::SvmMode svm = device::SvmMode::automatic;
   double wait_timeout_s = 10.0;  // fused: a run without progress this long fails
   bool task_clock = true;        // fused: time tasks by the device cycle counter (false: whole launches only)
@@ -99,6 +100,7 @@ void replay_on_one_device(Execution& execution);
 struct FrameMeasurement {
   std::vector<sched::TaskTiming> timings;
   double makespan_ms = 0.0;
+  std::size_t bytes_moved = 0;  // copied between memories by the frame (devices that share none)
 };
 
 // What the last recorded run_substeps() measured.

@@ -116,7 +116,7 @@ RunResult run_simulation(const RunOptions& options, const std::function<void(con
   const scene::SceneDesc scene = load_scene(options.scene_path, options.overrides);
   const solver::MethodDescription& method = solver::method(scene.solver.method);
   const solver::MethodSettings settings = solver::method_settings(scene, method);
-  const device::DeviceSet devices = device::DeviceSet::open(scene.devices);
+  const device::DeviceSet devices = device::DeviceSet::open(scene.devices, device::parse_memory_mode(scene.memory));
   const auto& sim = scene.simulation;
 
   // Each stage's data is released once the next holds it, so the peak memory

@@ -69,7 +69,7 @@ CycleClock host_tsc_clock(int ms) {
 std::vector<CycleClock> calibrate(const DeviceSet::Impl& set, SvmArena& arena) {
   cl::Program program;
   try {
-    program = build_program(set.context, set.devices, "clock_probe", "-cl-std=CL2.0");
+    program = build_program(set.contexts.at(0), set.devices, "clock_probe", "-cl-std=CL2.0");
   } catch (const Error&) {
     return {};  // no cycle counter in this compiler
   }

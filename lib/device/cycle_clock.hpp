@@ -21,7 +21,8 @@ struct CycleClock {
 // time-stamp counter (pocl's CPU devices on x86), the host calibrates it
 // and all share that line, so their stamps compare exactly; else each device
 // gets a two-point calibration from its launches, shared by devices whose
-// readings fit one line. Measured once per set and process (~20 ms).
+// readings fit one line. Measured once per set and process (~20 ms). For a
+// set of one memory (the fused executor's).
 const std::vector<CycleClock>& cycle_clocks(const DeviceSet::Impl& set, SvmArena& arena);
 
 // Host steady clock in ms.

@@ -30,9 +30,9 @@ std::string svm_text(const SvmCaps& caps) {
 
 std::string describe(const DeviceInfo& d) {
   std::string split = d.max_sub_devices >= 2 ? fmt::format(", splits into ≤{}", d.max_sub_devices) : "";
-  return fmt::format("{}: {} [{}] — {}, {} compute units, {:.1f} GiB, {}, {}, SVM {}{}", d.index, d.name, d.platform,
-                     d.type, d.compute_units, d.global_memory / double(1 << 30), d.version, d.c_version,
-                     svm_text(d.svm), split);
+  return fmt::format("{} ({}:{}): {} [{}] — {}, {} compute units, {:.1f} GiB, {}, {}, SVM {}{}", d.index,
+                     d.platform_index, d.platform_device, d.name, d.platform, d.type, d.compute_units,
+                     d.global_memory / double(1 << 30), d.version, d.c_version, svm_text(d.svm), split);
 }
 
 }  // namespace atssim::device

@@ -16,6 +16,7 @@ struct SvmCaps {
 struct DeviceInfo {
   int index = -1;  // position in list_devices()
   int platform_index = -1;
+  int platform_device = -1;  // index within its platform (the D of a "P:D" spec)
   std::string platform;
   std::string name;
   std::string vendor;

@@ -80,9 +80,10 @@ std::vector<DeviceHandle> all_device_handles() {
     if (clGetDeviceIDs(ids[p], CL_DEVICE_TYPE_ALL, 0, nullptr, &n) != CL_SUCCESS || n == 0) continue;
     std::vector<cl_device_id> devs(n);
     clGetDeviceIDs(ids[p], CL_DEVICE_TYPE_ALL, n, devs.data(), nullptr);
-    for (cl_device_id id : devs) {
-      cl::Device d(id, true);
+    for (cl_uint k = 0; k < n; ++k) {
+      cl::Device d(devs[k], true);
       out.push_back({d, query_info(d, static_cast<int>(out.size()), static_cast<int>(p), pname)});
+      out.back().info.platform_device = static_cast<int>(k);
     }
   }
   return out;

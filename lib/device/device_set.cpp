@@ -57,10 +57,22 @@ std::vector<const DeviceHandle*> pick(const std::string& selector, const std::st
     if (h == nullptr) bad_spec(spec, fmt::format("no {} device", selector), all);
     return {h};
   }
-  if (!selector.empty() && std::all_of(selector.begin(), selector.end(), ::isdigit)) {
+  const auto is_number = [](const std::string& t) {
+    return !t.empty() && t.size() < 9 && std::all_of(t.begin(), t.end(), ::isdigit);
+  };
+  if (is_number(selector)) {
     const std::size_t index = std::stoul(selector);
     if (index >= all.size()) bad_spec(spec, fmt::format("there is no device {}", index), all);
     return {&all[index]};
+  }
+  if (const auto colon = selector.find(':'); colon != std::string::npos) {
+    const std::string p = selector.substr(0, colon), d = selector.substr(colon + 1);
+    if (is_number(p) && is_number(d)) {
+      for (const auto& h : all) {
+        if (h.info.platform_index == std::stoi(p) && h.info.platform_device == std::stoi(d)) return {&h};
+      }
+      bad_spec(spec, fmt::format("platform {} has no device {}", p, d), all);
+    }
   }
   bad_spec(spec, fmt::format("'{}' is not a device", selector), all);
 }
@@ -75,30 +87,41 @@ DeviceSet::~DeviceSet() = default;
 std::size_t DeviceSet::size() const { return impl_->devices.size(); }
 const DeviceInfo& DeviceSet::info(std::size_t i) const { return impl_->infos.at(i); }
 const std::vector<DeviceInfo>& DeviceSet::infos() const { return impl_->infos; }
+std::size_t DeviceSet::memories() const { return impl_->contexts.size(); }
+std::size_t DeviceSet::memory_of(std::size_t device) const { return impl_->memory_of.at(device); }
 bool DeviceSet::fine_grain_svm() const {
   return std::all_of(impl_->infos.begin(), impl_->infos.end(), [](const DeviceInfo& d) { return d.svm.fine_buffer; });
 }
 
 namespace {
 
-std::shared_ptr<DeviceSet::Impl> open_impl(const std::string& spec_in);
+std::shared_ptr<DeviceSet::Impl> open_impl(const std::string& spec_in, MemoryMode memory);
 
 }  // namespace
 
-DeviceSet DeviceSet::open(const std::string& spec_in) {
+MemoryMode parse_memory_mode(const std::string& text) {
+  if (text == "shared") return MemoryMode::shared;
+  if (text == "separate") return MemoryMode::separate;
+  throw input_error(
+      fmt::format("unknown memory mode '{}'; use shared (the devices of one platform share SVM) or "
+                  "separate (every device its own memory, copies through the host)",
+                  text));
+}
+
+DeviceSet DeviceSet::open(const std::string& spec_in, MemoryMode memory) {
   // Leaked on purpose: never destroyed, so never torn down (see the header).
-  static auto* cache = new std::map<std::string, std::shared_ptr<Impl>>();
+  static auto* cache = new std::map<std::pair<std::string, MemoryMode>, std::shared_ptr<Impl>>();
   static std::mutex mutex;
   const std::lock_guard<std::mutex> lock(mutex);
   const std::string spec = spec_in.empty() ? "default" : spec_in;
-  auto it = cache->find(spec);
-  if (it == cache->end()) it = cache->emplace(spec, open_impl(spec)).first;
+  auto it = cache->find({spec, memory});
+  if (it == cache->end()) it = cache->emplace(std::make_pair(spec, memory), open_impl(spec, memory)).first;
   return DeviceSet(it->second);
 }
 
 namespace {
 
-std::shared_ptr<DeviceSet::Impl> open_impl(const std::string& spec_in) {
+std::shared_ptr<DeviceSet::Impl> open_impl(const std::string& spec_in, MemoryMode memory) {
   const std::vector<DeviceHandle> all = all_device_handles();
   if (all.empty()) {
     throw runtime_error(
@@ -112,7 +135,9 @@ std::shared_ptr<DeviceSet::Impl> open_impl(const std::string& spec_in) {
     std::string selector = item;
     int split = 0;
     int only = -1;  // "cpu/2:1": just sub-device 1 of the two
-    if (const auto colon = item.find(':'); colon != std::string::npos) {
+    // "SEL/K:i" (a sub-device); a "P:D" without '/' is a platform and device.
+    if (const auto colon = item.rfind(':'), slash = item.find('/');
+        colon != std::string::npos && slash != std::string::npos && colon > slash) {
       const std::string index = item.substr(colon + 1);
       if (index.empty() || !std::all_of(index.begin(), index.end(), ::isdigit)) {
         bad_spec(spec, fmt::format("'{}' must end in a sub-device index, as in cpu/2:1", item), all);
@@ -169,12 +194,6 @@ std::shared_ptr<DeviceSet::Impl> open_impl(const std::string& spec_in) {
   }
   if (impl->devices.empty()) bad_spec(spec, "it selects no device", all);
   for (const DeviceInfo& d : impl->infos) {
-    if (d.platform_index != impl->infos.front().platform_index) {
-      bad_spec(spec,
-               fmt::format("devices of different platforms ('{}' and '{}') cannot share SVM memory",
-                           impl->infos.front().platform, d.platform),
-               all);
-    }
     if (!d.svm.coarse_buffer && !d.svm.fine_buffer) {
       throw runtime_error(
           fmt::format("device {} ({}) has no shared virtual memory (SVM); atssim needs OpenCL 2.0+ "
@@ -182,10 +201,33 @@ std::shared_ptr<DeviceSet::Impl> open_impl(const std::string& spec_in) {
                       d.index, d.name));
     }
   }
+  // One context per platform (its devices share SVM), or per device.
+  std::vector<int> context_key;  // platform index, or device position with separate memories
+  for (std::size_t d = 0; d < impl->devices.size(); ++d) {
+    const int key = memory == MemoryMode::separate ? static_cast<int>(d) : impl->infos[d].platform_index;
+    auto at = std::find(context_key.begin(), context_key.end(), key);
+    if (at == context_key.end()) {
+      context_key.push_back(key);
+      at = context_key.end() - 1;
+    }
+    impl->memory_of.push_back(static_cast<std::size_t>(at - context_key.begin()));
+  }
+  if (context_key.size() > 1) {
+    // Copies go between whole memories: a memory shared by two devices
+    // beside another memory is not supported (use one device per platform).
+    for (std::size_t c = 0; c < context_key.size(); ++c) {
+      if (impl->devices_of(c).size() > 1) {
+        bad_spec(spec,
+                 "with devices of several platforms (or separate memories) each platform may contribute one "
+                 "device; select one device per platform, e.g. --devices 0:0,1:0",
+                 all);
+      }
+    }
+  }
   try {
-    impl->context = cl::Context(impl->devices);
-    for (const cl::Device& d : impl->devices) {
-      impl->queues.emplace_back(impl->context, d, CL_QUEUE_PROFILING_ENABLE);
+    for (std::size_t c = 0; c < context_key.size(); ++c) impl->contexts.emplace_back(impl->devices_of(c));
+    for (std::size_t d = 0; d < impl->devices.size(); ++d) {
+      impl->queues.emplace_back(impl->context_of(d), impl->devices[d], CL_QUEUE_PROFILING_ENABLE);
     }
   } catch (const cl::Error& e) {
     throw runtime_error(fmt::format("creating the OpenCL context: {} in {}", cl_error_name(e.err()), e.what()));

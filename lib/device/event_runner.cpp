@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "device/memory_copies.hpp"
 #include "device/program_builder.hpp"
 #include "util/error.hpp"
 
@@ -65,9 +66,14 @@ double event_ns(cl_event e, cl_profiling_info what) {
 struct EventRunner::Impl {
   const PlanResources& r;
   std::size_t local;
-  std::vector<std::vector<PreparedLaunch>> launches;  // per task
+  std::vector<std::vector<std::vector<PreparedLaunch>>> launches;  // per memory, per task
   std::vector<QueuedStep> steps;
   std::size_t devices_used = 1;
+  // Devices with memories of their own: the copies between them, and what
+  // each device's first step of the next substep waits for.
+  std::unique_ptr<MemoryCopies> copies;
+  std::vector<std::vector<cl_event>> barrier;
+  std::size_t bytes_moved = 0;  // by the last enqueue()
 
   // Recording: first-launch start and last-launch end events per task.
   EventList record_start, record_end;
@@ -80,26 +86,29 @@ struct EventRunner::Impl {
   std::vector<cl_event> graveyard;
 
   Impl(const PlanResources& resources, std::size_t local_size) : r(resources), local(local_size) {
-    launches.resize(r.plan.graph.size());
-    for (sched::TaskId id = 0; id < r.plan.graph.size(); ++id) {
-      for (const plan::KernelLaunch& launch : r.plan.launches.at(id)) {
-        if (launch.range.count > 0) launches[id].push_back(prepare(launch));
+    launches.resize(r.set.contexts.size());
+    for (std::size_t m = 0; m < launches.size(); ++m) {
+      launches[m].resize(r.plan.graph.size());
+      for (sched::TaskId id = 0; id < r.plan.graph.size(); ++id) {
+        for (const plan::KernelLaunch& launch : r.plan.launches.at(id)) {
+          if (launch.range.count > 0) launches[m][id].push_back(prepare(launch, m));
+        }
       }
     }
     last_on_device.resize(r.set.devices.size());
   }
 
-  PreparedLaunch prepare(const plan::KernelLaunch& launch) {
+  PreparedLaunch prepare(const plan::KernelLaunch& launch, std::size_t memory) {
     cl_int err = CL_SUCCESS;
     const std::string name = "ats_k_" + launch.function;
-    cl::Kernel kernel(r.program, name.c_str(), &err);
+    cl::Kernel kernel(r.programs.at(memory), name.c_str(), &err);
     check_cl(err, fmt::format("creating kernel '{}'", name).c_str());
     cl_uint i = 0;
     for (const plan::KernelArg& a : launch.args) {
       cl_int rc = CL_SUCCESS;
       switch (a.kind) {
         case plan::KernelArg::Kind::buffer:
-          rc = clSetKernelArgSVMPointer(kernel(), i, r.buffers.at(a.buffer));
+          rc = clSetKernelArgSVMPointer(kernel(), i, r.buffers.at(memory).at(a.buffer));
           break;
         case plan::KernelArg::Kind::i32:
           rc = clSetKernelArg(kernel(), i, sizeof(cl_int), &a.i32);
@@ -135,6 +144,14 @@ struct EventRunner::Impl {
       if (!seen[s.device]) ++devices_used;
       seen[s.device] = 1;
     }
+    copies.reset();
+    barrier.assign(r.set.devices.size(), {});
+    if (!r.set.one_memory()) {
+      // Every dependency between devices goes through MemoryCopies.
+      for (QueuedStep& s : steps) s.event_needed = false;
+      copies = std::make_unique<MemoryCopies>(r, new_steps);
+      return;
+    }
     // With several queues, each queue's last task ends the substep for the others.
     if (devices_used > 1) {
       std::vector<char> last(r.set.devices.size(), 0);
@@ -145,7 +162,69 @@ struct EventRunner::Impl {
     }
   }
 
+  // Devices with memories of their own: kernels in step order, the copies
+  // MemoryCopies plans around them, and its barrier between substeps.
+  void enqueue_substep_separate(bool record) {
+    const auto& graph = r.plan.graph;
+    EventList starts, ends;
+    if (record) {
+      starts.resize(graph.size());
+      ends.resize(graph.size());
+      copies->record_next_substep();
+    }
+    std::vector<cl_event> wait;
+    std::vector<char> started(r.set.devices.size(), 0);
+    for (std::size_t k = 0; k < steps.size(); ++k) {
+      const QueuedStep& step = steps[k];
+      wait.clear();
+      if (!started[step.device]) {
+        wait = barrier[step.device];
+        started[step.device] = 1;
+      }
+      copies->before_step(k, wait);
+      const cl::CommandQueue& queue = r.set.queues[step.device];
+      const auto& task_launches = launches[r.set.memory_of[step.device]][step.task];
+      if (task_launches.empty() || record) {
+        cl_event marker = nullptr;
+        check_cl(clEnqueueMarkerWithWaitList(queue(), static_cast<cl_uint>(wait.size()),
+                                             wait.empty() ? nullptr : wait.data(), record ? &marker : nullptr),
+                 "enqueueing a marker");
+        wait.clear();
+        if (record) starts[step.task] = marker;
+      }
+      for (std::size_t l = 0; l < task_launches.size(); ++l) {
+        cl_event produced = nullptr;
+        const bool last = l + 1 == task_launches.size();
+        check_cl(clEnqueueNDRangeKernel(queue(), task_launches[l].kernel(), 1, nullptr, &task_launches[l].global,
+                                        &local, static_cast<cl_uint>(wait.size()), wait.empty() ? nullptr : wait.data(),
+                                        record && last ? &produced : nullptr),
+                 "enqueueing a kernel");
+        wait.clear();
+        if (record && last) ends[step.task] = produced;
+      }
+      if (record && ends[step.task] == nullptr) {
+        cl_event marker = nullptr;
+        check_cl(clEnqueueMarkerWithWaitList(queue(), 0, nullptr, &marker), "enqueueing a marker");
+        ends[step.task] = marker;
+      }
+      copies->after_step(k);
+    }
+    barrier = copies->end_substep();
+    bytes_moved += copies->take_bytes();
+    if (record) {
+      record_start.swap(starts);
+      record_end.swap(ends);
+      have_record = true;
+    }
+    starts.retire_into(graveyard);
+    ends.retire_into(graveyard);
+  }
+
   void enqueue_substep(bool record) {
+    if (copies) {
+      enqueue_substep_separate(record);
+      return;
+    }
     const auto& graph = r.plan.graph;
     EventList events;
     events.resize(graph.size());
@@ -169,7 +248,7 @@ struct EventRunner::Impl {
         }
       }
       const cl::CommandQueue& queue = r.set.queues[step.device];
-      const auto& task_launches = launches[step.task];
+      const auto& task_launches = launches[0][step.task];
       const bool want_event = step.event_needed || record;
       if (task_launches.empty()) {
         // Nothing to run: a marker keeps the ordering (and the timing) of the graph.
@@ -221,6 +300,10 @@ struct EventRunner::Impl {
     for (const cl::CommandQueue& q : r.set.queues) check_cl(clFinish(q()), "waiting for a device");
     for (cl_event e : graveyard) clReleaseEvent(e);
     graveyard.clear();
+    if (copies) {
+      for (cl_event e : copies->graveyard()) clReleaseEvent(e);
+      copies->graveyard().clear();
+    }
   }
 
   std::vector<sched::TaskTiming> timings() {
@@ -242,11 +325,14 @@ struct EventRunner::Impl {
     return out;
   }
 
-  // Median over `repetitions` of `hop(a, b)`: start of b minus end of a, in ms.
+  // Median over `repetitions` of `hop(a, b)`: start of b minus end of a, in
+  // ms (two devices of one memory, or one device's queue).
   double probe_hops(std::size_t from, std::size_t to, int repetitions, bool same_queue) {
-    const cl::Program probe = build_program(r.set.context, r.set.devices, "probe", language_option(r.set));
+    const std::size_t memory = r.set.memory_of[from];
+    const cl::Program probe =
+        build_program(r.set.contexts[memory], r.set.devices_of(memory), "probe", language_option(r.set));
     cl::Kernel noop(probe, "probe_noop");
-    check_cl(clSetKernelArgSVMPointer(noop(), 0, r.buffers.empty() ? nullptr : r.buffers.front()),
+    check_cl(clSetKernelArgSVMPointer(noop(), 0, r.buffers[memory].empty() ? nullptr : r.buffers[memory].front()),
              "setting the probe's argument");
     finish_all();
     std::vector<double> hops;
@@ -292,7 +378,26 @@ std::vector<sched::TaskTiming> EventRunner::timings() { return impl_->timings();
 void EventRunner::finish() { impl_->finish_all(); }
 
 double EventRunner::latency_ms(std::size_t from, std::size_t to, int repetitions) {
+  if (impl_->r.set.memory_of[from] != impl_->r.set.memory_of[to]) {
+    impl_->finish_all();
+    return measure_link(impl_->r, from, to, repetitions).latency_ms;
+  }
   return impl_->probe_hops(from, to, repetitions, false);
+}
+
+std::size_t EventRunner::take_bytes_moved() {
+  const std::size_t b = impl_->bytes_moved;
+  impl_->bytes_moved = 0;
+  return b;
+}
+
+std::vector<sched::CopyTiming> EventRunner::copies() {
+  impl_->finish_all();
+  return impl_->copies ? impl_->copies->recorded() : std::vector<sched::CopyTiming>{};
+}
+
+const plan::TransferPlan* EventRunner::transfer_plan() const {
+  return impl_->copies ? &impl_->copies->transfers() : nullptr;
 }
 
 double EventRunner::launch_gap_ms(std::size_t device, int repetitions) {

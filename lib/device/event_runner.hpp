@@ -2,7 +2,9 @@
 // The events executor (internal to lib/device): one in-order profiling
 // queue per device, one kernel launch per task launch (the task function's
 // thin kernel ats_k_<name>), event waits only at cross-device edges
-// (DESIGN.md "Devices": the reference way of running a plan).
+// (DESIGN.md "Devices": the reference way of running a plan). Devices with
+// memories of their own wait for each other through the copies of
+// MemoryCopies instead.
 #include <memory>
 #include <vector>
 
@@ -24,6 +26,12 @@ class EventRunner {
   std::vector<sched::TaskTiming> timings();
   void finish();
   double latency_ms(std::size_t from, std::size_t to, int repetitions);
+  // Devices with memories of their own: the bytes copied between them by
+  // the substeps enqueued since the last call, the copies of the last
+  // recorded substep, and the plan they follow (nullptr for one memory).
+  std::size_t take_bytes_moved();
+  std::vector<sched::CopyTiming> copies();
+  const plan::TransferPlan* transfer_plan() const;
   // Median time one empty launch occupies a queue (the launch gap).
   double launch_gap_ms(std::size_t device, int repetitions);
 

@@ -34,8 +34,16 @@ std::string fused_obstacle(const DeviceInfo& d) {
   return "";
 }
 
-ExecutorKind choose_executor(ExecutorKind requested, std::span<const DeviceInfo> devices) {
+ExecutorKind choose_executor(ExecutorKind requested, std::span<const DeviceInfo> devices, std::size_t memories) {
   if (requested == ExecutorKind::events) return ExecutorKind::events;
+  if (memories > 1) {
+    if (requested == ExecutorKind::automatic) return ExecutorKind::events;
+    throw input_error(
+        fmt::format("executor 'fused' synchronises the devices through one shared memory, and these {} "
+                    "devices have {} memories (separate memories, or several platforms); use "
+                    "--executor events",
+                    devices.size(), memories));
+  }
   for (const DeviceInfo& d : devices) {
     const std::string why = fused_obstacle(d);
     if (why.empty()) continue;

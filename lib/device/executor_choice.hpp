@@ -20,9 +20,10 @@ std::string_view to_string(ExecutorKind kind);
 // buffer SVM while they run.
 std::string fused_obstacle(const DeviceInfo& device);
 
-// `automatic` becomes fused when every device can run it, else events;
-// events stays events. Fused asked for where a device cannot run it is an
-// input error naming the device and what it lacks.
-ExecutorKind choose_executor(ExecutorKind requested, std::span<const DeviceInfo> devices);
+// `automatic` becomes fused when every device can run it and all share one
+// memory (`memories` contexts: fused waits are atomics in one SVM), else
+// events; events stays events. Fused asked for where it cannot run is an
+// input error naming the device and what it lacks, or the memories.
+ExecutorKind choose_executor(ExecutorKind requested, std::span<const DeviceInfo> devices, std::size_t memories = 1);
 
 }  // namespace atssim::device

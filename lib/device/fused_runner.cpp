@@ -145,13 +145,13 @@ struct FusedRunner::Impl {
     tables.resize(r.set.devices.size());
     for (DeviceTables& t : tables) {
       cl_int err = CL_SUCCESS;
-      t.kernel = cl::Kernel(r.program, "ats_dispatch", &err);
+      t.kernel = cl::Kernel(r.programs.at(0), "ats_dispatch", &err);
       check_cl(err, fmt::format("creating the dispatcher of program '{}'", r.plan.program).c_str());
       // The task functions reach the plan's buffers through pointers in the
       // argument words, not through kernel arguments.
-      if (!r.buffers.empty()) {
-        check_cl(clSetKernelExecInfo(t.kernel(), CL_KERNEL_EXEC_INFO_SVM_PTRS, r.buffers.size() * sizeof(void*),
-                                     r.buffers.data()),
+      if (!r.buffers.at(0).empty()) {
+        check_cl(clSetKernelExecInfo(t.kernel(), CL_KERNEL_EXEC_INFO_SVM_PTRS, r.buffers[0].size() * sizeof(void*),
+                                     r.buffers[0].data()),
                  "declaring the plan's buffers to the dispatcher");
       }
     }
@@ -246,7 +246,7 @@ struct FusedRunner::Impl {
           const plan::KernelLaunch& launch = task_launches[l];
           t.launches.push_back(
               {r.functions[task][l], launch.range.first, launch.range.count, static_cast<int>(t.args.size())});
-          for (const plan::KernelArg& a : launch.args) t.args.push_back(word_of(a, r.buffers));
+          for (const plan::KernelArg& a : launch.args) t.args.push_back(word_of(a, r.buffers[0]));
         }
         if (task_launches.empty()) t.launches.push_back({0, 0, 0, 0});  // counts as done, runs nothing
         slot.launch_count = launch_count(task);
@@ -453,7 +453,7 @@ ProbeRun run_probe(const DeviceSet::Impl& set, const std::vector<std::size_t>& d
 }
 
 cl::Program probe_program(const DeviceSet::Impl& set) {
-  return build_program(set.context, set.devices, "probe", language_option(set));
+  return build_program(set.contexts.at(0), set.devices, "probe", language_option(set));
 }
 
 // Ms per hop of `hops` handshakes between `from` and `to` (the fastest of

@@ -1,5 +1,6 @@
 #pragma once
-// The fused executor (internal to lib/device; DESIGN.md "Devices"): per
+// The fused executor (internal to lib/device; DESIGN.md "Devices"): for a
+// set whose devices share one memory (one context), per
 // device one launch of the program's dispatcher (kernels/device/dispatch.cl)
 // per run, which walks the device's slots for every substep and waits
 // through completion counters in fine-grain SVM. The host only starts the

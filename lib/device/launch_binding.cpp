@@ -73,4 +73,21 @@ std::vector<std::vector<int>> bind_launches(const plan::SubstepPlan& plan) {
   return out;
 }
 
+std::vector<plan::ElementSets> written_by_task(const plan::SubstepPlan& plan,
+                                               std::span<const std::size_t> buffer_bytes) {
+  const auto tasks = kernels::program_tasks(plan.program);
+  std::vector<plan::ElementSets> out(plan.graph.size());
+  for (sched::TaskId t = 0; t < plan.graph.size(); ++t) {
+    for (const plan::KernelLaunch& launch : plan.launches[t]) {
+      std::vector<char> writable(launch.args.size(), 1);  // an undeclared function: assume it writes everything
+      for (const auto& sig : tasks) {
+        if (sig.name != launch.function) continue;
+        for (std::size_t a = 0; a < writable.size() && a < sig.access.size(); ++a) writable[a] = sig.access[a] == 'w';
+      }
+      out[t].add(plan::written_elements(launch, writable, buffer_bytes));
+    }
+  }
+  return out;
+}
+
 }  // namespace atssim::device

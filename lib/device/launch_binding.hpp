@@ -5,6 +5,7 @@
 // (internal to lib/device).
 #include <vector>
 
+#include "plan/element_sets.hpp"
 #include "plan/substep_plan.hpp"
 
 namespace atssim::device {
@@ -12,5 +13,10 @@ namespace atssim::device {
 // Per task, per launch: the function's case in the program's dispatcher.
 // Throws atssim::Error (runtime: a bug in the solver, not in the input).
 std::vector<std::vector<int>> bind_launches(const plan::SubstepPlan& plan);
+
+// Per task, the bytes its launches write (plan::written_ranges, with the
+// writable arguments from the functions' declarations: non-const pointers).
+std::vector<plan::ElementSets> written_by_task(const plan::SubstepPlan& plan,
+                                               std::span<const std::size_t> buffer_bytes);
 
 }  // namespace atssim::device

@@ -11,6 +11,7 @@
 #include "device/event_runner.hpp"
 #include "device/fused_runner.hpp"
 #include "device/launch_binding.hpp"
+#include "device/memory_copies.hpp"
 #include "device/program_builder.hpp"
 #include "device/svm_arena.hpp"
 #include "plan/split_plan.hpp"
@@ -32,13 +33,17 @@ bool use_fine_grain(const DeviceSet& devices, const ExecutorOptions& o, Executor
   return o.svm == SvmMode::fine || (o.svm == SvmMode::automatic && devices.fine_grain_svm());
 }
 
-// Whether the devices run the dispatcher's waits: probed once per set.
-const std::string& concurrency_problem(const DeviceSet::Impl& set, SvmArena& arena, double timeout_s) {
+// Whether the devices run the dispatcher's waits: probed once per set. The
+// probe's own limit is not the run's wait timeout (a short one would fail
+// the probe on a loaded machine, where a spinning partner is descheduled for
+// whole time slices); it is only paid where the devices really cannot meet.
+const std::string& concurrency_problem(const DeviceSet::Impl& set, SvmArena& arena) {
+  constexpr double probe_timeout_s = 2.0;
   static auto* cache = new std::map<const DeviceSet::Impl*, std::string>();
   static std::mutex mutex;
   const std::lock_guard<std::mutex> lock(mutex);
   auto it = cache->find(&set);
-  if (it == cache->end()) it = cache->emplace(&set, check_concurrency(set, arena, std::min(timeout_s, 2.0))).first;
+  if (it == cache->end()) it = cache->emplace(&set, check_concurrency(set, arena, probe_timeout_s)).first;
   return it->second;
 }
 
@@ -49,8 +54,8 @@ struct PlanExecutor::Impl {
   plan::SubstepPlan plan;
   ExecutorOptions options;
   ExecutorKind kind;
-  SvmArena arena;       // the plan's buffers
-  SvmArena sync_arena;  // fused: counters and records (fine grain, atomics)
+  std::vector<std::unique_ptr<SvmArena>> arenas;  // per memory: the plan's buffers
+  SvmArena sync_arena;                            // fused: counters and records (fine grain, atomics)
   PlanResources resources;
   std::vector<Step> steps;
   std::unique_ptr<EventRunner> events;  // created when first needed
@@ -61,19 +66,20 @@ struct PlanExecutor::Impl {
       : set(devices.impl()),
         plan(std::move(p)),
         options(o),
-        kind(choose_executor(o.kind, devices.infos())),
-        arena(devices.impl().context, use_fine_grain(devices, o, kind)),
-        sync_arena(devices.impl().context, true, true),
-        resources{devices.impl(), plan, {}, {}, {}, {}} {
+        kind(choose_executor(o.kind, devices.infos(), devices.memories())),
+        sync_arena(devices.impl().contexts.at(0), true, true),
+        resources{devices.impl(), plan, {}, {}, {}, {}, {}} {
     if (options.device >= set.devices.size()) {
       throw Error(fmt::format("executor: device {} is not in the set of {}", options.device, set.devices.size()));
     }
-    if (arena.fine_grain() && !devices.fine_grain_svm()) {
+    const bool fine = use_fine_grain(devices, o, kind);
+    if (fine && !devices.fine_grain_svm()) {
       throw input_error("fine-grain SVM was asked for but a device does not offer it; use --svm coarse");
     }
+    for (const cl::Context& c : set.contexts) arenas.push_back(std::make_unique<SvmArena>(c, fine));
     resources.functions = bind_launches(plan);
     if (kind == ExecutorKind::fused) {
-      const std::string& problem = concurrency_problem(set, sync_arena, options.wait_timeout_s);
+      const std::string& problem = concurrency_problem(set, sync_arena);
       if (!problem.empty()) {
         if (options.kind == ExecutorKind::fused) {
           throw runtime_error(fmt::format("executor 'fused' cannot run here: {}; use --executor events", problem));
@@ -81,16 +87,31 @@ struct PlanExecutor::Impl {
         kind = ExecutorKind::events;
       }
     }
+    resources.buffers.resize(set.contexts.size());
     for (auto& spec : plan.buffers) {
-      void* ptr = arena.allocate(spec.initial.size());
-      arena.write(set.queues[options.device], ptr, spec.initial.data(), spec.initial.size());
-      resources.buffers.push_back(ptr);
+      for (std::size_t m = 0; m < set.contexts.size(); ++m) {
+        void* ptr = arenas[m]->allocate(spec.initial.size());
+        arenas[m]->write(set.queues[first_device_of(m)], ptr, spec.initial.data(), spec.initial.size());
+        resources.buffers[m].push_back(ptr);
+      }
       resources.sizes.push_back(spec.initial.size());
-      std::vector<std::byte>().swap(spec.initial);  // the device holds it now
+      std::vector<std::byte>().swap(spec.initial);  // the devices hold it now
+    }
+    resources.written = written_by_task(plan, resources.sizes);
+    // An edge carries what its producer writes (DESIGN.md: edge weights in
+    // bytes; only links between memories price them).
+    for (sched::TaskId t = 0; t < plan.graph.size(); ++t) {
+      const double bytes = static_cast<double>(resources.written[t].bytes());
+      std::vector<sched::TaskId> to;
+      for (const sched::Edge& e : plan.graph.successors(t)) to.push_back(e.to);
+      for (sched::TaskId v : to) plan.graph.add_edge(t, v, bytes);
     }
     const bool clock = kind == ExecutorKind::fused && options.task_clock && !cycle_clocks(set, sync_arena).empty();
-    resources.program = build_program(set.context, set.devices, plan.program,
-                                      fmt::format("{} -DATS_TASK_CLOCK={}", language_option(set), clock ? 1 : 0));
+    for (std::size_t m = 0; m < set.contexts.size(); ++m) {
+      resources.programs.push_back(
+          build_program(set.contexts[m], set.devices_of(m), plan.program,
+                        fmt::format("{} -DATS_TASK_CLOCK={}", language_option(set), clock ? 1 : 0)));
+    }
     if (kind == ExecutorKind::fused) {
       fused = std::make_unique<FusedRunner>(resources, sync_arena,
                                             FusedOptions{options.wait_timeout_s, clock, options.never_publish});
@@ -98,6 +119,13 @@ struct PlanExecutor::Impl {
       events = std::make_unique<EventRunner>(resources, options.local_size);
     }
     topological = plan.graph.topological_order();
+  }
+
+  std::size_t first_device_of(std::size_t memory) const {
+    for (std::size_t d = 0; d < set.devices.size(); ++d) {
+      if (set.memory_of[d] == memory) return d;
+    }
+    return 0;
   }
 
   EventRunner& event_runner() {
@@ -179,17 +207,22 @@ struct PlanExecutor::Impl {
     return out;
   }
 
+  // After finish() every memory holds the whole state (the last substep's
+  // copies included): read the home device's.
   std::vector<std::byte> read(plan::BufferId id) {
     finish();
     std::vector<std::byte> out(resources.sizes.at(id));
-    arena.read(set.queues[options.device], resources.buffers.at(id), out.data(), out.size());
+    const std::size_t m = set.memory_of[options.device];
+    arenas[m]->read(set.queues[options.device], resources.buffers[m].at(id), out.data(), out.size());
     return out;
   }
 
   void write(plan::BufferId id, std::span<const std::byte> bytes) {
     finish();
     if (bytes.size() != resources.sizes.at(id)) throw Error("executor: write of the wrong size");
-    arena.write(set.queues[options.device], resources.buffers.at(id), bytes.data(), bytes.size());
+    for (std::size_t m = 0; m < set.contexts.size(); ++m) {
+      arenas[m]->write(set.queues[first_device_of(m)], resources.buffers[m].at(id), bytes.data(), bytes.size());
+    }
   }
 
   plan::PlanState read_state() {
@@ -251,6 +284,7 @@ std::vector<double> PlanExecutor::recut(std::span<const double> fractions, std::
   auto& impl = *impl_;
   impl.finish();
   std::vector<double> shares = plan::recut_plan(impl.plan, fractions, granule);
+  impl.resources.written = written_by_task(impl.plan, impl.resources.sizes);
   // The ranges live in the dispatcher tables and in the events kernels' arguments.
   if (impl.fused) impl.fused->set_steps(impl.steps);
   if (impl.events) {
@@ -295,6 +329,25 @@ void PlanExecutor::read_positions(std::vector<float>& xyz) {
   }
 }
 
-bool PlanExecutor::fine_grain() const { return impl_->arena.fine_grain(); }
+bool PlanExecutor::fine_grain() const { return impl_->arenas.front()->fine_grain(); }
+
+std::size_t PlanExecutor::take_bytes_moved() { return impl_->events ? impl_->events->take_bytes_moved() : 0; }
+
+std::vector<sched::CopyTiming> PlanExecutor::copies() {
+  return impl_->events ? impl_->events->copies() : std::vector<sched::CopyTiming>{};
+}
+
+const plan::TransferPlan* PlanExecutor::transfer_plan() const {
+  return impl_->events ? impl_->events->transfer_plan() : nullptr;
+}
+
+PlanExecutor::Link PlanExecutor::measure_link(std::size_t from, std::size_t to, int repetitions) {
+  impl_->finish();
+  if (impl_->set.memory_of[from] == impl_->set.memory_of[to]) return {measure_latency_ms(from, to, repetitions), 0.0};
+  const LinkMeasurement m = device::measure_link(impl_->resources, from, to, repetitions);
+  return {m.latency_ms, m.ms_per_byte};
+}
+
+std::size_t PlanExecutor::memories() const { return impl_->set.contexts.size(); }
 
 }  // namespace atssim::device

@@ -17,6 +17,7 @@
 #include "device/executor_choice.hpp"
 #include "plan/plan_state.hpp"
 #include "plan/substep_plan.hpp"
+#include "plan/transfer_plan.hpp"
 #include "sched/cost_table.hpp"
 #include "sched/schedule.hpp"
 #include "sched/task_timing.hpp"
@@ -83,6 +84,20 @@ class PlanExecutor {
   // that waits for it: an event hop (events) or an SVM-atomic handshake
   // (fused).
   double measure_latency_ms(std::size_t from, std::size_t to, int repetitions = 20);
+
+  // Devices with memories of their own (DeviceSet::memories() > 1): the
+  // link between two devices (latency of a copy, ms per byte), the bytes
+  // copied between memories since the last call, the copies of the last
+  // recorded substep, and the plan they follow (nullptr for one memory).
+  struct Link {
+    double latency_ms = 0.0;
+    double ms_per_byte = 0.0;  // 0 where the two share a memory
+  };
+  Link measure_link(std::size_t from, std::size_t to, int repetitions = 10);
+  std::size_t memories() const;
+  std::size_t take_bytes_moved();
+  std::vector<sched::CopyTiming> copies();
+  const plan::TransferPlan* transfer_plan() const;
 
   // Waits for everything started. Fused: throws atssim::Error (runtime)
   // naming the device and the task when a wait made no progress in time.

@@ -136,9 +136,12 @@ AsyncPlan make_async_plan(const SubstepPlan& graph_plan, const sched::Schedule& 
     }
     const sched::DeviceId d = schedule.device_of(p);
     const sched::Task& source = graph.task(p);
-    const sched::TaskId pub = plan.add_task(
-        make_task("publish:" + source.name, TaskKind::publish, source.iteration, source.block),
-        {{"async_publish", {0, n}, {KernelArg::of_buffer(slots[s].buffer), KernelArg::of_buffer(replica[d])}}});
+    const sched::TaskId pub =
+        plan.add_task(make_task("publish:" + source.name, TaskKind::publish, source.iteration, source.block),
+                      {{"async_publish",
+                        {0, n},
+                        {KernelArg::of_buffer(slots[s].buffer), KernelArg::of_buffer(replica[d])},
+                        {WriteSpan::per_element(slots[s].buffer, 16)}}});
     out.device.push_back(d);
     plan.graph.add_edge(p, pub);
     if (const sched::TaskId next = next_on_device(p); next != sched::kNoTask) plan.graph.add_edge(pub, next);
@@ -162,7 +165,8 @@ AsyncPlan make_async_plan(const SubstepPlan& graph_plan, const sched::Schedule& 
                       {{"async_merge",
                         {0, n},
                         {KernelArg::of_buffer(replica[m.consumer_device]), KernelArg::of_buffer(from),
-                         KernelArg::of_buffer(start), KernelArg::of_int(merge_code(strategy, m, main))}}});
+                         KernelArg::of_buffer(start), KernelArg::of_int(merge_code(strategy, m, main))},
+                        {WriteSpan::per_element(replica[m.consumer_device], 16)}}});
     out.device.push_back(m.consumer_device);
     plan.graph.add_edge(publish_task.at(m.producer), merge);
     if (m.start != sched::kNoTask) plan.graph.add_edge(publish_task.at(m.start), merge);

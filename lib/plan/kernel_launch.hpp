@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "plan/buffer.hpp"
+#include "plan/write_span.hpp"
 
 namespace atssim::plan {
 
@@ -35,6 +36,9 @@ struct KernelLaunch {
   std::string function;         // task function of the plan's program
   Range range;                  // count 0 = nothing to do
   std::vector<KernelArg> args;  // the function's parameters after the element index
+  // What it writes (write_span.hpp); a writable buffer argument it does not
+  // list is taken to be written whole.
+  std::vector<WriteSpan> writes;
 };
 
 }  // namespace atssim::plan

@@ -134,6 +134,7 @@ struct SceneDesc {
   SolverDesc solver;
   OutputDesc output;
   std::string devices = "default";  // device spec, see `atssim devices`
+  std::string memory = "shared";    // shared (a platform's devices share SVM) | separate (copies through the host)
 };
 
 }  // namespace atssim::scene

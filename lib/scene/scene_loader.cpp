@@ -20,7 +20,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr std::array<std::string_view, 5> kRootKeys{"simulation", "objects", "solver", "output", "devices"};
+constexpr std::array<std::string_view, 6> kRootKeys{"simulation", "objects", "solver", "output", "devices", "memory"};
 constexpr std::array<std::string_view, 7> kSimulationKeys{"fps",    "dt",      "substeps", "iterations",
                                                           "frames", "gravity", "ground"};
 // Keys under solver: that configure how the devices run a substep; every
@@ -224,6 +224,15 @@ SceneDesc parse_scene(const std::string& yaml_text, const std::string& source_na
     if (output.has("stride")) scene.output.stride = output.child("stride").integer_in(1, 1000000);
   }
   if (top.has("devices")) scene.devices = top.child("devices").string();
+  if (top.has("memory")) {
+    const YamlReader m = top.child("memory");
+    scene.memory = m.string();
+    if (scene.memory != "shared" && scene.memory != "separate") {
+      m.fail(fmt::format("unknown memory '{}'", scene.memory),
+             "use shared (the devices of one platform share SVM) or separate (every device its own memory, copies "
+             "through the host)");
+    }
+  }
 
   scene.resolved_yaml = to_resolved_yaml(scene);
   return scene;

@@ -123,6 +123,7 @@ std::string to_resolved_yaml(const SceneDesc& scene) {
   out << YAML::Key << "output" << YAML::Value << YAML::BeginMap << YAML::Key << "path" << YAML::Value
       << scene.output.path << YAML::Key << "stride" << YAML::Value << scene.output.stride << YAML::EndMap;
   out << YAML::Key << "devices" << YAML::Value << scene.devices;
+  out << YAML::Key << "memory" << YAML::Value << scene.memory;
   out << YAML::EndMap;
   return std::string(out.c_str()) + "\n";
 }

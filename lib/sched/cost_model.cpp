@@ -118,6 +118,23 @@ void CostModel::observe(std::span<const TaskTiming> timings, std::span<const Wai
   refit_latency(links_, timings, waits, costs_.tasks);
 }
 
+void CostModel::observe_copies(std::span<const CopyTiming> copies) {
+  const std::size_t n = links_.devices;
+  std::vector<double> bytes(n * n, 0.0), ms(n * n, 0.0), count(n * n, 0.0);
+  for (const CopyTiming& c : copies) {
+    if (c.from >= n || c.to >= n || c.bytes == 0) continue;
+    bytes[c.from * n + c.to] += static_cast<double>(c.bytes);
+    ms[c.from * n + c.to] += c.ms;
+    count[c.from * n + c.to] += 1.0;
+  }
+  for (std::size_t i = 0; i < n * n; ++i) {
+    if (bytes[i] <= 0.0 || links_.ms_per_weight[i] <= 0.0) continue;
+    // Each copy's time includes the link's latency: what remains is per byte.
+    const double per_byte = std::max(ms[i] - count[i] * links_.latency_ms[i], 0.0) / bytes[i];
+    links_.ms_per_weight[i] += 0.5 * (per_byte - links_.ms_per_weight[i]);
+  }
+}
+
 void CostModel::observe_launches(const Schedule& predicted, std::span<const LaunchTiming> launches) {
   refit_from_launches(costs_, predicted, launches);
 }

@@ -65,6 +65,9 @@ class CostModel {
 
   // One recorded substep (events, or fused with a task clock).
   void observe(std::span<const TaskTiming> timings, std::span<const Wait> waits);
+  // The copies between memories of one recorded substep: each link's time
+  // per byte moves halfway to what they measured.
+  void observe_copies(std::span<const CopyTiming> copies);
   // One frame's launches (fused without a task clock).
   void observe_launches(const Schedule& predicted, std::span<const LaunchTiming> launches);
   // Whether the costs moved by more than the threshold since plan_made().

@@ -24,4 +24,13 @@ struct LaunchTiming {
   double ms = 0.0;
 };
 
+// One copy between two devices' memories in a recorded substep (devices
+// that share no memory): how many bytes, and how long out and in took.
+struct CopyTiming {
+  DeviceId from = 0;
+  DeviceId to = 0;
+  std::size_t bytes = 0;
+  double ms = 0.0;
+};
+
 }  // namespace atssim::sched

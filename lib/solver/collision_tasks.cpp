@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "solver/layout/particle_tables.hpp"
+
 namespace atssim::solver {
 
 sched::TaskId add_ground_task(plan::SubstepPlan& plan, sched::TaskId last, const SimLayout& layout,
@@ -13,7 +15,8 @@ sched::TaskId add_ground_task(plan::SubstepPlan& plan, sched::TaskId last, const
       plan::make_task(fmt::format("it{}/collision/ground", iteration + 1), plan::TaskKind::collision, iteration, 0),
       {"particles_ground",
        {0, n},
-       {plan::KernelArg::of_buffer(positions), plan::KernelArg::of_float(layout.ground_y)}});
+       {plan::KernelArg::of_buffer(positions), plan::KernelArg::of_float(layout.ground_y)},
+       {particle_write(positions)}});
 }
 
 }  // namespace atssim::solver

@@ -50,3 +50,9 @@ TEST_CASE("executor names parse, and an unknown one lists the choices") {
   CHECK(device::parse_executor_kind("events") == ExecutorKind::events);
   CHECK_THROWS_WITH(device::parse_executor_kind("fast"), Catch::Contains("use auto") && Catch::Contains("events"));
 }
+
+TEST_CASE("devices with memories of their own run events, and fused there is an input error") {
+  const std::vector<device::DeviceInfo> both{with_svm(true, true), with_svm(true, true)};
+  CHECK(device::choose_executor(ExecutorKind::automatic, both, 2) == ExecutorKind::events);
+  CHECK_THROWS_WITH(device::choose_executor(ExecutorKind::fused, both, 2), Catch::Contains("2 memories"));
+}

@@ -15,6 +15,7 @@ struct TaskSignature {
   std::string_view name;        // e.g. "xpbd_stretch"; its thin kernel is "ats_k_" + name
   int index = 0;                // its case in the program's fused dispatcher
   std::string_view kinds;       // one letter per parameter after the index: b(uffer), i(nt), f(loat)
+  std::string_view access;      // per parameter: w (a pointer it may write through), r (const pointer), - (scalar)
   std::string_view parameters;  // as declared, for messages
 };
 

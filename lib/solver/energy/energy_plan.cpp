@@ -15,8 +15,10 @@ using Arg = plan::KernelArg;
 
 plan::KernelLaunch element_launch(const char* function, plan::BufferId x, plan::BufferId elements, plan::BufferId out,
                                   int out_first, int count) {
-  return {
-      function, {0, count}, {Arg::of_buffer(x), Arg::of_buffer(elements), Arg::of_buffer(out), Arg::of_int(out_first)}};
+  return {function,
+          {0, count},
+          {Arg::of_buffer(x), Arg::of_buffer(elements), Arg::of_buffer(out), Arg::of_int(out_first)},
+          {plan::WriteSpan::per_element(out, sizeof(float), out_first)}};
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "solver/collision_tasks.hpp"
+#include "solver/layout/particle_tables.hpp"
 
 namespace atssim::solver::jpgd {
 
@@ -48,13 +49,15 @@ plan::SubstepPlan make_jpgd_plan(const SimLayout& layout, const JpgdSettings& se
           Arg::of_buffer(b.bend), Arg::of_buffer(b.tets), Arg::of_float(inv_h2),
           Arg::of_float(static_cast<float>(settings.step)), Arg::of_float(static_cast<float>(omega[it])),
           Arg::of_float(it == 0 ? 0.0f : beta), Arg::of_int(layout.has_ground ? 1 : 0),
-          Arg::of_float(layout.ground_y)}});
+          Arg::of_float(layout.ground_y)},
+         {particle_write(next)}});
     last = add_ground_task(plan, t, layout, next, it);
   }
   const plan::BufferId result = rotation[settings.iterations % 3];
   if (result != b.x) {
-    last = plan.add_task_after(last, plan::make_task("copy_result", plan::TaskKind::copy),
-                               {"particles_copy", {0, n}, {Arg::of_buffer(b.x), Arg::of_buffer(result)}});
+    last = plan.add_task_after(
+        last, plan::make_task("copy_result", plan::TaskKind::copy),
+        {"particles_copy", {0, n}, {Arg::of_buffer(b.x), Arg::of_buffer(result)}, {particle_write(b.x)}});
   }
   vertex::end_vertex_plan(plan, last, b, settings.substep_dt);
   if (ids != nullptr) *ids = b;

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "solver/collision_tasks.hpp"
+#include "solver/layout/particle_tables.hpp"
 
 namespace atssim::solver::sosd {
 
@@ -58,7 +59,8 @@ plan::SubstepPlan make_sosd_plan(const SimLayout& layout, double substep_dt, int
                              {0, n},
                              {Arg::of_buffer(b.x), Arg::of_buffer(b.x_tilde), Arg::of_buffer(b.adjacency_offsets),
                               Arg::of_buffer(b.adjacency), Arg::of_buffer(b.stretch), Arg::of_buffer(b.bend),
-                              Arg::of_buffer(b.tets), Arg::of_buffer(systems), Arg::of_float(inv_h2)}});
+                              Arg::of_buffer(b.tets), Arg::of_buffer(systems), Arg::of_float(inv_h2)},
+                             {plan::WriteSpan::per_element(systems, 4 * kFloat4)}});
     // All stencils read the same x^k and vertex systems, so a block matters
     // only as the main one: one task for it, and per kind one task for the
     // rest (the Jacobi blocks: up to two element ranges around the main).
@@ -68,7 +70,8 @@ plan::SubstepPlan make_sosd_plan(const SimLayout& layout, double substep_dt, int
       return plan::KernelLaunch{
           fmt::format("sosd_{}", kKinds[kind]),
           {first, end - first},
-          {Arg::of_buffer(b.x), Arg::of_buffer(systems), Arg::of_buffer(elements[kind]), Arg::of_buffer(d[kind])}};
+          {Arg::of_buffer(b.x), Arg::of_buffer(systems), Arg::of_buffer(elements[kind]), Arg::of_buffer(d[kind])},
+          {plan::WriteSpan::per_element(d[kind], (kind == 0 ? 2 : 4) * kFloat4)}};
     };
     if (main.kind >= 0) {
       const int color = static_cast<int>(it % blocks.size()) - first_block[main.kind];
@@ -99,7 +102,8 @@ plan::SubstepPlan make_sosd_plan(const SimLayout& layout, double substep_dt, int
           {Arg::of_buffer(b.x), Arg::of_buffer(b.adjacency_offsets), Arg::of_buffer(b.adjacency), Arg::of_buffer(d[0]),
            Arg::of_buffer(d[1]), Arg::of_buffer(d[2]), Arg::of_buffer(systems), Arg::of_int(main.kind),
            Arg::of_int(main.first), Arg::of_int(main.end), Arg::of_float(static_cast<float>(step)),
-           Arg::of_int(layout.has_ground ? 1 : 0), Arg::of_float(layout.ground_y)}}});
+           Arg::of_int(layout.has_ground ? 1 : 0), Arg::of_float(layout.ground_y)},
+          {particle_write(b.x)}}});
     for (sched::TaskId t : stencil_tasks) plan.graph.add_edge(t, combine);
     if (stencil_tasks.empty()) plan.graph.add_edge(systems_task, combine);
     last = add_ground_task(plan, combine, layout, b.x, it);

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "solver/collision_tasks.hpp"
+#include "solver/layout/particle_tables.hpp"
 
 namespace atssim::solver::vbd {
 
@@ -14,6 +15,9 @@ plan::SubstepPlan make_vbd_plan(const SimLayout& layout, double substep_dt, int 
   vertex::VertexBuffers b;
   sched::TaskId last = vertex::begin_vertex_plan(plan, layout, vertices, substep_dt, b);
   const float inv_h2 = static_cast<float>(1.0 / (substep_dt * substep_dt));
+  // Element k of a color writes particle order[k].
+  const auto order =
+      std::make_shared<const std::vector<std::int32_t>>(vertices.colors.order.begin(), vertices.colors.order.end());
   for (int it = 0; it < iterations; ++it) {
     for (int c = 0; c < vertices.colors.count(); ++c) {
       const int first = vertices.colors.offsets[c];
@@ -26,7 +30,8 @@ plan::SubstepPlan make_vbd_plan(const SimLayout& layout, double substep_dt, int 
            {Arg::of_buffer(b.x), Arg::of_buffer(b.x_tilde), Arg::of_buffer(b.adjacency_offsets),
             Arg::of_buffer(b.adjacency), Arg::of_buffer(b.stretch), Arg::of_buffer(b.bend), Arg::of_buffer(b.tets),
             Arg::of_buffer(b.order), Arg::of_float(inv_h2), Arg::of_int(layout.has_ground ? 1 : 0),
-            Arg::of_float(layout.ground_y)}});
+            Arg::of_float(layout.ground_y)},
+           {plan::WriteSpan::per_index(b.x, kParticleBytes, 1, order)}});
     }
     last = add_ground_task(plan, last, layout, b.x, it);
   }

@@ -1,6 +1,7 @@
 #include "solver/vertex/vertex_plan.hpp"
 
 #include "solver/energy/finite_stiffness.hpp"
+#include "solver/layout/particle_tables.hpp"
 
 namespace atssim::solver::vertex {
 
@@ -24,12 +25,14 @@ sched::TaskId begin_vertex_plan(plan::SubstepPlan& plan, const SimLayout& layout
   b.adjacency = plan.add_buffer("adjacency", BufferRole::topology, plan::bytes_of(vertices.adjacency));
   b.order = plan.add_buffer("vertex_order", BufferRole::topology, plan::bytes_of(vertices.colors.order));
   const float dt = static_cast<float>(substep_dt);
-  return plan.add_task(plan::make_task("predict", plan::TaskKind::predict),
-                       {{"particles_predict",
-                         {0, n},
-                         {Arg::of_buffer(b.x), Arg::of_buffer(b.v), Arg::of_buffer(b.x_prev), Arg::of_buffer(b.x_tilde),
-                          Arg::of_float(dt), Arg::of_float(layout.gravity.x), Arg::of_float(layout.gravity.y),
-                          Arg::of_float(layout.gravity.z)}}});
+  return plan.add_task(
+      plan::make_task("predict", plan::TaskKind::predict),
+      {{"particles_predict",
+        {0, n},
+        {Arg::of_buffer(b.x), Arg::of_buffer(b.v), Arg::of_buffer(b.x_prev), Arg::of_buffer(b.x_tilde),
+         Arg::of_float(dt), Arg::of_float(layout.gravity.x), Arg::of_float(layout.gravity.y),
+         Arg::of_float(layout.gravity.z)},
+        {particle_write(b.x), particle_write(b.v), particle_write(b.x_prev), particle_write(b.x_tilde)}}});
 }
 
 void end_vertex_plan(plan::SubstepPlan& plan, sched::TaskId last, const VertexBuffers& b, double substep_dt) {
@@ -38,7 +41,8 @@ void end_vertex_plan(plan::SubstepPlan& plan, sched::TaskId last, const VertexBu
                       {"particles_update_velocity",
                        {0, n},
                        {Arg::of_buffer(b.x), Arg::of_buffer(b.v), Arg::of_buffer(b.x_prev),
-                        Arg::of_float(static_cast<float>(1.0 / substep_dt))}});
+                        Arg::of_float(static_cast<float>(1.0 / substep_dt))},
+                       {particle_write(b.v)}});
 }
 
 }  // namespace atssim::solver::vertex

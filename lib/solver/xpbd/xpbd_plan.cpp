@@ -6,6 +6,7 @@
 
 #include "common/xpbd_tet.h"
 #include "solver/collision_tasks.hpp"
+#include "solver/layout/particle_tables.hpp"
 
 #include "util/error.hpp"
 
@@ -16,16 +17,22 @@ namespace {
 using Arg = plan::KernelArg;
 
 // Adds one task per color block of one element set, chained after `last`.
+// Each writes its elements' particles and its multipliers (`lambda_bytes`
+// per element).
 sched::TaskId add_blocks(plan::SubstepPlan& plan, sched::TaskId last, const std::vector<int>& blocks,
                          plan::TaskKind kind, const std::string& function, plan::BufferId x, plan::BufferId elements,
-                         plan::BufferId lambda, float dt, int iteration) {
+                         plan::BufferId lambda, float dt, int iteration,
+                         const std::shared_ptr<const std::vector<std::int32_t>>& particles, int arity,
+                         std::uint32_t lambda_bytes) {
   for (int b = 0; b + 1 < static_cast<int>(blocks.size()); ++b) {
     const std::string name = fmt::format("it{}/{}/c{}", iteration + 1, plan::to_string(kind), b);
     last = plan.add_task_after(last, plan::make_task(name, kind, iteration, b),
                                {function,
                                 {blocks[b], blocks[b + 1] - blocks[b]},
                                 {Arg::of_buffer(x), Arg::of_buffer(elements), Arg::of_buffer(lambda), Arg::of_float(dt),
-                                 Arg::of_int(iteration == 0 ? 1 : 0)}});
+                                 Arg::of_int(iteration == 0 ? 1 : 0)},
+                                {plan::WriteSpan::per_index(x, kParticleBytes, arity, particles),
+                                 plan::WriteSpan::per_element(lambda, lambda_bytes)}});
   }
   return last;
 }
@@ -78,26 +85,31 @@ plan::SubstepPlan make_xpbd_plan(const SimLayout& layout, const XpbdSettings& se
       {{"xpbd_predict",
         {0, n},
         {Arg::of_buffer(b.x), Arg::of_buffer(b.v), Arg::of_buffer(b.x_prev), Arg::of_float(dt),
-         Arg::of_float(layout.gravity.x), Arg::of_float(layout.gravity.y), Arg::of_float(layout.gravity.z)}}});
+         Arg::of_float(layout.gravity.x), Arg::of_float(layout.gravity.y), Arg::of_float(layout.gravity.z)},
+        {particle_write(b.x), particle_write(b.v), particle_write(b.x_prev)}}});
+  const auto stretch_particles = particles_of(layout.stretch);
+  const auto bend_particles = particles_of(layout.bend);
+  const auto tet_particles = particles_of(layout.tets);
   for (int it = 0; it < settings.iterations; ++it) {
     if (b.stretch >= 0) {
       last = add_blocks(plan, last, layout.stretch_blocks, plan::TaskKind::stretch, "xpbd_stretch", b.x, b.stretch,
-                        b.stretch_lambda, dt, it);
+                        b.stretch_lambda, dt, it, stretch_particles, 2, sizeof(float));
     }
     if (b.bend >= 0) {
       last = add_blocks(plan, last, layout.bend_blocks, plan::TaskKind::bend, "xpbd_bend", b.x, b.bend, b.bend_lambda,
-                        dt, it);
+                        dt, it, bend_particles, 4, 4 * sizeof(float));
     }
     if (b.tet >= 0) {
-      last =
-          add_blocks(plan, last, layout.tet_blocks, plan::TaskKind::tet, "xpbd_tet", b.x, b.tet, b.tet_lambda, dt, it);
+      last = add_blocks(plan, last, layout.tet_blocks, plan::TaskKind::tet, "xpbd_tet", b.x, b.tet, b.tet_lambda, dt,
+                        it, tet_particles, 4, ATS_TET_LAMBDA_STRIDE * sizeof(float));
     }
     last = add_ground_task(plan, last, layout, b.x, it);
   }
   plan.add_task_after(last, plan::make_task("update_velocity", plan::TaskKind::update_velocity),
                       {"particles_update_velocity",
                        {0, n},
-                       {Arg::of_buffer(b.x), Arg::of_buffer(b.v), Arg::of_buffer(b.x_prev), Arg::of_float(1.0f / dt)}});
+                       {Arg::of_buffer(b.x), Arg::of_buffer(b.v), Arg::of_buffer(b.x_prev), Arg::of_float(1.0f / dt)},
+                       {particle_write(b.v)}});
   if (ids != nullptr) *ids = b;
   return plan;
 }
