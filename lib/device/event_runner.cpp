@@ -304,6 +304,9 @@ struct EventRunner::Impl {
       for (cl_event e : copies->graveyard()) clReleaseEvent(e);
       copies->graveyard().clear();
     }
+    // The barrier's events were among them; every queue is finished, so
+    // the next substep has nothing to wait for.
+    barrier.assign(r.set.devices.size(), {});
   }
 
   std::vector<sched::TaskTiming> timings() {

@@ -63,6 +63,20 @@ std::vector<std::vector<int>> bind_launches(const plan::SubstepPlan& plan) {
                                           arg.buffer, sig->name, plan.buffers.size()));
         }
       }
+      // What a launch declares it writes must be one of the buffers it may
+      // write through (the copies between memories follow the declaration).
+      for (const plan::WriteSpan& w : launch.writes) {
+        bool writable = false;
+        for (std::size_t a = 0; a < launch.args.size(); ++a) {
+          writable = writable || (launch.args[a].kind == plan::KernelArg::Kind::buffer &&
+                                  launch.args[a].buffer == w.buffer && a < sig->access.size() && sig->access[a] == 'w');
+        }
+        if (!writable) {
+          throw runtime_error(fmt::format("internal error: task '{}' declares a write to buffer {}, which {} is not "
+                                          "passed as a writable argument",
+                                          task, w.buffer, sig->name));
+        }
+      }
       if (launch.range.first < 0 || launch.range.count < 0) {
         throw runtime_error(fmt::format("internal error: task '{}' launches {} over [{}, +{})", task, sig->name,
                                         launch.range.first, launch.range.count));

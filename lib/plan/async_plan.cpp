@@ -89,6 +89,9 @@ AsyncPlan make_async_plan(const SubstepPlan& graph_plan, const sched::Schedule& 
       for (auto& a : l.args) {
         if (a.kind == KernelArg::Kind::buffer && a.buffer == x) a.buffer = replica[schedule.device_of(t)];
       }
+      for (auto& w : l.writes) {
+        if (w.buffer == x) w.buffer = replica[schedule.device_of(t)];
+      }
     }
     plan.add_task(graph.task(t), std::move(launches));
     out.device.push_back(schedule.device_of(t));

@@ -156,6 +156,14 @@ TEST_CASE("an executor refuses a launch of a task function its program does not 
     plan.launches[1][0].args.push_back(plan::KernelArg::of_float(1.0f));
     CHECK_THROWS_WITH(device::PlanExecutor(devices, plan), Catch::Contains("expects an int"));
   }
+  SECTION("a declared write to a buffer it does not write through") {
+    // The copies between memories follow the declaration: a stale one (a
+    // buffer renamed in the arguments, not in the writes) must not run.
+    auto& launch = plan.launches[1][0];
+    REQUIRE_FALSE(launch.writes.empty());
+    launch.writes.front().buffer = plan.buffer(plan::BufferRole::velocities);
+    CHECK_THROWS_WITH(device::PlanExecutor(devices, plan), Catch::Contains("declares a write to buffer"));
+  }
 }
 
 TEST_CASE("a fused wait that never completes ends in an error naming the device and task, not a hang", "[fused]") {

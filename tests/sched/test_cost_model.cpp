@@ -46,3 +46,19 @@ TEST_CASE("without task timings each device's costs scale to its measured launch
   CHECK(costs.at(1, 0) == Approx(2.0));
   CHECK(costs.at(2, 1) == Approx(2.0));  // already right
 }
+
+TEST_CASE("the copies of a substep move a link's cost per byte halfway to what they measured") {
+  // Link 0 → 1: 0.01 ms latency, 1e-6 ms per byte. Two copies of 1000 bytes
+  // took 0.014 and 0.016 ms: (0.030 - 2 · 0.01) / 2000 = 5e-6 ms per byte,
+  // so the link moves to 1e-6 + (5e-6 - 1e-6) / 2 = 3e-6. Link 1 → 0 saw no
+  // copy and keeps its cost; a link priced by latency only (0 per byte) too.
+  DeviceLinks links = DeviceLinks::weighted(3, 0.01, 1.0e-6);
+  links.set_link(0, 2, 0.01, 0.0);
+  CostModel model(CostTable(1, 3, 1.0), links);
+  const std::vector<CopyTiming> copies{{0, 1, 1000, 0.014}, {0, 1, 1000, 0.016}, {0, 2, 1000, 5.0}};
+  model.observe_copies(copies);
+  CHECK(model.links().ms_per_weight[0 * 3 + 1] == Approx(3.0e-6));
+  CHECK(model.links().ms_per_weight[1 * 3 + 0] == Approx(1.0e-6));
+  CHECK(model.links().ms_per_weight[0 * 3 + 2] == 0.0);
+  CHECK(model.links().latency_ms[0 * 3 + 1] == Approx(0.01));
+}
