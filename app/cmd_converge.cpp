@@ -13,6 +13,7 @@ Action add_converge_command(CLI::App& cli, const std::string& command_line) {
   auto o = std::make_shared<ConvergeOptions>();
   auto output = std::make_shared<std::string>("convergence.h5");
   auto devices = std::make_shared<std::string>();
+  auto memory = std::make_shared<std::string>();
   CLI::App* cmd = cli.add_subcommand(
       "converge", "Speed/accuracy: relative energy error per iteration vs a Newton reference, per schedule");
   cmd->add_option("scene", o->scene_path, "Scene file (YAML)")->required();
@@ -25,11 +26,16 @@ Action add_converge_command(CLI::App& cli, const std::string& command_line) {
   cmd->add_option("--iterations", o->max_iterations, "Largest iteration count (k = 1, 2, 4, …, N)")->capture_default_str();
   cmd->add_option("--frames-before", o->frames_before, "Frames simulated first to reach a moving state")->capture_default_str();
   cmd->add_option("--devices", *devices, "Device spec (two-device schedules need two, e.g. cpu/2)");
+  cmd->add_option("--memory", *memory,
+                  "shared (a platform's devices share SVM) or separate (every device its own memory, copies "
+                  "through the host)")
+      ->check(CLI::IsMember({"shared", "separate"}));
   cmd->add_option("--set", o->overrides, "Override a scene key (repeatable)");
-  return [o, output, devices, command_line]() {
+  return [o, output, devices, memory, command_line]() {
     ConvergeOptions options = *o;
     options.command_line = command_line;
     if (!devices->empty()) options.overrides.push_back("devices=" + *devices);
+    if (!memory->empty()) options.overrides.push_back("memory=" + *memory);
     const io::ConvergenceResult result = run_convergence(options);
     io::write_convergence(*output, result);
     fmt::print("{}wrote {}\n", format_convergence_table(result), *output);

@@ -21,14 +21,18 @@ namespace atssim::app {
 
 namespace {
 
+// Every pair of devices: one memory, a hop of fixed latency (an event or an
+// SVM handshake); two memories, a copy of latency + bytes · ms/byte (the
+// edges of the executor's plan weigh bytes).
 sched::DeviceLinks measure_links(device::PlanExecutor& executor) {
   const std::size_t n = executor.device_count();
   sched::DeviceLinks links = sched::DeviceLinks::unified_memory(n, 0.0);
   for (std::size_t a = 0; a < n; ++a) {
     for (std::size_t b = 0; b < n; ++b) {
-      if (a != b)
-        links.set_link(static_cast<sched::DeviceId>(a), static_cast<sched::DeviceId>(b),
-                       executor.measure_latency_ms(a, b), 0.0);
+      if (a == b) continue;
+      const device::PlanExecutor::Link link = executor.measure_link(a, b);
+      links.set_link(static_cast<sched::DeviceId>(a), static_cast<sched::DeviceId>(b), link.latency_ms,
+                     link.ms_per_byte);
     }
   }
   return links;

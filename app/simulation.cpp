@@ -57,7 +57,7 @@ void record_schedule(io::ResultWriter& writer, int frame, const sched::Schedule&
       }
     }
   }
-  writer.append_schedule(frame, rows, waits, used.makespan_ms, measured.makespan_ms);
+  writer.append_schedule(frame, rows, waits, used.makespan_ms, measured.makespan_ms, measured.bytes_moved);
 }
 
 io::RunInfo run_info(const RunOptions& options, const scene::SceneDesc& scene, const device::DeviceSet& devices,
@@ -81,6 +81,8 @@ io::RunInfo run_info(const RunOptions& options, const scene::SceneDesc& scene, c
   }
   info.schedule.costs = e.costs.profiled();
   info.schedule.latency_ms = e.costs.links().latency_ms;
+  info.schedule.memory = e.executor->memories() > 1 ? "separate" : "shared";
+  if (e.executor->memories() > 1) info.schedule.ms_per_byte = e.costs.links().ms_per_weight;
   info.schedule.split_fractions = e.split_fractions;
   return info;
 }

@@ -66,6 +66,7 @@ void write_schedule_info(hid_t file, const ScheduleInfo& info, std::size_t devic
   H5Handle g = create_group(file, "schedule");
   write_string_attribute(g, "mode", info.mode);
   write_string_attribute(g, "executor", info.executor);
+  write_string_attribute(g, "memory", info.memory);
   H5Handle tasks = create_group(g, "tasks");
   std::vector<std::string> name, kind;
   std::vector<int> iteration, block, part;
@@ -91,6 +92,7 @@ void write_schedule_info(hid_t file, const ScheduleInfo& info, std::size_t devic
   H5Handle dev = h5_check(H5Gopen2(file, "devices", H5P_DEFAULT), H5Gclose, "/devices");
   if (info.costs.tasks > 0) write_double_array(dev, "costs_ms", info.costs.ms, info.costs.devices);
   if (!info.latency_ms.empty()) write_double_array(dev, "latency_ms", info.latency_ms, devices);
+  if (!info.ms_per_byte.empty()) write_double_array(dev, "ms_per_byte", info.ms_per_byte, devices);
   if (!info.split_fractions.empty()) write_double_array(dev, "split_fractions", info.split_fractions, 0);
 }
 
@@ -168,6 +170,7 @@ ResultWriter::ResultWriter(const std::string& path, const RunInfo& info, std::sp
   mk_frame_ = create_series(makespan, "frame", 0, 0, H5T_STD_I32LE);
   mk_predicted_ = create_series(makespan, "predicted_ms", 0, 0, H5T_IEEE_F64LE);
   mk_measured_ = create_series(makespan, "measured_ms", 0, 0, H5T_IEEE_F64LE);
+  mk_bytes_ = create_series(makespan, "bytes_moved", 0, 0, H5T_STD_U64LE);
 
   h5_check(H5Fstart_swmr_write(file_), "starting single-writer/multi-reader mode");
   write_xdmf();
@@ -200,7 +203,8 @@ void ResultWriter::append_rows(hid_t set, std::span<const T> values, hid_t mem_t
 }
 
 void ResultWriter::append_schedule(int frame, std::span<const ScheduledTask> tasks, std::span<const sched::Wait> waits,
-                                   double predicted_makespan_ms, double measured_makespan_ms) {
+                                   double predicted_makespan_ms, double measured_makespan_ms,
+                                   std::size_t bytes_moved) {
   std::vector<int> f(tasks.size(), frame), task, device;
   std::vector<double> ps, pf, ms, mf;
   for (const ScheduledTask& t : tasks) {
@@ -242,6 +246,8 @@ void ResultWriter::append_schedule(int frame, std::span<const ScheduledTask> tas
   append_rows<int>(mk_frame_, fr, H5T_NATIVE_INT, rows);
   append_rows<double>(mk_predicted_, p, H5T_NATIVE_DOUBLE, rows);
   append_rows<double>(mk_measured_, m, H5T_NATIVE_DOUBLE, rows);
+  const std::uint64_t b[1] = {bytes_moved};
+  append_rows<std::uint64_t>(mk_bytes_, b, H5T_NATIVE_UINT64, rows);
   makespan_rows_ += 1;
 }
 

@@ -39,10 +39,12 @@ struct TaskRecord {
 struct ScheduleInfo {
   std::string mode;      // "single", "split", "heft", "async"
   std::string executor;  // "events" or "fused"
+  std::string memory = "shared";  // "shared" (SVM within a platform) or "separate" (copies between memories)
   std::vector<TaskRecord> tasks;
   std::vector<std::pair<int, int>> edges;
   sched::CostTable costs;               // pre-profiled, ms, task × device
   std::vector<double> latency_ms;       // device × device hop latency
+  std::vector<double> ms_per_byte;      // device × device copy cost per byte (separate memories; empty if shared)
   std::vector<double> split_fractions;  // share of each device ("split")
 };
 
@@ -77,7 +79,7 @@ class ResultWriter {
   // Appends the recorded substep of simulated frame `frame` (written with
   // the next append_frame's flush).
   void append_schedule(int frame, std::span<const ScheduledTask> tasks, std::span<const sched::Wait> waits,
-                       double predicted_makespan_ms, double measured_makespan_ms);
+                       double predicted_makespan_ms, double measured_makespan_ms, std::size_t bytes_moved = 0);
   int frames_written() const { return frames_; }
 
   // Closes the file, marking it complete, or failed with `error`.
@@ -104,7 +106,7 @@ class ResultWriter {
   // /schedule series: one row per recorded task, per wait, per frame.
   H5Handle sched_frame_, sched_task_, sched_device_, sched_pstart_, sched_pfinish_, sched_mstart_, sched_mfinish_;
   H5Handle wait_frame_, wait_producer_, wait_consumer_, wait_pdevice_, wait_cdevice_;
-  H5Handle mk_frame_, mk_predicted_, mk_measured_;
+  H5Handle mk_frame_, mk_predicted_, mk_measured_, mk_bytes_;
   hsize_t sched_rows_ = 0, wait_rows_ = 0, makespan_rows_ = 0;
 };
 
