@@ -32,6 +32,10 @@ Action add_devices_command(CLI::App& cli) {
       return 0;
     }
     for (const auto& d : devices) fmt::print("{}\n", describe(d));
+    fmt::print(
+        "\n--devices takes: default, cpu, gpu, cpu/2 (a device split into sub-devices), indices (0,1) or "
+        "platform:device pairs (0:0,1:0) as shown in parentheses. Devices of different platforms share no "
+        "memory; --memory separate makes devices of one platform work the same way.\n");
     return 0;
   };
 }

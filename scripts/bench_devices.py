@@ -55,16 +55,23 @@ def run_native(method: str, size: int, threads: int, frames: int) -> float:
     return json.loads(out)["median_ms"]
 
 
-def run_atssim(method: str, size: int, executor: str, devices: str, schedule: str, frames: int, out: str):
+def run_atssim_frames(method: str, size: int, executor: str, devices: str, schedule: str, frames: int, out: str,
+                     memory: str = "shared"):
+    """Median frame ms, median prediction error and median bytes copied between memories per frame."""
     subprocess.run([BIN, "run", SCENE, "-o", out, "--frames", str(frames + 2), "--devices", devices, "--schedule",
-                    schedule, "--executor", executor, "--set", f"solver.method={method}", "--set",
+                    schedule, "--executor", executor, "--memory", memory, "--set", f"solver.method={method}", "--set",
                     f"objects.0.grid.resolution=[{size},{size}]", "--quiet"], check=True)
     with h5py.File(out, "r") as f:
         frame_ms = f["timing/frame_ms"][3:]  # skip the initial state and two warm-up frames
         pred = f["schedule/makespan/predicted_ms"][2:]
         meas = f["schedule/makespan/measured_ms"][2:]
+        moved = f["schedule/makespan/bytes_moved"][2:]
         err = np.abs(meas - pred) / np.maximum(meas, 1e-9)
-        return float(np.median(frame_ms)), float(np.median(err))
+        return float(np.median(frame_ms)), float(np.median(err)), float(np.median(moved))
+
+
+def run_atssim(method: str, size: int, executor: str, devices: str, schedule: str, frames: int, out: str):
+    return run_atssim_frames(method, size, executor, devices, schedule, frames, out)[:2]
 
 
 def main() -> int:

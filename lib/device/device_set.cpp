@@ -71,7 +71,12 @@ std::vector<const DeviceHandle*> pick(const std::string& selector, const std::st
       for (const auto& h : all) {
         if (h.info.platform_index == std::stoi(p) && h.info.platform_device == std::stoi(d)) return {&h};
       }
-      bad_spec(spec, fmt::format("platform {} has no device {}", p, d), all);
+      const bool platform_known =
+          std::any_of(all.begin(), all.end(), [&](const auto& h) { return h.info.platform_index == std::stoi(p); });
+      bad_spec(spec,
+               platform_known ? fmt::format("platform {} has no device {}", p, d)
+                              : fmt::format("there is no OpenCL platform {}", p),
+               all);
     }
   }
   bad_spec(spec, fmt::format("'{}' is not a device", selector), all);

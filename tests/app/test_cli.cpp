@@ -120,6 +120,7 @@ TEST_CASE("atssim devices lists the pocl CPU device with its SVM capabilities") 
   CHECK(r.code == 0);
   CHECK(r.out.find("cpu") != std::string::npos);
   CHECK(r.out.find("SVM coarse") != std::string::npos);
+  CHECK(r.out.find("0 (0:0)") != std::string::npos);  // index and platform:device, both accepted by --devices
 }
 
 TEST_CASE("a run that blows up exits 1 naming the frame and keeps the frames before it") {
