@@ -56,7 +56,7 @@ void make_schedule(Execution& e, const ExecutionOptions& options, bool choose_de
   const auto& graph = e.plan().graph;
   if (e.mode == ScheduleMode::async && options.replay) return;  // the replay order is fixed
   if (choose_devices && e.mode == ScheduleMode::heft) {
-    e.schedule = sched::schedule_heft(graph, e.costs.costs(), e.costs.links());
+    e.schedule = sched::schedule_heft_or_one_device(graph, e.costs.costs(), e.costs.links());
     for (sched::TaskId t = 0; t < graph.size(); ++t) e.assignment[t] = e.schedule.device_of(t);
     e.costs.plan_made();
   } else {
@@ -264,7 +264,7 @@ PlannedSchedule schedule_from_costs(const plan::SubstepPlan& base, ScheduleMode 
     }
     p.schedule = sched::schedule_fixed(p.plan.graph, p.costs, p.links, assignment);
   } else if (mode == ScheduleMode::heft) {
-    p.schedule = sched::schedule_heft(p.plan.graph, p.costs, p.links);
+    p.schedule = sched::schedule_heft_or_one_device(p.plan.graph, p.costs, p.links);
   } else {
     p.schedule = sched::schedule_fixed(p.plan.graph, p.costs, p.links, assignment);
   }

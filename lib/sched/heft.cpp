@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "sched/fixed_assignment.hpp"
 #include "sched/input_checks.hpp"
 #include "sched/rank.hpp"
 #include "util/error.hpp"
@@ -42,6 +43,20 @@ Schedule schedule_heft(const TaskGraph& graph, const CostTable& costs, const Dev
     builder.place(task, best);
   }
   return std::move(builder).finish();
+}
+
+Schedule schedule_heft_or_one_device(const TaskGraph& graph, const CostTable& costs, const DeviceLinks& links,
+                                     const HeftOptions& options) {
+  Schedule best = schedule_heft(graph, costs, links, options);
+  for (std::size_t d = 0; d < costs.devices; ++d) {
+    bool runs_all = true;
+    for (TaskId t = 0; t < graph.size() && runs_all; ++t) runs_all = std::isfinite(costs.at(t, d));
+    if (!runs_all) continue;
+    const std::vector<DeviceId> one(graph.size(), static_cast<DeviceId>(d));
+    Schedule alone = schedule_fixed(graph, costs, links, one, options.device_ready_ms);
+    if (alone.makespan_ms < best.makespan_ms) best = std::move(alone);
+  }
+  return best;
 }
 
 }  // namespace atssim::sched

@@ -23,4 +23,12 @@ struct HeftOptions : ListOptions {
 Schedule schedule_heft(const TaskGraph& graph, const CostTable& costs, const DeviceLinks& links,
                        const HeftOptions& options = {});
 
+// HEFT, or every task on one device where that is predicted to end sooner.
+// HEFT places each task by its own finish time; it cannot see that the
+// copies its choices force on the tasks after it (slow links between
+// memories) cost more than the second device saves. Equal makespans keep
+// HEFT's schedule.
+Schedule schedule_heft_or_one_device(const TaskGraph& graph, const CostTable& costs, const DeviceLinks& links,
+                                     const HeftOptions& options = {});
+
 }  // namespace atssim::sched

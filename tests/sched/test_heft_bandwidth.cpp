@@ -62,3 +62,28 @@ TEST_CASE("The same fork with a fixed hop (unified memory) ignores the bytes", "
   CHECK(s.device_of(2) == 1);
   CHECK(s.makespan_ms == Approx(6.1));
 }
+
+TEST_CASE("HEFT cannot see the copies its choices force later; one device is kept when it ends sooner", "[heft]") {
+  // The fork again, with 1 000 bytes on A→B, A→C and 250 000 on B→D, C→D
+  // at 4e-5 ms per byte (no latency): 0.04 ms into the branches, 10 ms out.
+  // HEFT: A, B on d0 (end 5); C on d1 ends 1 + 0.04 + 4 = 5.04 < 9 on d0;
+  // D then ends max(5, 5.04 + 10) + 1 = 16.04 on d0 or
+  // max(5 + 10, 5.04) + 1 = 16 on d1: makespan 16. All on d0: 1+4+4+1 = 10.
+  test::Problem p = test::make_problem({"A", "B", "C", "D"}, {{1, 1}, {4, 4}, {4, 4}, {1, 1}},
+                                       {{0, 1, 1000.0}, {0, 2, 1000.0}, {1, 3, 250000.0}, {2, 3, 250000.0}});
+  p.links = DeviceLinks::weighted(2, 0.0, 4.0e-5);
+  const Schedule heft = schedule_heft(p.graph, p.costs, p.links);
+  CHECK(heft.device_of(2) == 1);
+  CHECK(heft.makespan_ms == Approx(16.0));
+  const Schedule best = schedule_heft_or_one_device(p.graph, p.costs, p.links);
+  CHECK(best.validate(p.graph, p.costs, p.links).empty());
+  CHECK(best.makespan_ms == Approx(10.0));
+  for (TaskId t = 0; t < 4; ++t) CHECK(best.device_of(t) == 0);
+  REQUIRE(best.devices.size() == 2);
+  CHECK(best.devices[1].empty());
+  // Over a fast link HEFT's own schedule wins and is kept.
+  p.links = DeviceLinks::weighted(2, 0.0, 4.0e-8);
+  const Schedule fast = schedule_heft_or_one_device(p.graph, p.costs, p.links);
+  CHECK(fast.device_of(2) == 1);
+  CHECK(fast.makespan_ms == Approx(6.01).margin(0.01));
+}
