@@ -33,6 +33,7 @@ struct ExecutionOptions {
   device::ExecutorKind executor = device::ExecutorKind::automatic;
   device::SvmMode svm = device::SvmMode::automatic;
   double wait_timeout_s = 10.0;  // fused: a run without progress this long fails
+  bool task_clock = true;        // fused: stamp each task with the device's cycle counter where it has one
   int profile_repetitions = 5;
   double reschedule_drift = 0.15;  // re-run HEFT when a device's total cost moved by more than this (relative)
   // Asynchronous Gauss-Seidel (He et al. 2025 §4.2).
