@@ -116,8 +116,9 @@ void write_mesh(hid_t file, std::span<const model::ObjectRange> objects) {
 }  // namespace
 
 ResultWriter::ResultWriter(const std::string& path, const RunInfo& info, std::span<const model::ObjectRange> objects)
-    : path_(path), objects_(objects.begin(), objects.end()) {
-  for (const auto& obj : objects_) particles_ = std::max<std::size_t>(particles_, obj.vertex_offset + obj.vertex_count);
+    : path_(path) {
+  for (const auto& obj : objects) object_names_.push_back(obj.name);
+  for (const auto& obj : objects) particles_ = std::max<std::size_t>(particles_, obj.vertex_offset + obj.vertex_count);
   // SWMR needs the latest file format; readers are h5py/HDF5 ≥ 1.10.
   H5Handle fapl = h5_check(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "file access properties");
   h5_check(H5Pset_libver_bounds(fapl, H5F_LIBVER_LATEST, H5F_LIBVER_LATEST), "file format bounds");
@@ -168,6 +169,7 @@ ResultWriter::ResultWriter(const std::string& path, const RunInfo& info, std::sp
   mk_frame_ = create_series(makespan, "frame", 0, 0, H5T_STD_I32LE);
   mk_predicted_ = create_series(makespan, "predicted_ms", 0, 0, H5T_IEEE_F64LE);
   mk_measured_ = create_series(makespan, "measured_ms", 0, 0, H5T_IEEE_F64LE);
+  views_ = write_xdmf_views(file_, objects, particles_, info.frames);
 
   h5_check(H5Fstart_swmr_write(file_), "starting single-writer/multi-reader mode");
   write_xdmf();
@@ -291,7 +293,7 @@ void ResultWriter::close_with(bool complete, const std::string& error) {
 std::string ResultWriter::xdmf_path() const { return std::filesystem::path(path_).replace_extension(".xdmf").string(); }
 
 void ResultWriter::write_xdmf() const {
-  write_xdmf_file(xdmf_path(), std::filesystem::path(path_).filename().string(), objects_, particles_, times_);
+  write_xdmf_file(xdmf_path(), std::filesystem::path(path_).filename().string(), views_, object_names_, times_);
 }
 
 }  // namespace atssim::io
