@@ -3,9 +3,10 @@
 Run with ParaView's own Python under a virtual X server (Debian's ParaView
 5.11 has no EGL/OSMesa build, so --force-offscreen-rendering alone crashes):
 
-    xvfb-run -a pvpython scripts/paraview_render.py OUT.xdmf --frame 60 -o frame.png
+    scripts/render_paraview.sh OUT.xdmf --frame 60 -o frame.png
 
-or scripts/render_paraview.sh, which installs ParaView and Xvfb first. Prints
+which installs ParaView and Xvfb when missing and runs
+`scripts/with_xvfb.sh pvpython scripts/paraview_render.py …`. Prints
 one JSON line: time steps, points, cells by type, bounds, the time shown.
 Exit 1 when the frame has no points or no cells (what ParaView showed before
 issue #15).

@@ -5,4 +5,4 @@
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 bash "$here/setup.sh" paraview
-exec xvfb-run -a -s "-screen 0 1280x1024x24" pvpython "$here/paraview_render.py" "$@"
+exec bash "$here/with_xvfb.sh" pvpython "$here/paraview_render.py" "$@"

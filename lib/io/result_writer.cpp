@@ -283,7 +283,11 @@ void ResultWriter::close_with(bool complete, const std::string& error) {
   }
   file_.reset();
   // Attributes cannot be added in SWMR mode: reopen to record the outcome.
-  H5Handle file = h5_check(H5Fopen(path_.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose, "reopening " + path_);
+  // Without file locking: a SWMR reader (a notebook watching the run) holds
+  // a lock that would make the reopen, and so the whole run, fail.
+  H5Handle fapl = h5_check(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "file access properties");
+  h5_check(H5Pset_file_locking(fapl, false, true), "file locking");
+  H5Handle file = h5_check(H5Fopen(path_.c_str(), H5F_ACC_RDWR, fapl), H5Fclose, "reopening " + path_);
   write_int_attribute(file, "complete", complete ? 1 : 0);
   write_string_attribute(file, "error", error);
   file.reset();

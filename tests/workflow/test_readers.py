@@ -30,15 +30,14 @@ def simulate(dir, name):
 
 def paraview(dir):
     require_tool("pvpython", "bash scripts/setup.sh paraview")
-    require_tool("xvfb-run", "bash scripts/setup.sh paraview")
+    require_tool("Xvfb", "bash scripts/setup.sh paraview")
     from matplotlib.image import imread
     for name in SCENES:
         h5, (frames, particles, _), tris, tets = simulate(dir, name)
         png = os.path.join(dir, name + ".png")
         # From another folder, by a relative path, as a user would type it.
-        r = run(["xvfb-run", "-a", "-s", "-screen 0 1280x1024x24", "pvpython",
-                 os.path.join(SCRIPTS, "paraview_render.py"), os.path.relpath(h5[:-3] + ".xdmf", "/"),
-                 "--frame", "3", "-o", png], cwd="/")
+        r = run(["bash", os.path.join(SCRIPTS, "with_xvfb.sh"), "pvpython", os.path.join(SCRIPTS, "paraview_render.py"),
+                 os.path.relpath(h5[:-3] + ".xdmf", "/"), "--frame", "3", "-o", png], cwd="/")
         check(r.returncode == 0, f"pvpython on {name}: {r.stdout}\n{r.stderr}")
         report = json.loads(r.stdout.strip().splitlines()[-1])
         print(name, report)
