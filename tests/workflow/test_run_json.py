@@ -4,7 +4,9 @@ docs/run-summary.schema.json, for a complete run, a run that blows up and a
 bad scene, and whose numbers agree with the HDF5 file the run wrote."""
 import json
 import os
-import sys
+import signal
+import subprocess
+import time
 
 import h5py
 import numpy as np
@@ -67,12 +69,33 @@ with temp_dir() as d:
     # A bad scene: exit 2, status input_error, nothing written.
     s, _ = run_json([scene("hanging_cloth"), "-o", os.path.join(d, "bad.h5"), "--set", "simulation.substeps=0"], 2)
     check(s["status"] == "input_error" and s["output"] is None and "substeps" in s["error"], "input error")
+    refused = s
+
+    # SIGTERM (a cluster's time limit, a sweep being stopped): the run stops
+    # after the current frame, keeps its frames and says it was interrupted.
+    out = os.path.join(d, "long.h5")
+    args = [ATSSIM, "run", scene("hanging_cloth"), "-o", out, "--frames", "100000", "--devices", "cpu/2:0", "--json"]
+    proc = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.time() + 60
+    while time.time() < deadline:
+        time.sleep(0.1)
+        try:
+            with h5py.File(out, "r", swmr=True) as f:
+                if f["frames/time"].shape[0] >= 3:
+                    break
+        except (OSError, KeyError):
+            pass
+    proc.send_signal(signal.SIGTERM)
+    stdout, stderr = proc.communicate(timeout=60)
+    s = json.loads(stdout)
+    check(proc.returncode == 1 and VALIDATOR.is_valid(s), f"interrupted run: exit {proc.returncode}, {stdout}")
+    check(s["status"] == "interrupted" and s["frames"]["written"] >= 3, f"interrupted run: {s['status']}, {s['frames']}")
 
     # The schema can fail: a summary without its status, or a complete run
     # that names no output, does not validate.
-    broken = dict(s)
+    broken = dict(refused)
     del broken["status"]
     check(not VALIDATOR.is_valid(broken), "a summary without a status validates")
-    broken = dict(s, status="complete", exit_code=0, error="")
+    broken = dict(refused, status="complete", exit_code=0, error="")
     check(not VALIDATOR.is_valid(broken), "a complete summary without an output validates")
 print("passed")
