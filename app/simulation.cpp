@@ -82,7 +82,6 @@ io::RunInfo run_info(const RunOptions& options, const scene::SceneDesc& scene, c
   info.schedule.costs = e.costs.profiled();
   info.schedule.latency_ms = e.costs.links().latency_ms;
   info.schedule.split_fractions = e.split_fractions;
-  info.frames = static_cast<std::size_t>(scene.simulation.frames / scene.output.stride) + 1;
   return info;
 }
 

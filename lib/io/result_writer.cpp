@@ -169,7 +169,7 @@ ResultWriter::ResultWriter(const std::string& path, const RunInfo& info, std::sp
   mk_frame_ = create_series(makespan, "frame", 0, 0, H5T_STD_I32LE);
   mk_predicted_ = create_series(makespan, "predicted_ms", 0, 0, H5T_IEEE_F64LE);
   mk_measured_ = create_series(makespan, "measured_ms", 0, 0, H5T_IEEE_F64LE);
-  views_ = write_xdmf_views(file_, objects, particles_, info.frames);
+  views_ = write_xdmf_cells(file_, objects, particles_);
 
   h5_check(H5Fstart_swmr_write(file_), "starting single-writer/multi-reader mode");
   write_xdmf();
@@ -288,6 +288,7 @@ void ResultWriter::close_with(bool complete, const std::string& error) {
   H5Handle fapl = h5_check(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "file access properties");
   h5_check(H5Pset_file_locking(fapl, false, true), "file locking");
   H5Handle file = h5_check(H5Fopen(path_.c_str(), H5F_ACC_RDWR, fapl), H5Fclose, "reopening " + path_);
+  write_frame_views(file, views_, static_cast<std::size_t>(frames_));
   write_int_attribute(file, "complete", complete ? 1 : 0);
   write_string_attribute(file, "error", error);
   file.reset();

@@ -53,9 +53,6 @@ struct RunInfo {
   std::string resolved_yaml;  // after defaults and --set
   std::vector<DeviceRecord> devices;
   ScheduleInfo schedule;
-  // Frames the run will write, the initial state included: the XDMF views
-  // (/xdmf/frames/<k>) are made for these before SWMR writing starts.
-  std::size_t frames = 0;
 };
 
 // One task of the substep recorded in a frame: where it ran, when the

@@ -1,5 +1,6 @@
 #include "io/xdmf_views.hpp"
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -28,8 +29,7 @@ void write_frame_view(hid_t group, std::size_t frame, std::size_t particles) {
 
 }  // namespace
 
-XdmfViews write_xdmf_views(hid_t file, std::span<const model::ObjectRange> objects, std::size_t particles,
-                           std::size_t frames) {
+XdmfViews write_xdmf_cells(hid_t file, std::span<const model::ObjectRange> objects, std::size_t particles) {
   XdmfViews views;
   views.particles = particles;
   std::vector<int> cells, cell_object;
@@ -51,10 +51,14 @@ XdmfViews write_xdmf_views(hid_t file, std::span<const model::ObjectRange> objec
   H5Handle group = create_group(file, "xdmf");
   write_int_array(group, "cells", cells, 0);
   write_int_array(group, "cell_object", cell_object, 0);
-  H5Handle frame_group = create_group(group, "frames");
-  for (std::size_t f = 0; f < frames; ++f) write_frame_view(frame_group, f, particles);
-  views.frames = frames;
+  create_group(group, "frames");
   return views;
+}
+
+void write_frame_views(hid_t file, XdmfViews& views, std::size_t frames) {
+  H5Handle group = h5_check(H5Gopen2(file, "xdmf/frames", H5P_DEFAULT), H5Gclose, "/xdmf/frames");
+  for (std::size_t f = views.frames; f < frames; ++f) write_frame_view(group, f, views.particles);
+  views.frames = std::max(views.frames, frames);
 }
 
 }  // namespace atssim::io

@@ -3,8 +3,8 @@
 // frames (/xdmf, docs/output-format.md): the cells of every object in one
 // XDMF "Mixed" list over global vertex indices, the object of each cell, and
 // per frame a virtual dataset that is that frame's [N, 3] slice of
-// /frames/positions. The views let readers that take a whole dataset per
-// item (meshio) and ParaView read the same file; they cost no frame data.
+// /frames/positions. The frame views let readers that take one whole dataset
+// per XDMF item (meshio) read the frames; they hold no frame data.
 #include <cstddef>
 #include <span>
 
@@ -25,9 +25,13 @@ struct XdmfViews {
 constexpr int kXdmfTriangle = 4;
 constexpr int kXdmfTetrahedron = 6;
 
-// Creates /xdmf in `file` (before SWMR writing starts: SWMR cannot create
-// objects) with views for frames 0 … frames − 1.
-XdmfViews write_xdmf_views(hid_t file, std::span<const model::ObjectRange> objects, std::size_t particles,
-                           std::size_t frames);
+// Creates /xdmf with the cells and an empty /xdmf/frames (before SWMR
+// writing starts: SWMR cannot create objects).
+XdmfViews write_xdmf_cells(hid_t file, std::span<const model::ObjectRange> objects, std::size_t particles);
+
+// Adds the views of frames views.frames … frames − 1 to a file open without
+// SWMR (the writer does it when the run ends: one view costs ~0.3 ms, so
+// views made up front would cost a long run seconds before its first frame).
+void write_frame_views(hid_t file, XdmfViews& views, std::size_t frames);
 
 }  // namespace atssim::io

@@ -15,9 +15,10 @@
 namespace atssim::io {
 
 // Writes atomically (temporary file + rename). `h5_name` is the HDF5 file
-// name relative to the sidecar's folder. Frames past `views.frames` (none in
-// a run that writes what it planned) get their geometry as an XDMF 3
-// hyperslab of /frames/positions, which ParaView reads and meshio does not.
+// name relative to the sidecar's folder. Frames without a view (all of them
+// while the run writes; none once it has ended) get their geometry as an
+// XDMF 3 hyperslab of /frames/positions, which ParaView reads and meshio
+// does not, and no "positions" attribute.
 void write_xdmf_file(const std::string& xdmf_path, const std::string& h5_name, const XdmfViews& views,
                      const std::vector<std::string>& object_names, const std::vector<double>& times);
 

@@ -33,9 +33,7 @@ io::RunInfo run_info() {
   d.name = "test device";
   d.type = "cpu";
   d.compute_units = 1;
-  io::RunInfo info{"atssim run s.yaml", "a: 1\n", "a: 1\nb: 2\n", {d}, {}};
-  info.frames = 4;
-  return info;
+  return {"atssim run s.yaml", "a: 1\n", "a: 1\nb: 2\n", {d}, {}};
 }
 
 }  // namespace
@@ -132,21 +130,21 @@ TEST_CASE("each frame's XDMF view reads as that frame's positions") {
   H5Fclose(file);
 }
 
-TEST_CASE("frames past the planned views get an XDMF 3 hyperslab geometry") {
+TEST_CASE("while the run writes, the XDMF sidecar's geometry is an XDMF 3 hyperslab, and views come at the end") {
   test::TempDir dir;
   const auto m = small_model();
   const std::string path = dir.file("run.h5");
   std::vector<float> xyz(m.particles.size() * 3, 0.0f);
-  auto info = run_info();
-  info.frames = 1;
-  {
-    io::ResultWriter w(path, info, m.objects);
-    for (int f = 0; f < 2; ++f) w.append_frame(f / 60.0, xyz, 1.0);
-    w.finish();
-  }
-  const std::string x = slurp(dir.file("run.xdmf"));
-  CHECK(x.find("run.h5:/xdmf/frames/0</DataItem>") != std::string::npos);
-  CHECK(x.find("run.h5:/frames/positions|1 0 0:1 1 1:1 25 3:2 25 3</DataItem>") != std::string::npos);
+  io::ResultWriter w(path, run_info(), m.objects);
+  w.append_frame(0.0, xyz, 1.0);
+  w.append_frame(1 / 60.0, xyz, 1.0);  // 2 frames: the sidecar is rewritten
+  const std::string during = slurp(dir.file("run.xdmf"));
+  CHECK(during.find("run.h5:/frames/positions|1 0 0:1 1 1:1 25 3:2 25 3</DataItem>") != std::string::npos);
+  CHECK(during.find("/xdmf/frames/") == std::string::npos);
+  w.finish();
+  const std::string after = slurp(dir.file("run.xdmf"));
+  CHECK(after.find("run.h5:/xdmf/frames/1</DataItem>") != std::string::npos);
+  CHECK(after.find("/frames/positions|") == std::string::npos);
 }
 
 TEST_CASE("reading something that is not an atssim file is an input error") {
