@@ -1,12 +1,16 @@
 // `atssim run SCENE`: simulate and write HDF5.
 #include <unistd.h>
+#include <chrono>
 #include <csignal>
+#include <cstdio>
 
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
 #include "app/commands.hpp"
+#include "app/run_summary.hpp"
 #include "app/simulation.hpp"
+#include "util/error.hpp"
 
 namespace atssim::app {
 
@@ -22,6 +26,7 @@ struct RunArgs {
   std::string memory;
   std::vector<std::string> sets;
   bool quiet = false;
+  bool json = false;
   std::string svm;
 };
 
@@ -53,6 +58,8 @@ Action add_run_command(CLI::App& cli, const std::string& command_line) {
       ->check(CLI::IsMember({"shared", "separate"}));
   cmd->add_option("--set", args->sets, "Override a scene key, e.g. --set simulation.substeps=32 (repeatable)");
   cmd->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
+  cmd->add_flag("--json", args->json,
+                "Print one JSON object on stdout summarising the run, also when it fails (docs/run-json.md)");
   cmd->add_option("--svm", args->svm, "Shared virtual memory: auto (fine grain when offered) or coarse")
       ->check(CLI::IsMember({"auto", "coarse", "fine"}));
   return [args, command_line]() {
@@ -70,10 +77,33 @@ Action add_run_command(CLI::App& cli, const std::string& command_line) {
 
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
+    const auto start = std::chrono::steady_clock::now();
     const bool show_progress = !args->quiet && isatty(STDERR_FILENO);
-    const RunResult r =
-        run_simulation(options, show_progress ? print_progress : std::function<void(const RunProgress&)>{});
-    if (!args->quiet) {
+    RunResult r;
+    RunSummaryInput summary;
+    summary.scene_path = args->scene;
+    summary.command_line = command_line;
+    const auto print_summary = [&]() {
+      summary.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      fmt::print("{}", run_summary_json(r, summary));
+      std::fflush(stdout);
+    };
+    try {
+      run_simulation(options, r, show_progress ? print_progress : std::function<void(const RunProgress&)>{});
+    } catch (const std::exception& e) {
+      if (args->json) {
+        const auto* error = dynamic_cast<const Error*>(&e);
+        summary.status = error && error->kind() == ErrorKind::input ? RunStatus::input_error
+                         : stop_requested()                         ? RunStatus::interrupted
+                                                                    : RunStatus::failed;
+        summary.error = e.what();
+        print_summary();
+      }
+      throw;  // main prints the message and exits with its code
+    }
+    if (args->json) {
+      print_summary();
+    } else if (!args->quiet) {
       fmt::print("wrote {}: {} frames ({} simulated), {} particles, {:.2f} ms/frame on {}\n", r.output_path,
                  r.frames_written, r.frames_simulated, r.particles, r.mean_frame_ms, r.device);
     }

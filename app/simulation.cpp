@@ -95,6 +95,7 @@ void release_simulation_state(model::Model& model) {
 }  // namespace
 
 void request_stop() { g_stop = true; }
+bool stop_requested() { return g_stop; }
 
 scene::SceneDesc load_scene(const std::string& path, std::span<const std::string> overrides) {
   scene::SceneDesc scene = scene::load_scene_file(path, overrides);
@@ -114,7 +115,15 @@ plan::SubstepPlan substep_plan_for(const scene::SceneDesc& scene) {
 }
 
 RunResult run_simulation(const RunOptions& options, const std::function<void(const RunProgress&)>& progress) {
+  RunResult result;
+  run_simulation(options, result, progress);
+  return result;
+}
+
+void run_simulation(const RunOptions& options, RunResult& result,
+                    const std::function<void(const RunProgress&)>& progress) {
   g_stop = false;
+  result = RunResult{};
   const scene::SceneDesc scene = load_scene(options.scene_path, options.overrides);
   const solver::MethodDescription& method = solver::method(scene.solver.method);
   const solver::MethodSettings settings = solver::method_settings(scene, method);
@@ -141,15 +150,23 @@ RunResult run_simulation(const RunOptions& options, const std::function<void(con
   Execution execution = prepare_execution(devices, std::move(plan), exec_options);
   device::PlanExecutor& executor = *execution.executor;
 
-  io::ResultWriter writer(scene.output.path, run_info(options, scene, devices, execution, exec_options), model.objects);
+  const io::RunInfo info = run_info(options, scene, devices, execution, exec_options);
+  io::ResultWriter writer(scene.output.path, info, model.objects);
 
-  RunResult result;
   result.output_path = scene.output.path;
+  result.xdmf_path = writer.xdmf_path();
+  result.frames_requested = sim.frames;
   result.particles = particles;
   result.device = devices.info(0).name;
+  result.method = scene.solver.method;
+  result.schedule = info.schedule.mode;
+  result.executor = info.schedule.executor;
+  result.memory = info.schedule.memory;
+  result.devices = info.devices;
   std::vector<float> xyz;
   executor.read_positions(xyz);
   writer.append_frame(0.0, xyz, 0.0);
+  result.frames_written = writer.frames_written();
 
   double total_ms = 0.0;
   try {
@@ -176,10 +193,16 @@ RunResult run_simulation(const RunOptions& options, const std::function<void(con
       }
       total_ms += ms;
       result.frames_simulated = frame;
+      result.frame_ms.push_back(ms);
+      result.bytes_moved.push_back(static_cast<double>(measured.bytes_moved));
+      result.mean_frame_ms = total_ms / frame;
       if (frame % scene.output.stride == 0) {
         record_schedule(writer, frame, used, used_waits, measured);
         writer.append_frame(frame * sim.frame_dt, xyz, ms, schedule_ms);
+        result.predicted_makespan_ms.push_back(used.makespan_ms);
+        result.measured_makespan_ms.push_back(measured.makespan_ms);
       }
+      result.frames_written = writer.frames_written();
       if (progress) progress({frame, sim.frames, ms, total_ms / frame});
     }
   } catch (const std::exception& e) {  // atssim::Error included
@@ -189,8 +212,6 @@ RunResult run_simulation(const RunOptions& options, const std::function<void(con
   }
   writer.finish();
   result.frames_written = writer.frames_written();
-  result.mean_frame_ms = result.frames_simulated > 0 ? total_ms / result.frames_simulated : 0.0;
-  return result;
 }
 
 }  // namespace atssim::app

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "io/result_writer.hpp"
+
 namespace atssim::app {
 
 struct RunOptions {
@@ -25,16 +27,31 @@ struct RunProgress {
 
 struct RunResult {
   std::string output_path;
+  std::string xdmf_path;
+  int frames_requested = 0;
   int frames_simulated = 0;
   int frames_written = 0;  // including the initial state
   double mean_frame_ms = 0;
   std::size_t particles = 0;
-  std::string device;
+  std::string device;  // the first device's name
+  // What `run --json` reports (docs/run-json.md).
+  std::string method, schedule, executor;
+  std::string memory;  // "shared" or "separate" (whether the devices had more than one memory)
+  std::vector<io::DeviceRecord> devices;
+  std::vector<double> frame_ms;  // wall time of every simulated frame
+  // Per recorded frame: the substep makespan the scheduler predicted and the
+  // one measured (ms).
+  std::vector<double> predicted_makespan_ms, measured_makespan_ms;
+  std::vector<double> bytes_moved;  // per simulated frame: bytes copied between memories
 };
 
 // Throws atssim::Error: input errors before anything is written; runtime
 // errors after the output file exists carry "N frames kept in FILE".
 RunResult run_simulation(const RunOptions& options, const std::function<void(const RunProgress&)>& progress = {});
+// The same, filling `result` as the run goes, so that a caller that catches
+// the error still has what was done and measured.
+void run_simulation(const RunOptions& options, RunResult& result,
+                    const std::function<void(const RunProgress&)>& progress = {});
 
 }  // namespace atssim::app
 namespace atssim::scene {
@@ -56,5 +73,6 @@ plan::SubstepPlan substep_plan_for(const scene::SceneDesc& scene);
 // Set from a signal handler: the run stops after the current frame, keeps
 // what it wrote and fails with "interrupted".
 void request_stop();
+bool stop_requested();
 
 }  // namespace atssim::app

@@ -2,6 +2,15 @@
 # Installs the Debian 12 packages atssim needs. Idempotent: does nothing when
 # every package is already present. Needs root (or sudo) only when something
 # is missing.
+#
+#   bash scripts/setup.sh                 # build, tests, scripts (CI runs this)
+#   bash scripts/setup.sh paraview        # + ParaView's pvpython and Xvfb (~600 MB)
+#   bash scripts/setup.sh slurm           # + a one-node Slurm cluster with munge
+#
+# ParaView and Slurm are opt-in groups: they are large (ParaView pulls Qt,
+# VTK and OpenMPI) or start daemons, and only the workflow scripts under
+# scripts/ and the tests labelled `paraview`/`slurm` use them (those tests
+# skip with a message when the group is missing).
 set -euo pipefail
 
 packages=(
@@ -12,8 +21,17 @@ packages=(
   libhdf5-dev hdf5-tools
   libcli11-dev catch2 libfmt-dev libspdlog-dev libbenchmark-dev
   python3 python3-h5py python3-matplotlib python3-numpy
+  python3-meshio python3-jsonschema
   parallel time
 )
+
+for group in "$@"; do
+  case "$group" in
+    paraview) packages+=(paraview python3-paraview xvfb xauth) ;;
+    slurm) packages+=(slurm-wlm munge) ;;
+    *) echo "atssim setup: unknown group '$group' (groups: paraview, slurm)" >&2; exit 2 ;;
+  esac
+done
 
 missing=()
 for p in "${packages[@]}"; do
@@ -30,5 +48,7 @@ echo "atssim setup: installing ${missing[*]}" >&2
 sudo_cmd=()
 if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
 export DEBIAN_FRONTEND=noninteractive
-"${sudo_cmd[@]}" apt-get update -qq
-"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
+# Another apt run (a second checkout's setup) holds the lock: wait for it.
+apt_opts=(-o DPkg::Lock::Timeout=600)
+"${sudo_cmd[@]}" apt-get "${apt_opts[@]}" update -qq
+"${sudo_cmd[@]}" apt-get "${apt_opts[@]}" install -y -qq --no-install-recommends "${missing[@]}" >&2

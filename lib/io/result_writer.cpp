@@ -118,8 +118,9 @@ void write_mesh(hid_t file, std::span<const model::ObjectRange> objects) {
 }  // namespace
 
 ResultWriter::ResultWriter(const std::string& path, const RunInfo& info, std::span<const model::ObjectRange> objects)
-    : path_(path), objects_(objects.begin(), objects.end()) {
-  for (const auto& obj : objects_) particles_ = std::max<std::size_t>(particles_, obj.vertex_offset + obj.vertex_count);
+    : path_(path) {
+  for (const auto& obj : objects) object_names_.push_back(obj.name);
+  for (const auto& obj : objects) particles_ = std::max<std::size_t>(particles_, obj.vertex_offset + obj.vertex_count);
   // SWMR needs the latest file format; readers are h5py/HDF5 ≥ 1.10.
   H5Handle fapl = h5_check(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "file access properties");
   h5_check(H5Pset_libver_bounds(fapl, H5F_LIBVER_LATEST, H5F_LIBVER_LATEST), "file format bounds");
@@ -171,6 +172,7 @@ ResultWriter::ResultWriter(const std::string& path, const RunInfo& info, std::sp
   mk_predicted_ = create_series(makespan, "predicted_ms", 0, 0, H5T_IEEE_F64LE);
   mk_measured_ = create_series(makespan, "measured_ms", 0, 0, H5T_IEEE_F64LE);
   mk_bytes_ = create_series(makespan, "bytes_moved", 0, 0, H5T_STD_U64LE);
+  views_ = write_xdmf_cells(file_, objects, particles_);
 
   h5_check(H5Fstart_swmr_write(file_), "starting single-writer/multi-reader mode");
   write_xdmf();
@@ -282,12 +284,17 @@ void ResultWriter::close_with(bool complete, const std::string& error) {
   time_.reset();
   for (H5Handle* h : {&frame_ms_, &schedule_ms_, &sched_frame_, &sched_task_, &sched_device_, &sched_pstart_,
                       &sched_pfinish_, &sched_mstart_, &sched_mfinish_, &wait_frame_, &wait_producer_, &wait_consumer_,
-                      &wait_pdevice_, &wait_cdevice_, &mk_frame_, &mk_predicted_, &mk_measured_}) {
+                      &wait_pdevice_, &wait_cdevice_, &mk_frame_, &mk_predicted_, &mk_measured_, &mk_bytes_}) {
     h->reset();
   }
   file_.reset();
   // Attributes cannot be added in SWMR mode: reopen to record the outcome.
-  H5Handle file = h5_check(H5Fopen(path_.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose, "reopening " + path_);
+  // Without file locking: a SWMR reader (a notebook watching the run) holds
+  // a lock that would make the reopen, and so the whole run, fail.
+  H5Handle fapl = h5_check(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "file access properties");
+  h5_check(H5Pset_file_locking(fapl, false, true), "file locking");
+  H5Handle file = h5_check(H5Fopen(path_.c_str(), H5F_ACC_RDWR, fapl), H5Fclose, "reopening " + path_);
+  write_frame_views(file, views_, static_cast<std::size_t>(frames_));
   write_int_attribute(file, "complete", complete ? 1 : 0);
   write_string_attribute(file, "error", error);
   file.reset();
@@ -297,7 +304,7 @@ void ResultWriter::close_with(bool complete, const std::string& error) {
 std::string ResultWriter::xdmf_path() const { return std::filesystem::path(path_).replace_extension(".xdmf").string(); }
 
 void ResultWriter::write_xdmf() const {
-  write_xdmf_file(xdmf_path(), std::filesystem::path(path_).filename().string(), objects_, particles_, times_);
+  write_xdmf_file(xdmf_path(), std::filesystem::path(path_).filename().string(), views_, object_names_, times_);
 }
 
 }  // namespace atssim::io

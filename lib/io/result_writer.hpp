@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "io/h5_handle.hpp"
+#include "io/xdmf_views.hpp"
 #include "model/model.hpp"
 #include "sched/cost_table.hpp"
 #include "sched/schedule.hpp"
@@ -97,7 +98,8 @@ class ResultWriter {
   void append_rows(hid_t set, std::span<const T> values, hid_t mem_type, hsize_t rows);
 
   std::string path_;
-  std::vector<model::ObjectRange> objects_;  // topology for the XDMF sidecar
+  std::vector<std::string> object_names_;  // for the XDMF sidecar
+  XdmfViews views_;
   std::size_t particles_ = 0;
   int frames_ = 0;
   std::vector<double> times_;

@@ -10,6 +10,8 @@
 #include <sstream>
 #include <thread>
 
+#include <hdf5.h>
+
 #include "io/result_reader.hpp"
 #include "support/scenes.hpp"
 #include "support/temp_dir.hpp"
@@ -250,4 +252,39 @@ TEST_CASE("a solid the method cannot simulate: one line naming the line that cho
   r = run_atssim(dir, "run " + scene + " -o " + dir.file("out.h5") + " --set objects.0.material.model=springs");
   CHECK(r.code == 2);
   CHECK(r.err.find("(--set objects.0.material.model=springs): solid 'box' has model springs") != std::string::npos);
+}
+
+TEST_CASE("a run finishes and marks its file complete while a reader holds the file open") {
+  test::TempDir dir;
+  const std::string scene = dir.write("cloth.yaml", test::hanging_cloth_yaml(24));
+  const std::string out = dir.file("out.h5");
+  Outcome r;
+  std::thread run([&] { r = run_atssim(dir, "run " + scene + " -o " + out + " --frames 1500 --devices cpu/2:0"); });
+  // A notebook watching the run: opened in SWMR mode while frames are written.
+  hid_t reader = H5I_INVALID_HID;
+  for (int i = 0; i < 400 && reader < 0; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(25));
+    try {
+      if (io::read_summary(out).frames >= 2)
+        reader = H5Fopen(out.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, H5P_DEFAULT);
+    } catch (...) {
+    }
+  }
+  bool complete_when_opened = true;
+  if (reader >= 0) {
+    int flag = 1;
+    const hid_t attr = H5Aopen(reader, "complete", H5P_DEFAULT);
+    H5Aread(attr, H5T_NATIVE_INT, &flag);
+    H5Aclose(attr);
+    complete_when_opened = flag != 0;
+  }
+  run.join();
+  if (reader >= 0) H5Fclose(reader);
+  REQUIRE(reader >= 0);
+  REQUIRE_FALSE(complete_when_opened);  // the reader really was there before the end
+  INFO(r.err);
+  CHECK(r.code == 0);
+  const auto s = io::read_summary(out);
+  CHECK(s.complete);
+  CHECK(s.frames == 1501);
 }

@@ -17,6 +17,13 @@ using namespace atssim;
 
 namespace {
 
+std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
 model::Model small_model() {
   return model::build_model(scene::parse_scene(test::hanging_cloth_yaml(5), "s.yaml", "."));
 }
@@ -75,7 +82,7 @@ TEST_CASE("a failed run keeps its frames and records the error") {
   CHECK(s.frames == 2);
 }
 
-TEST_CASE("the XDMF sidecar points ParaView at every frame of the HDF5 file") {
+TEST_CASE("the XDMF sidecar lists every written frame as a grid of the frame's view and the objects' cells") {
   test::TempDir dir;
   const auto m = small_model();
   const std::string path = dir.file("run.h5");
@@ -85,15 +92,59 @@ TEST_CASE("the XDMF sidecar points ParaView at every frame of the HDF5 file") {
     for (int f = 0; f < 3; ++f) w.append_frame(f / 60.0, xyz, 1.0);
     w.finish();
   }
-  std::ifstream in(dir.file("run.xdmf"));
-  REQUIRE(in.good());
-  std::stringstream text;
-  text << in.rdbuf();
-  const std::string x = text.str();
-  CHECK(x.find("run.h5:/frames/positions") != std::string::npos);
-  CHECK(x.find("run.h5:/mesh/cloth/triangles") != std::string::npos);
+  const std::string x = slurp(dir.file("run.xdmf"));
+  CHECK(x.find("run.h5:/xdmf/frames/2</DataItem>") != std::string::npos);
+  CHECK(x.find("run.h5:/xdmf/cells") != std::string::npos);
+  CHECK(x.find("TopologyType=\"Mixed\" NumberOfElements=\"32\"") != std::string::npos);  // 4 × 4 quads × 2
   CHECK(x.find("Name=\"frame2\"") != std::string::npos);
   CHECK(x.find("Name=\"frame3\"") == std::string::npos);
+  CHECK(x.find("HyperSlab") == std::string::npos);  // ParaView 5.11 skips that item
+}
+
+TEST_CASE("each frame's XDMF view reads as that frame's positions") {
+  test::TempDir dir;
+  const auto m = small_model();
+  const std::string path = dir.file("run.h5");
+  const std::size_t n = m.particles.size();
+  {
+    io::ResultWriter w(path, run_info(), m.objects);
+    for (int f = 0; f < 3; ++f) {
+      std::vector<float> xyz(n * 3);
+      for (std::size_t i = 0; i < xyz.size(); ++i) xyz[i] = float(f * 1000 + i);
+      w.append_frame(f / 60.0, xyz, 1.0);
+    }
+    w.finish();
+  }
+  const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  REQUIRE(file >= 0);
+  for (int f = 0; f < 3; ++f) {
+    const std::string name = "/xdmf/frames/" + std::to_string(f);
+    const hid_t set = H5Dopen2(file, name.c_str(), H5P_DEFAULT);
+    REQUIRE(set >= 0);
+    std::vector<float> view(n * 3, -1.0f);
+    REQUIRE(H5Dread(set, H5T_NATIVE_FLOAT, H5S_ALL, H5S_ALL, H5P_DEFAULT, view.data()) >= 0);
+    H5Dclose(set);
+    CHECK(view == io::read_frame_positions(path, f));
+    CHECK(view[1] == float(f * 1000 + 1));
+  }
+  H5Fclose(file);
+}
+
+TEST_CASE("while the run writes, the XDMF sidecar's geometry is an XDMF 3 hyperslab, and views come at the end") {
+  test::TempDir dir;
+  const auto m = small_model();
+  const std::string path = dir.file("run.h5");
+  std::vector<float> xyz(m.particles.size() * 3, 0.0f);
+  io::ResultWriter w(path, run_info(), m.objects);
+  w.append_frame(0.0, xyz, 1.0);
+  w.append_frame(1 / 60.0, xyz, 1.0);  // 2 frames: the sidecar is rewritten
+  const std::string during = slurp(dir.file("run.xdmf"));
+  CHECK(during.find("run.h5:/frames/positions|1 0 0:1 1 1:1 25 3:2 25 3</DataItem>") != std::string::npos);
+  CHECK(during.find("/xdmf/frames/") == std::string::npos);
+  w.finish();
+  const std::string after = slurp(dir.file("run.xdmf"));
+  CHECK(after.find("run.h5:/xdmf/frames/1</DataItem>") != std::string::npos);
+  CHECK(after.find("/frames/positions|") == std::string::npos);
 }
 
 TEST_CASE("reading something that is not an atssim file is an input error") {

@@ -1,0 +1,49 @@
+"""Shared helpers of the workflow tests: the real atssim binary, real tools.
+
+Each test is a script that ctest runs; exit code 77 means "skipped" (ctest's
+SKIP_RETURN_CODE), with the reason on stderr.
+"""
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+SKIP = 77
+ATSSIM = os.environ.get("ATSSIM", "atssim")
+SOURCE_DIR = os.environ.get("ATSSIM_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+SCRIPTS = os.path.join(SOURCE_DIR, "scripts")
+
+
+def skip(reason):
+    print(f"SKIPPED: {reason}", file=sys.stderr)
+    sys.exit(SKIP)
+
+
+def require_tool(name, install_hint):
+    if shutil.which(name) is None:
+        skip(f"'{name}' is not installed ({install_hint})")
+
+
+def fail(message):
+    print(f"FAILED: {message}", file=sys.stderr)
+    sys.exit(1)
+
+
+def check(condition, message):
+    if not condition:
+        fail(message)
+
+
+def scene(name):
+    return os.path.join(SOURCE_DIR, "scenes", name + ".yaml")
+
+
+def run(args, **kw):
+    """Runs a command, echoing it; returns the CompletedProcess (text)."""
+    print("$", " ".join(args), flush=True)
+    return subprocess.run(args, text=True, capture_output=True, **kw)
+
+
+def temp_dir():
+    return tempfile.TemporaryDirectory(prefix="atssim-workflow-")
