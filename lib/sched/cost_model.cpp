@@ -36,6 +36,16 @@ double total_drift(const CostTable& planned, const CostTable& now) {
   return worst;
 }
 
+double link_drift(const DeviceLinks& planned, const DeviceLinks& now) {
+  double worst = 0.0;
+  const std::size_t n = std::min(planned.ms_per_weight.size(), now.ms_per_weight.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    const double a = planned.ms_per_weight[i];
+    if (a > 0.0) worst = std::max(worst, std::abs(now.ms_per_weight[i] - a) / a);
+  }
+  return worst;
+}
+
 void refit_latency(DeviceLinks& links, std::span<const TaskTiming> timings, std::span<const Wait> waits,
                    std::size_t task_count, double weight) {
   if (waits.empty()) return;
@@ -109,7 +119,8 @@ CostModel::CostModel(CostTable profiled, DeviceLinks links, double drift_thresho
     : profiled_(profiled),
       costs_(profiled),
       planned_(std::move(profiled)),
-      links_(std::move(links)),
+      links_(links),
+      planned_links_(std::move(links)),
       threshold_(drift_threshold) {}
 
 void CostModel::observe(std::span<const TaskTiming> timings, std::span<const Wait> waits) {
@@ -139,8 +150,13 @@ void CostModel::observe_launches(const Schedule& predicted, std::span<const Laun
   refit_from_launches(costs_, predicted, launches);
 }
 
-bool CostModel::drifted() const { return total_drift(planned_, costs_) > threshold_; }
+bool CostModel::drifted() const {
+  return total_drift(planned_, costs_) > threshold_ || link_drift(planned_links_, links_) > threshold_;
+}
 
-void CostModel::plan_made() { planned_ = costs_; }
+void CostModel::plan_made() {
+  planned_ = costs_;
+  planned_links_ = links_;
+}
 
 }  // namespace atssim::sched

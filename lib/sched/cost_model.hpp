@@ -27,6 +27,12 @@ std::vector<Measurement> task_costs(std::span<const TaskTiming> timings, std::si
 // tasks are noisy (a few µs), a device's total is what HEFT balances.
 double total_drift(const CostTable& planned, const CostTable& now);
 
+// Largest relative change of a link's cost per byte (links priced by
+// latency only are skipped): with separate memories the copies a schedule
+// forces are measured only once it runs, and a link that turned out dearer
+// than its probe said can make another placement (or one device) better.
+double link_drift(const DeviceLinks& planned, const DeviceLinks& now);
+
 // The hop latency an idle probe measures is a lower bound: under load a
 // waiting device starts later. Every cross-device wait that held its
 // consumer back (the producer finished after the consumer's device was
@@ -70,7 +76,8 @@ class CostModel {
   void observe_copies(std::span<const CopyTiming> copies);
   // One frame's launches (fused without a task clock).
   void observe_launches(const Schedule& predicted, std::span<const LaunchTiming> launches);
-  // Whether the costs moved by more than the threshold since plan_made().
+  // Whether the costs, or a link's cost per byte, moved by more than the
+  // threshold since plan_made().
   bool drifted() const;
   // The current costs are those the schedule was just made with.
   void plan_made();
@@ -80,7 +87,7 @@ class CostModel {
 
  private:
   CostTable profiled_, costs_, planned_;
-  DeviceLinks links_;
+  DeviceLinks links_, planned_links_;
   double threshold_ = 0.15;
 };
 
