@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cstring>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
@@ -86,8 +87,8 @@ std::optional<CheckpointSlots> CheckpointSlots::open(hid_t file) {
 
 void CheckpointSlots::write(const Checkpoint& c) {
   if (c.positions.size() != position_bytes_ || c.velocities.size() != velocity_bytes_) {
-    throw Error(fmt::format("checkpoint: state of {}+{} bytes, the file holds {}+{}", c.positions.size(),
-                            c.velocities.size(), position_bytes_, velocity_bytes_));
+    throw std::logic_error(fmt::format("checkpoint: state of {}+{} bytes, the file holds {}+{}", c.positions.size(),
+                                       c.velocities.size(), position_bytes_, velocity_bytes_));
   }
   const int slot = next_slot_;
   std::vector<std::byte> bytes(c.positions);

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <filesystem>
 #include <sstream>
+#include <stdexcept>
 
 #include <fmt/chrono.h>
 #include <fmt/format.h>
@@ -490,7 +491,7 @@ void ResultWriter::check_output_health(std::size_t frame_bytes) const {
 
 void ResultWriter::append_frame(double time, std::span<const float> xyz, double frame_ms, double schedule_ms) {
   if (xyz.size() != particles_ * 3) {
-    throw Error(fmt::format("output: frame has {} values, expected {}", xyz.size(), particles_ * 3));
+    throw std::logic_error(fmt::format("output: frame has {} values, expected {}", xyz.size(), particles_ * 3));
   }
   if (broken_) throw runtime_error(fmt::format("output '{}': an earlier write failed", writing_));
   const std::size_t state_bytes = pending_ ? pending_->positions.size() + pending_->velocities.size() : 0;
