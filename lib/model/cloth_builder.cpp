@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
 #include <Eigen/Geometry>
 
 #include "model/object_particles.hpp"
 #include "model/tet_builder.hpp"
+#include "util/error.hpp"
 
 namespace atssim::model {
 
@@ -74,9 +76,7 @@ std::vector<std::array<int, 4>> bending_stencils(const std::vector<std::array<in
 
 namespace {
 
-double cot_between(const Vec3& a, const Vec3& b) {
-  return a.dot(b) / a.cross(b).norm();
-}
+double cot_between(const Vec3& a, const Vec3& b) { return a.dot(b) / a.cross(b).norm(); }
 
 // Cotangent weights of the isometric bending model (Bergou et al. 2006, as
 // in Bender's PositionBasedDynamics). Returns false for a degenerate stencil.
@@ -100,11 +100,30 @@ void add_cloth(Model& model, const scene::ObjectDesc& obj, const scene::Triangle
   const int n = range.vertex_count;
   range.triangles = mesh.triangles;
 
+  check_placed(obj, range.rest_position, scene_file);
   std::vector<double> mass(n, 0.0);
-  for (const auto& t : mesh.triangles) {
+  for (std::size_t k = 0; k < mesh.triangles.size(); ++k) {
+    const auto& t = mesh.triangles[k];
     const Vec3& a = range.rest_position[t[0]];
-    const double area = 0.5 * (range.rest_position[t[1]] - a).cross(range.rest_position[t[2]] - a).norm();
+    const Vec3 e1 = range.rest_position[t[1]] - a, e2 = range.rest_position[t[2]] - a;
+    const double area = 0.5 * e1.cross(e2).norm();
+    const double longest = std::max({e1.squaredNorm(), e2.squaredNorm(), (e2 - e1).squaredNorm()});
+    if (!(area > 1e-12 * longest) || area == 0.0) {
+      throw input_error(
+          fmt::format("{}:{}: object '{}': triangle {} (vertices {}, {}, {}) has zero area (its corners "
+                      "coincide or lie on a line), so it gives its vertices no mass; remove degenerate "
+                      "faces from the mesh",
+                      scene_file, obj.source_line, obj.name, k, t[0], t[1], t[2]));
+    }
     for (int v : t) mass[v] += obj.material.density * area / 3.0;
+  }
+  for (int v = 0; v < n; ++v) {
+    if (!(mass[v] > 0.0) || !std::isfinite(mass[v])) {
+      throw input_error(
+          fmt::format("{}:{}: object '{}': vertex {} has no mass (it belongs to no triangle, or the "
+                      "density is 0); remove unused vertices from the mesh",
+                      scene_file, obj.source_line, obj.name, v));
+    }
   }
 
   append_particles(model, range, mass, pinned_flags(obj, range.rest_position, scene_file));

@@ -90,6 +90,7 @@ std::vector<double> checked_volumes(scene::TetMesh& mesh, const std::vector<Vec3
 void add_solid(Model& model, const scene::ObjectDesc& obj, const std::string& scene_file) {
   scene::TetMesh mesh = obj.box ? make_tet_box(*obj.box) : obj.tet_mesh;
   ObjectRange range = begin_object(model, obj, mesh.vertices);
+  check_placed(obj, range.rest_position, scene_file);
   const int offset = range.vertex_offset;
   const int n = range.vertex_count;
   const std::vector<double> volume = checked_volumes(mesh, range.rest_position, obj, scene_file);
@@ -98,6 +99,14 @@ void add_solid(Model& model, const scene::ObjectDesc& obj, const std::string& sc
   std::vector<double> mass(n, 0.0);
   for (std::size_t e = 0; e < mesh.tetrahedra.size(); ++e) {
     for (int v : mesh.tetrahedra[e]) mass[v] += obj.material.density * volume[e] / 4.0;
+  }
+  for (int v = 0; v < n; ++v) {
+    if (!(mass[v] > 0.0) || !std::isfinite(mass[v])) {
+      throw input_error(
+          fmt::format("{}:{}: object '{}': node {} has no mass (it belongs to no tetrahedron); remove "
+                      "unused nodes from the mesh",
+                      scene_file, obj.source_line, obj.name, v));
+    }
   }
   append_particles(model, range, mass, pinned_flags(obj, range.rest_position, scene_file));
 

@@ -45,7 +45,8 @@ struct MaterialDesc {
   double youngs_modulus = 1.0e5;  // solids: Pa (> 0)
   double poisson_ratio = 0.3;     // solids: 0 ≤ ν < 0.5
   SolidModel solid_model = SolidModel::neo_hookean;
-  std::string model_where;  // "file:line" (or the --set) that chose solid_model; empty = default
+  std::string model_where;            // "file:line" (or the --set) that chose solid_model; empty = default
+  std::string zero_compliance_where;  // "file:line" of a compliance of 0 (perfectly stiff); empty = none
 };
 
 struct BoxDesc {
@@ -110,6 +111,7 @@ struct MethodOptionDesc {
 struct SolverDesc {
   std::string method = "xpbd";
   std::string method_where;                      // "file:line" (or the --set) that chose the method; empty = default
+  std::string schedule_where;                    // "file:line" (or the --set) that chose the schedule; empty = default
   std::string schedule = "single";               // single | split | heft | async: how the substep uses the devices
   int async_depth = 2;                           // async: iterations in flight at once (1 = serial Gauss-Seidel)
   std::string merge = "average_displacements";   // async: how a device merges another's result
@@ -134,6 +136,7 @@ struct SceneDesc {
   SolverDesc solver;
   OutputDesc output;
   std::string devices = "default";  // device spec, see `atssim devices`
+  std::string devices_where;        // "file:line" (or the --set) that gave it; empty = default
   std::string memory = "shared";    // shared (a platform's devices share SVM) | separate (copies through the host)
 };
 
