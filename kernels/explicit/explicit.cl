@@ -11,20 +11,20 @@
 #include "common/vertex_force.h"
 #include "common/particle_steps.cl"
 
-/* a[i] = g - c v + f/m at the stage state (xs, vs). */
-ATS_TASK void explicit_forces(int i, __global const float4* xs, __global const float4* vs, __global float4* a, __global const int* adj_offsets, __global const int* adj, __global const ats_distance_c* stretch, __global const ats_bend_c* bend, __global const ats_tet_c* tets, float gx, float gy, float gz, float drag) {
+/* accel[i] = g - c v + f/m at the stage state (xs, vs). */
+ATS_TASK void explicit_forces(int i, __global const float4* xs, __global const float4* vs, __global float4* accel, __global const int* adj_offsets, __global const int* adj, __global const ats_distance_c* stretch, __global const ats_bend_c* bend, __global const ats_tet_c* tets, float gx, float gy, float gz, float drag) {
   const ats_vec3 acc = particle_acceleration(i, xs, vs, adj_offsets, adj, stretch, bend, tets, ats_v3(gx, gy, gz), drag);
-  a[i] = (float4)(acc.x, acc.y, acc.z, 0.0f);
+  accel[i] = (float4)(acc.x, acc.y, acc.z, 0.0f);
 }
 
 /* Semi-implicit (symplectic) Euler, Eq. 2: v += h a(x, v), x += h v. */
-ATS_TASK void explicit_semi_euler(int i, __global float4* x, __global float4* v, __global const float4* a, float h) {
+ATS_TASK void explicit_semi_euler(int i, __global float4* x, __global float4* v, __global const float4* accel, float h) {
   const float4 p = x[i];
   if (p.w == 0.0f) {
     v[i] = (float4)(0.0f);
     return;
   }
-  const float4 acc = a[i];
+  const float4 acc = accel[i];
   float4 vel = v[i];
   vel.x += h * acc.x;
   vel.y += h * acc.y;
@@ -37,10 +37,10 @@ ATS_TASK void explicit_semi_euler(int i, __global float4* x, __global float4* v,
  * (x, v) at the step's start: this stage's slopes are k_x = vs, k_v = a;
  * the sums gain weight * slopes (reset on the first stage); the next stage
  * state is (x, v) + c h (k_x, k_v). */
-ATS_TASK void explicit_stage(int i, __global const float4* x, __global const float4* v, __global float4* xs, __global float4* vs, __global const float4* a, __global float4* sum_x, __global float4* sum_v, float weight, float c_h, int first) {
+ATS_TASK void explicit_stage(int i, __global const float4* x, __global const float4* v, __global float4* xs, __global float4* vs, __global const float4* accel, __global float4* sum_x, __global float4* sum_v, float weight, float c_h, int first) {
   const float4 p = x[i];
   const float4 kx = first ? v[i] : vs[i];
-  const float4 kv = a[i];
+  const float4 kv = accel[i];
   const float4 sx = first ? (float4)(0.0f) : sum_x[i];
   const float4 sv = first ? (float4)(0.0f) : sum_v[i];
   sum_x[i] = (float4)(sx.x + weight * kx.x, sx.y + weight * kx.y, sx.z + weight * kx.z, 0.0f);
@@ -52,13 +52,13 @@ ATS_TASK void explicit_stage(int i, __global const float4* x, __global const flo
 
 /* The last stage: its slopes join the sums with `weight`, then
  * x += h_sum sum_x, v += h_sum sum_v (h_sum = h / total weight). */
-ATS_TASK void explicit_finish(int i, __global float4* x, __global float4* v, __global const float4* vs, __global const float4* a, __global const float4* sum_x, __global const float4* sum_v, float weight, float h_sum) {
+ATS_TASK void explicit_finish(int i, __global float4* x, __global float4* v, __global const float4* vs, __global const float4* accel, __global const float4* sum_x, __global const float4* sum_v, float weight, float h_sum) {
   const float4 p = x[i];
   if (p.w == 0.0f) {
     v[i] = (float4)(0.0f);
     return;
   }
-  const float4 kx = vs[i], kv = a[i], sx = sum_x[i], sv = sum_v[i];
+  const float4 kx = vs[i], kv = accel[i], sx = sum_x[i], sv = sum_v[i];
   const float4 vel = v[i];
   x[i] = (float4)(p.x + h_sum * (sx.x + weight * kx.x), p.y + h_sum * (sx.y + weight * kx.y),
                   p.z + h_sum * (sx.z + weight * kx.z), p.w);

@@ -29,7 +29,7 @@ struct SimdBatches {
 struct WarpSets {
   std::vector<Triplet> triplets;  // the input reordered, sets one after another (insertion order inside a set)
   std::vector<int> set_sizes;
-  long long replays = 0;          // instruction executions over every warp of every set (see bank_replays)
+  long long replays = 0;  // instruction executions over every warp of every set (see bank_replays)
 };
 
 SimdBatches schedule_simd(std::span<const Triplet> triplets, int particle_count, int width);

@@ -34,16 +34,18 @@ constexpr double kPi = 3.14159265358979323846;
 // the errors measured). Gravity along +z stretches its spring to vertex 1
 // (along z, stiffness k); the spring to vertex 2 is perpendicular.
 std::string oscillator_yaml(double k, int substeps, int frames, const std::string& integrator) {
-  return "simulation: {fps: 60, substeps: " + std::to_string(substeps) + ", iterations: 1, frames: " +
-         std::to_string(frames) +
+  return "simulation: {fps: 60, substeps: " + std::to_string(substeps) +
+         ", iterations: 1, frames: " + std::to_string(frames) +
          ", gravity: [0, 0, 9.81]}\n"
          "objects:\n"
          "  - grid: {size: [1, 1], resolution: [2, 2]}\n"
          "    transform: {translate: [-0.5, 0, -0.5]}\n"
-         "    material: {density: 0.2, stretch_stiffness: " + std::to_string(k) +
+         "    material: {density: 0.2, stretch_stiffness: " +
+         std::to_string(k) +
          "}\n"
          "    pins: {vertices: [0, 1, 2]}\n"
-         "solver: {method: explicit, integrator: " + integrator + ", allow_unstable: true}\n";
+         "solver: {method: explicit, integrator: " +
+         integrator + ", allow_unstable: true}\n";
 }
 
 // z of vertex 3 per frame.
@@ -102,8 +104,8 @@ TEST_CASE("halving the step shrinks the trajectory error 2x (semi-implicit Euler
     error.push_back(largest_difference(oscillator_z(dir, k, s, frames, c.integrator), reference));
   }
   const double first = std::log2(error[0] / error[1]), second = std::log2(error[1] / error[2]);
-  INFO(c.integrator << ": errors " << error[0] << ", " << error[1] << ", " << error[2] << " m; orders " << first
-                    << ", " << second);
+  INFO(c.integrator << ": errors " << error[0] << ", " << error[1] << ", " << error[2] << " m; orders " << first << ", "
+                    << second);
   CHECK(std::abs(first - c.order) < 0.3);
   CHECK(std::abs(second - c.order) < 0.3);
 }
@@ -111,15 +113,16 @@ TEST_CASE("halving the step shrinks the trajectory error 2x (semi-implicit Euler
 namespace {
 
 std::string cloth_yaml(double dt, int frames, const std::string& integrator) {
-  return "simulation: {dt: " + fmt::format("{:.17g}", dt) + ", substeps: 1, iterations: 1, frames: " +
-         std::to_string(frames) +
+  return "simulation: {dt: " + fmt::format("{:.17g}", dt) +
+         ", substeps: 1, iterations: 1, frames: " + std::to_string(frames) +
          "}\n"
          "objects:\n"
          "  - grid: {size: [1, 1], resolution: [8, 8]}\n"
          "    material: {density: 0.2, stretch_stiffness: 1000, bend_stiffness: 0.001}\n"
          "    pins: {boxes: [{min: [-0.51, -0.01, -0.51], max: [-0.49, 0.01, -0.49]},\n"
          "                   {min: [0.49, -0.01, -0.51], max: [0.51, 0.01, -0.49]}]}\n"
-         "solver: {method: explicit, integrator: " + integrator + "}\n";
+         "solver: {method: explicit, integrator: " +
+         integrator + "}\n";
 }
 
 double estimated_limit(const std::string& integrator) {
@@ -225,12 +228,12 @@ TEST_CASE("the gathered spring force equals a serial sum over the springs exactl
   double moved = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     const float w = g.x[4 * i + 3];
-    const ats_vec3 a = w == 0.0f ? ats_v3(0.0f, 0.0f, 0.0f)
-                                 : ats_add(ats_v3(0.0f, -9.81f, 0.0f), ats_scale(f[i], w));  // no drag
+    const ats_vec3 a =
+        w == 0.0f ? ats_v3(0.0f, 0.0f, 0.0f) : ats_add(ats_v3(0.0f, -9.81f, 0.0f), ats_scale(f[i], w));  // no drag
     differ += (a.x != g.a[4 * i] || a.y != g.a[4 * i + 1] || a.z != g.a[4 * i + 2]) ? 1 : 0;
     moved = std::max(moved, double(std::abs(ats_length(f[i]))));
   }
   INFO(app::to_string(mode) << ": " << differ << " of " << n << " particles differ; largest spring force " << moved);
   CHECK(differ == 0);
-  CHECK(moved > 1e-3);  // the springs are stretched: the sums are not all zero
+  CHECK(moved > 1e-4);  // the springs are stretched (the weight of a particle is ~0.03 N): not all sums are 0
 }

@@ -43,8 +43,7 @@ std::multiset<Triplet> as_multiset(const std::vector<Triplet>& t) { return {t.be
 
 }  // namespace
 
-TEST_CASE("the adjacency of the seed's 9-particle cloth: counts, prefix sums and lists by hand",
-          "[graph][nvcloth]") {
+TEST_CASE("the adjacency of the seed's 9-particle cloth: counts, prefix sums and lists by hand", "[graph][nvcloth]") {
   const auto t = nine_particles();
   std::vector<int> flat;
   for (const Triplet& x : t) flat.insert(flat.end(), x.begin(), x.end());

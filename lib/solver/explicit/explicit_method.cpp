@@ -26,11 +26,8 @@ plan::SubstepPlan build(const SimLayout& layout, const MethodSettings& s) {
 }  // namespace
 
 const MethodDescription kDescription{
-    "explicit",
-    "explicit integration of the elastic forces: semi-implicit Euler, midpoint or RK4 (seed 001 Eqs. 2-4)",
-    false,
-    kOptions,
-    kSolids,
-    build};
+    "explicit", "explicit integration of the elastic forces: semi-implicit Euler, midpoint or RK4 (seed 001 Eqs. 2-4)",
+    false,      kOptions,
+    kSolids,    build};
 
 }  // namespace atssim::solver::explicit_rk

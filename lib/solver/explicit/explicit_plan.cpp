@@ -56,14 +56,14 @@ plan::SubstepPlan make_explicit_plan(const SimLayout& layout, const ExplicitSett
 
   const float h = static_cast<float>(settings.substep_dt);
   const auto forces = [&](sched::TaskId after, int stage, plan::BufferId xs, plan::BufferId vs) {
-    plan::KernelLaunch launch{"explicit_forces",
-                              {0, n},
-                              {Arg::of_buffer(xs), Arg::of_buffer(vs), Arg::of_buffer(b.a),
-                               Arg::of_buffer(b.adjacency_offsets), Arg::of_buffer(b.adjacency),
-                               Arg::of_buffer(b.stretch), Arg::of_buffer(b.bend), Arg::of_buffer(b.tets),
-                               Arg::of_float(layout.gravity.x), Arg::of_float(layout.gravity.y),
-                               Arg::of_float(layout.gravity.z), Arg::of_float(layout.air_drag)},
-                              {particle_write(b.a)}};
+    plan::KernelLaunch launch{
+        "explicit_forces",
+        {0, n},
+        {Arg::of_buffer(xs), Arg::of_buffer(vs), Arg::of_buffer(b.a), Arg::of_buffer(b.adjacency_offsets),
+         Arg::of_buffer(b.adjacency), Arg::of_buffer(b.stretch), Arg::of_buffer(b.bend), Arg::of_buffer(b.tets),
+         Arg::of_float(layout.gravity.x), Arg::of_float(layout.gravity.y), Arg::of_float(layout.gravity.z),
+         Arg::of_float(layout.air_drag)},
+        {particle_write(b.a)}};
     const sched::Task task = plan::make_task(fmt::format("forces/s{}", stage + 1), plan::TaskKind::jacobi, -1, stage);
     return stage == 0 ? plan.add_task(task, {launch}) : plan.add_task_after(after, task, launch);
   };
@@ -90,19 +90,18 @@ plan::SubstepPlan make_explicit_plan(const SimLayout& layout, const ExplicitSett
             last, plan::make_task(fmt::format("integrate/s{}", stage + 1), plan::TaskKind::jacobi, -1, stage),
             {"explicit_stage",
              {0, n},
-             {Arg::of_buffer(b.x), Arg::of_buffer(b.v), Arg::of_buffer(b.xs), Arg::of_buffer(b.vs),
-              Arg::of_buffer(b.a), Arg::of_buffer(b.sum_x), Arg::of_buffer(b.sum_v), Arg::of_float(stages[s].weight),
+             {Arg::of_buffer(b.x), Arg::of_buffer(b.v), Arg::of_buffer(b.xs), Arg::of_buffer(b.vs), Arg::of_buffer(b.a),
+              Arg::of_buffer(b.sum_x), Arg::of_buffer(b.sum_v), Arg::of_float(stages[s].weight),
               Arg::of_float(stages[s].next * h), Arg::of_int(s == 0 ? 1 : 0)},
              {particle_write(b.xs), particle_write(b.vs), particle_write(b.sum_x), particle_write(b.sum_v)}});
       } else {
-        last = plan.add_task_after(
-            last, plan::make_task("integrate/finish", plan::TaskKind::jacobi, -1, stage),
-            {"explicit_finish",
-             {0, n},
-             {Arg::of_buffer(b.x), Arg::of_buffer(b.v), Arg::of_buffer(b.vs), Arg::of_buffer(b.a),
-              Arg::of_buffer(b.sum_x), Arg::of_buffer(b.sum_v), Arg::of_float(stages[s].weight),
-              Arg::of_float(h / total)},
-             {particle_write(b.x), particle_write(b.v)}});
+        last = plan.add_task_after(last, plan::make_task("integrate/finish", plan::TaskKind::jacobi, -1, stage),
+                                   {"explicit_finish",
+                                    {0, n},
+                                    {Arg::of_buffer(b.x), Arg::of_buffer(b.v), Arg::of_buffer(b.vs),
+                                     Arg::of_buffer(b.a), Arg::of_buffer(b.sum_x), Arg::of_buffer(b.sum_v),
+                                     Arg::of_float(stages[s].weight), Arg::of_float(h / total)},
+                                    {particle_write(b.x), particle_write(b.v)}});
       }
     }
   }
