@@ -134,9 +134,13 @@ ATS_TASK void sosd_stretch(int e, __global const float4* x, __global const float
 
 ATS_TASK void sosd_bend(int e, __global const float4* x, __global const float4* sys, __global const ats_bend_c* bend, __global float4* d) {
   const ats_bend_c c = bend[e];
+  ats_vec3 y[4];
+  ATS_UNROLL for (int j = 0; j < 4; ++j) y[j] = vs_xyz(x[c.v[j]]);
   ats_mat3 off[4][4];
   ATS_UNROLL for (int p = 0; p < 4; ++p) {
-    ATS_UNROLL for (int q = p + 1; q < 4; ++q) off[p][q] = ats_bend_hessian(c.K, c.scale, 1.0f / c.compliance, p, q);
+    ATS_UNROLL for (int q = p + 1; q < 4; ++q) {
+      off[p][q] = ats_bend_element_hessian(c.model, y, c.K, c.scale, 1.0f / c.compliance, p, q);
+    }
   }
   sosd_solve(c.v, 4, off, x, sys, d, 4 * e);
 }

@@ -29,14 +29,21 @@ struct EdgeSet {
   std::size_t size() const { return edges.size(); }
 };
 
-// Isometric bending stencils (Bergou et al. 2006): an interior edge (v0, v1)
-// and the opposite vertices v2, v3 of its two triangles. Energy
-// ½ k · scale · |Σ K_i x_i|², zero for a flat rest shape.
+// How a bending stencil measures bending (scene key `bend_model`).
+enum class BendKind {
+  isometric,  // Bergou et al. 2006: ½ k · scale · |Σ K_i x_i|², zero only for a flat rest shape
+  dihedral,   // Grinspun et al. 2003: k · scale · (θ − θ₀)², zero at the rest angle θ₀
+};
+
+// Bending stencils: an interior edge (v0, v1) and the opposite vertices v2,
+// v3 of its two triangles (kernels/common/element_types.h, ats_bend_c).
 struct BendSet {
   std::vector<std::array<int, 4>> stencils;
-  std::vector<std::array<double, 4>> weights;  // K_i (cotangent weights, sum 0)
-  std::vector<double> scale;                   // 3 / (A0 + A1)
+  std::vector<std::array<double, 4>> weights;  // isometric: K_i (cotangent weights, sum 0); dihedral: 0
+  std::vector<double> scale;                   // isometric: 3 / (A0 + A1); dihedral: 3/2 |e|² / (A0 + A1)
   std::vector<double> compliance;              // 1/(N·m)
+  std::vector<double> rest_angle;              // dihedral: θ₀ in radians (common/energy_dihedral.h); isometric: 0
+  std::vector<BendKind> kind;
   std::size_t size() const { return stencils.size(); }
 };
 
@@ -79,6 +86,7 @@ struct Model {
   // above (app/simulation.cpp) keeps compiling without a warning.
   TetSet tets{};  // empty when the scene has no solid
   std::optional<double> ground{};  // ground plane height (y), if the scene has one
+  double air_drag = 0.0;           // 1/s: force −m·c·v on every particle
 };
 
 }  // namespace atssim::model

@@ -23,13 +23,14 @@ constexpr std::array<std::string_view, 8> kObjectKeys{"name", "type",      "grid
                                                       "mesh", "transform", "material", "pins"};
 constexpr std::array<std::string_view, 2> kGridKeys{"size", "resolution"};
 constexpr std::array<std::string_view, 3> kTransformKeys{"translate", "rotate", "scale"};
-constexpr std::array<std::string_view, 8> kMaterialKeys{
-    "density",         "stretch_stiffness", "stretch_compliance", "bend_stiffness",
-    "bend_compliance", "youngs_modulus",    "poisson_ratio",      "model"};
+constexpr std::array<std::string_view, 9> kMaterialKeys{
+    "density",         "stretch_stiffness", "stretch_compliance", "bend_stiffness", "bend_compliance",
+    "bend_model",      "youngs_modulus",    "poisson_ratio",      "model"};
 // Keys that only one object type takes; on the other type they are an error
 // that says so, rather than being silently ignored.
-constexpr std::array<std::string_view, 4> kClothOnlyMaterialKeys{"stretch_stiffness", "stretch_compliance",
-                                                                 "bend_stiffness", "bend_compliance"};
+constexpr std::array<std::string_view, 5> kClothOnlyMaterialKeys{"stretch_stiffness", "stretch_compliance",
+                                                                 "bend_stiffness", "bend_compliance", "bend_model"};
+constexpr std::array<std::string_view, 3> kBendModels{"auto", "isometric", "dihedral"};
 constexpr std::array<std::string_view, 3> kSolidOnlyMaterialKeys{"youngs_modulus", "poisson_ratio", "model"};
 constexpr std::array<std::string_view, 3> kSolidModels{"neo_hookean", "stvk", "springs"};
 constexpr double kSolidDefaultDensity = 1000.0;  // kg/m³, water
@@ -111,6 +112,17 @@ void read_stiffness_pair(const YamlReader& r, const char* stiffness_key, const c
   }
 }
 
+BendModel read_bend_model(const YamlReader& k) {
+  const std::string name = k.string();
+  if (name == "auto") return BendModel::automatic;
+  if (name == "isometric") return BendModel::isometric;
+  if (name == "dihedral") return BendModel::dihedral;
+  const std::string guess = closest_match(name, kBendModels);
+  k.fail(fmt::format("unknown bend_model '{}'", name),
+         guess.empty() ? "use auto, isometric or dihedral" : fmt::format("did you mean '{}'?", guess));
+  return BendModel::automatic;
+}
+
 void read_solid_material(const YamlReader& r, MaterialDesc& m) {
   if (r.has("youngs_modulus")) {
     m.youngs_modulus = r.child("youngs_modulus").number_in(0.0, kHuge, true, "a Young's modulus in Pa > 0, e.g. 1e5");
@@ -165,6 +177,7 @@ MaterialDesc read_material(const YamlReader& r, ObjectType type, const std::stri
                         m.zero_compliance_where);
     read_stiffness_pair(r, "bend_stiffness", "bend_compliance", m.bend_compliance, m.has_bending,
                         m.zero_compliance_where);
+    if (r.has("bend_model")) m.bend_model = read_bend_model(r.child("bend_model"));
   }
   return m;
 }

@@ -20,6 +20,9 @@ struct SimulationDesc {
   // only collider of this version: a projection at the end of every
   // iteration, no friction); absent = no ground.
   std::optional<double> ground;
+  // Air drag: every free particle feels −m·c·v (c in 1/s; a body moving
+  // alone slows as e^(−c t)); implicit in every method (solver/layout).
+  double air_drag = 0.0;
 };
 
 struct GridDesc {
@@ -36,12 +39,17 @@ struct TransformDesc {
 // A tetrahedral body's elasticity model (issue #6); the solvers come later.
 enum class SolidModel { neo_hookean, stvk, springs };
 
+// Cloth bending model (`bend_model`): automatic = dihedral when the rest
+// shape is curved (some rest dihedral angle above 1e-4 rad), else isometric.
+enum class BendModel { automatic, isometric, dihedral };
+
 struct MaterialDesc {
   double density = 0.2;             // kg/m² for cloth, kg/m³ for solids (default 1000 there)
   double stretch_compliance = 0.0;  // cloth: m/N (inverse stiffness); used when has_stretch
   bool has_stretch = false;
   double bend_compliance = 0.0;  // cloth: 1/(N·m); used when has_bending
   bool has_bending = false;
+  BendModel bend_model = BendModel::automatic;  // cloth
   double youngs_modulus = 1.0e5;  // solids: Pa (> 0)
   double poisson_ratio = 0.3;     // solids: 0 ≤ ν < 0.5
   SolidModel solid_model = SolidModel::neo_hookean;

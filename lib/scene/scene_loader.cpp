@@ -23,8 +23,8 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr std::array<std::string_view, 6> kRootKeys{"simulation", "objects", "solver", "output", "devices", "memory"};
-constexpr std::array<std::string_view, 7> kSimulationKeys{"fps",    "dt",      "substeps", "iterations",
-                                                          "frames", "gravity", "ground"};
+constexpr std::array<std::string_view, 8> kSimulationKeys{"fps",    "dt",      "substeps", "iterations",
+                                                          "frames", "gravity", "ground",   "air_drag"};
 // Keys under solver: that configure how the devices run a substep; every
 // other key is an option of a method (MethodOptionDesc).
 constexpr std::array<std::string_view, 8> kScheduleKeys{"method",      "schedule", "async_depth", "merge",
@@ -116,6 +116,9 @@ SimulationDesc read_simulation(const YamlReader& r) {
   if (r.has("iterations")) sim.iterations = r.child("iterations").integer_in(1, 100000);
   if (r.has("frames")) sim.frames = r.child("frames").integer_in(1, 10000000);
   if (r.has("ground")) sim.ground = r.child("ground").number_in(-1e6, 1e6, false, "a ground height in metres");
+  if (r.has("air_drag")) {
+    sim.air_drag = r.child("air_drag").number_in(0.0, 1e6, false, "a drag rate in 1/s ≥ 0 (force −m·c·v)");
+  }
   if (r.has("gravity")) {
     sim.gravity = r.child("gravity").vec3();
     for (double g : sim.gravity) {

@@ -13,6 +13,15 @@ void flow_seq(YAML::Emitter& out, const Array& values) {
   out << YAML::EndSeq;
 }
 
+const char* bend_model_name(BendModel model) {
+  switch (model) {
+    case BendModel::isometric: return "isometric";
+    case BendModel::dihedral: return "dihedral";
+    case BendModel::automatic: break;
+  }
+  return "auto";
+}
+
 const char* solid_model_name(SolidModel model) {
   switch (model) {
     case SolidModel::stvk:
@@ -64,6 +73,7 @@ void emit_object(YAML::Emitter& out, const ObjectDesc& obj) {
   }
   if (m.has_stretch) out << YAML::Key << "stretch_compliance" << YAML::Value << m.stretch_compliance;
   if (m.has_bending) out << YAML::Key << "bend_compliance" << YAML::Value << m.bend_compliance;
+  if (m.has_bending) out << YAML::Key << "bend_model" << YAML::Value << bend_model_name(m.bend_model);
   out << YAML::EndMap;
   if (!obj.pins.vertices.empty() || !obj.pins.boxes.empty()) {
     out << YAML::Key << "pins" << YAML::Value << YAML::BeginMap;
@@ -102,6 +112,7 @@ std::string to_resolved_yaml(const SceneDesc& scene) {
   out << YAML::Key << "gravity" << YAML::Value;
   flow_seq(out, s.gravity);
   if (s.ground) out << YAML::Key << "ground" << YAML::Value << *s.ground;
+  if (s.air_drag > 0.0) out << YAML::Key << "air_drag" << YAML::Value << s.air_drag;
   out << YAML::EndMap;
   out << YAML::Key << "objects" << YAML::Value << YAML::BeginSeq;
   for (const ObjectDesc& obj : scene.objects) emit_object(out, obj);

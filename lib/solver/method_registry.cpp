@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "model/cloth_builder.hpp"
+#include "solver/explicit/explicit_method.hpp"
 #include "solver/jpgd/jpgd_method.hpp"
 #include "solver/sosd/sosd_method.hpp"
 #include "solver/vbd/vbd_method.hpp"
@@ -24,6 +25,7 @@ const MethodDescription* const kMethods[] = {
     &vbd::kDescription,
     &sosd::kDescription,
     &jpgd::kDescription,
+    &explicit_rk::kDescription,
 };
 
 std::string names() {
@@ -53,6 +55,14 @@ const MethodOption* find_option(const MethodDescription& m, std::string_view key
 
 // The value of a scene option of `method`, checked against its range.
 double option_value(const scene::MethodOptionDesc& given, const MethodOption& option) {
+  if (!option.choices.empty()) {
+    for (std::size_t i = 0; i < option.choices.size(); ++i) {
+      if (option.choices[i] == given.value) return static_cast<double>(i);
+    }
+    const std::string guess = closest_match(given.value, option.choices);
+    throw input_error(fmt::format("{}: solver.{} is '{}'; use {}{}", given.where, given.key, given.value,
+                                  option.meaning, guess.empty() ? "" : fmt::format(" (did you mean '{}'?)", guess)));
+  }
   double v = 0.0;
   std::size_t used = 0;
   try {
@@ -146,6 +156,7 @@ MethodSettings method_settings(const scene::SceneDesc& scene, const MethodDescri
   MethodSettings s;
   s.substep_dt = scene.simulation.frame_dt / scene.simulation.substeps;
   s.iterations = scene.simulation.iterations;
+  s.substeps = scene.simulation.substeps;
   for (const MethodOption& o : method.options) s.options[std::string(o.key)] = o.default_value;
   for (const scene::MethodOptionDesc& given : scene.solver.method_options) {
     if (const MethodOption* o = find_option(method, given.key)) s.options[given.key] = option_value(given, *o);

@@ -22,5 +22,6 @@ namespace atssim::solver::energy::f64 {
 #include "common/energy_tet_stvk.h"
 #include "common/energy_membrane_stvk.h"
 #include "common/energy_dihedral.h"
+#include "common/energy_bend_element.h"
 #undef ats_real
 }  // namespace atssim::solver::energy::f64

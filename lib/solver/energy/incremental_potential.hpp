@@ -2,6 +2,7 @@
 // The incremental potential of one substep (He et al. 2025 §3.1, Eq. 1),
 //   E(x) = 1/2 h^-2 sum_i m_i |x_i - x~_i|^2 + Psi(x),
 //   Psi  = sum_stretch 1/2 alpha^-1 (|x_a - x_b| - L)^2 + sum_bend 1/2 alpha^-1 |C|^2
+//          (isometric; dihedral stencils: scale alpha^-1 (theta - theta_0)^2)
 //        + sum_tet V Psi_tet(F),
 // whose constraint part XPBD with compliance alpha converges to (Macklin et
 // al. 2016, Eq. 4 and §3); the tets are the hyperelastic energies of
@@ -28,7 +29,9 @@ struct BendTerm {
   std::array<int, 4> v{};
   std::array<double, 4> K{};
   double scale = 0.0;
-  double stiffness = 0.0;  // 1 / compliance
+  double stiffness = 0.0;   // 1 / compliance
+  double rest_angle = 0.0;  // dihedral model: theta_0 (radians)
+  int model = ATS_BEND_ISOMETRIC;  // common/element_types.h
 };
 
 enum class TetModel { neo_hookean, stvk };

@@ -97,7 +97,7 @@ EnergyTerms energy_terms(const IncrementalPotential& p, const Eigen::VectorXd& x
   for (const BendTerm& t : p.bend) {
     ats_vec3 q[4];
     bend_positions(t, x, q);
-    e.bend += f64::ats_bend_energy(q, t.K.data(), t.scale, t.stiffness);
+    e.bend += f64::ats_bend_element_energy(t.model, q, t.K.data(), t.scale, t.stiffness, t.rest_angle);
   }
   for (const TetTerm& t : p.tets) {
     ats_vec3 q[4];
@@ -123,7 +123,9 @@ Eigen::VectorXd gradient(const IncrementalPotential& p, const Eigen::VectorXd& x
   for (const BendTerm& t : p.bend) {
     ats_vec3 q[4];
     bend_positions(t, x, q);
-    for (int k = 0; k < 4; ++k) add_at(g, t.v[k], f64::ats_bend_gradient(q, t.K.data(), t.scale, t.stiffness, k));
+    for (int k = 0; k < 4; ++k) {
+      add_at(g, t.v[k], f64::ats_bend_element_gradient(t.model, q, t.K.data(), t.scale, t.stiffness, t.rest_angle, k));
+    }
   }
   for (const TetTerm& t : p.tets) {
     ats_vec3 q[4];
@@ -152,9 +154,12 @@ std::vector<Eigen::Triplet<double>> hessian_triplets(const IncrementalPotential&
     add_block(out, p, t.b, t.a, h, -1.0);
   }
   for (const BendTerm& t : p.bend) {
+    ats_vec3 q[4];
+    bend_positions(t, x, q);
     for (int i = 0; i < 4; ++i) {
       for (int j = 0; j < 4; ++j) {
-        add_block(out, p, t.v[i], t.v[j], f64::ats_bend_hessian(t.K.data(), t.scale, t.stiffness, i, j), 1.0);
+        add_block(out, p, t.v[i], t.v[j], f64::ats_bend_element_hessian(t.model, q, t.K.data(), t.scale, t.stiffness, i, j),
+                  1.0);
       }
     }
   }

@@ -31,7 +31,8 @@ plan::SubstepPlan make_jpgd_plan(const SimLayout& layout, const JpgdSettings& se
   // x^{k+1} goes to a different buffer than x^k and x^{k-1}: three rotate.
   const plan::BufferId rotation[3] = {b.x, plan.add_buffer("x_1", plan::BufferRole::scratch, plan::bytes_of(layout.x)),
                                       plan.add_buffer("x_2", plan::BufferRole::scratch, plan::bytes_of(layout.x))};
-  const float inv_h2 = static_cast<float>(1.0 / (settings.substep_dt * settings.substep_dt));
+  const double hi = inertia_dt(layout, settings.substep_dt);  // air drag weighs the inertia (sim_layout.hpp)
+  const float inv_h2 = static_cast<float>(1.0 / (hi * hi));
   const bool heavy_ball = settings.momentum > 0.0;
   const std::vector<double> omega = chebyshev_weights(settings.iterations, heavy_ball ? 0.0 : settings.chebyshev_rho);
   const float beta = heavy_ball ? static_cast<float>(settings.momentum) : 0.0f;

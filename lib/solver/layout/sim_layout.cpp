@@ -1,5 +1,7 @@
 #include "solver/layout/sim_layout.hpp"
 
+#include <cmath>
+
 #include "util/error.hpp"
 
 namespace atssim::solver {
@@ -30,6 +32,7 @@ SimLayout make_sim_layout(const model::Model& model) {
   out.gravity = {float(model.gravity.x()), float(model.gravity.y()), float(model.gravity.z()), 0.0f};
   out.has_ground = model.ground.has_value();
   out.ground_y = out.has_ground ? float(*model.ground) : 0.0f;
+  out.air_drag = float(model.air_drag);
 
   if (model.stretch.size() > 0) {
     const graph::ColorBlocks blocks = color<2>(model.stretch.edges, movable);
@@ -50,6 +53,8 @@ SimLayout make_sim_layout(const model::Model& model) {
       }
       c.scale = float(model.bend.scale[e]);
       c.compliance = float(model.bend.compliance[e]);
+      c.rest_angle = float(model.bend.rest_angle[e]);
+      c.model = model.bend.kind[e] == model::BendKind::dihedral ? ATS_BEND_DIHEDRAL : ATS_BEND_ISOMETRIC;
       out.bend.push_back(c);
     }
   }
@@ -76,6 +81,14 @@ SimLayout make_sim_layout(const model::Model& model) {
     }
   }
   return out;
+}
+
+float velocity_damping(const SimLayout& layout, double h) {
+  return layout.air_drag > 0.0f ? static_cast<float>(1.0 / (1.0 + double(layout.air_drag) * h)) : 1.0f;
+}
+
+double inertia_dt(const SimLayout& layout, double h) {
+  return layout.air_drag > 0.0f ? h / std::sqrt(1.0 + double(layout.air_drag) * h) : h;
 }
 
 }  // namespace atssim::solver

@@ -27,8 +27,17 @@ struct SimLayout {
   Float4 gravity;
   bool has_ground = false;                 // a ground plane y = ground_y (collision task after each iteration)
   float ground_y = 0.0f;
+  float air_drag = 0.0f;                   // c in 1/s: force −m·c·v on every free particle
 };
 
 SimLayout make_sim_layout(const model::Model& model);
+
+// Air drag −m c v at the end-of-substep velocity (implicit) is the term
+// ½ (m c/h) |x − x_t|² of the incremental potential; with the inertia term
+// it makes ½ m (1 + c h)/h² |x − x̂|² + const, x̂ = x_t + h (v + h g)/(1 + c h).
+// So every method predicts with its velocity damped by 1/(1 + c h) and
+// weighs the inertia as for a step h/√(1 + c h); the velocity update keeps h.
+float velocity_damping(const SimLayout& layout, double h);  // 1/(1 + c h), 1 without drag
+double inertia_dt(const SimLayout& layout, double h);       // h/√(1 + c h), h without drag
 
 }  // namespace atssim::solver

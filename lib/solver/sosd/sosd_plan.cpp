@@ -50,7 +50,8 @@ plan::SubstepPlan make_sosd_plan(const SimLayout& layout, double substep_dt, int
                                       static_cast<int>(layout.tets.size())};
   std::array<int, 3> first_block{0, 0, 0};  // index in `blocks` of each kind's first color
   for (int i = static_cast<int>(blocks.size()) - 1; i >= 0; --i) first_block[blocks[i].kind] = i;
-  const float inv_h2 = static_cast<float>(1.0 / (substep_dt * substep_dt));
+  const double hi = inertia_dt(layout, substep_dt);  // air drag weighs the inertia (sim_layout.hpp)
+  const float inv_h2 = static_cast<float>(1.0 / (hi * hi));
   using Arg = plan::KernelArg;
   for (int it = 0; it < iterations; ++it) {
     const sched::TaskId systems_task =

@@ -14,7 +14,8 @@ plan::SubstepPlan make_vbd_plan(const SimLayout& layout, double substep_dt, int 
   plan.program = "vbd";
   vertex::VertexBuffers b;
   sched::TaskId last = vertex::begin_vertex_plan(plan, layout, vertices, substep_dt, b);
-  const float inv_h2 = static_cast<float>(1.0 / (substep_dt * substep_dt));
+  const double hi = inertia_dt(layout, substep_dt);  // air drag weighs the inertia (sim_layout.hpp)
+  const float inv_h2 = static_cast<float>(1.0 / (hi * hi));
   // Element k of a color writes particle order[k].
   const auto order =
       std::make_shared<const std::vector<std::int32_t>>(vertices.colors.order.begin(), vertices.colors.order.end());

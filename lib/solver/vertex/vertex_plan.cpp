@@ -31,7 +31,7 @@ sched::TaskId begin_vertex_plan(plan::SubstepPlan& plan, const SimLayout& layout
         {0, n},
         {Arg::of_buffer(b.x), Arg::of_buffer(b.v), Arg::of_buffer(b.x_prev), Arg::of_buffer(b.x_tilde),
          Arg::of_float(dt), Arg::of_float(layout.gravity.x), Arg::of_float(layout.gravity.y),
-         Arg::of_float(layout.gravity.z)},
+         Arg::of_float(layout.gravity.z), Arg::of_float(velocity_damping(layout, substep_dt))},
         {particle_write(b.x), particle_write(b.v), particle_write(b.x_prev), particle_write(b.x_tilde)}}});
 }
 
