@@ -16,6 +16,7 @@
 #include "model/cloth_builder.hpp"
 #include "scene/scene_loader.hpp"
 #include "scene/scene_yaml.hpp"
+#include "solver/contact/contact_summary.hpp"
 #include "solver/method_registry.hpp"
 #include "util/error.hpp"
 
@@ -87,6 +88,11 @@ io::RunInfo run_info(const RunOptions& options, const scene::SceneDesc& scene, c
   return info;
 }
 
+io::ContactFrame contact_frame(const std::vector<ats_collider_c>& colliders, const std::vector<float>& xyz) {
+  const solver::ContactSummary s = solver::summarize_contacts(colliders, xyz);
+  return {s.active, s.min_distance, s.max_penetration};
+}
+
 // Keeps only what output needs (object topology and rest shape).
 void release_simulation_state(model::Model& model) {
   model = model::Model{{}, {}, {}, std::move(model.objects), model.gravity, {}, model.ground};
@@ -137,6 +143,7 @@ void run_simulation(const RunOptions& options, RunResult& result,
   solver::SimLayout layout = solver::make_sim_layout(model);
   release_simulation_state(model);
   plan::SubstepPlan plan = method.build(layout, settings);
+  const std::vector<ats_collider_c> colliders = layout.colliders;  // for the per-frame contact record
   layout = {};
   ExecutionOptions exec_options = execution_options(scene);
   if (exec_options.mode == ScheduleMode::async && !method.gauss_seidel) {
@@ -165,7 +172,7 @@ void run_simulation(const RunOptions& options, RunResult& result,
   result.devices = info.devices;
   std::vector<float> xyz;
   executor.read_positions(xyz);
-  writer.append_frame(0.0, xyz, 0.0);
+  writer.append_frame(0.0, xyz, 0.0, 0.0, contact_frame(colliders, xyz));
   result.frames_written = writer.frames_written();
 
   double total_ms = 0.0;
@@ -198,7 +205,7 @@ void run_simulation(const RunOptions& options, RunResult& result,
       result.mean_frame_ms = total_ms / frame;
       if (frame % scene.output.stride == 0) {
         record_schedule(writer, frame, used, used_waits, measured);
-        writer.append_frame(frame * sim.frame_dt, xyz, ms, schedule_ms);
+        writer.append_frame(frame * sim.frame_dt, xyz, ms, schedule_ms, contact_frame(colliders, xyz));
         result.predicted_makespan_ms.push_back(used.makespan_ms);
         result.measured_makespan_ms.push_back(measured.makespan_ms);
       }

@@ -172,6 +172,10 @@ ResultWriter::ResultWriter(const std::string& path, const RunInfo& info, std::sp
   mk_predicted_ = create_series(makespan, "predicted_ms", 0, 0, H5T_IEEE_F64LE);
   mk_measured_ = create_series(makespan, "measured_ms", 0, 0, H5T_IEEE_F64LE);
   mk_bytes_ = create_series(makespan, "bytes_moved", 0, 0, H5T_STD_U64LE);
+  H5Handle contact = create_group(file_, "contact");
+  contact_active_ = create_series(contact, "active", 0, 0, H5T_STD_I32LE);
+  contact_min_distance_ = create_series(contact, "min_distance", 0, 0, H5T_IEEE_F64LE);
+  contact_max_penetration_ = create_series(contact, "max_penetration", 0, 0, H5T_IEEE_F64LE);
   views_ = write_xdmf_cells(file_, objects, particles_);
 
   h5_check(H5Fstart_swmr_write(file_), "starting single-writer/multi-reader mode");
@@ -205,8 +209,7 @@ void ResultWriter::append_rows(hid_t set, std::span<const T> values, hid_t mem_t
 }
 
 void ResultWriter::append_schedule(int frame, std::span<const ScheduledTask> tasks, std::span<const sched::Wait> waits,
-                                   double predicted_makespan_ms, double measured_makespan_ms,
-                                   std::size_t bytes_moved) {
+                                   double predicted_makespan_ms, double measured_makespan_ms, std::size_t bytes_moved) {
   std::vector<int> f(tasks.size(), frame), task, device;
   std::vector<double> ps, pf, ms, mf;
   for (const ScheduledTask& t : tasks) {
@@ -253,7 +256,8 @@ void ResultWriter::append_schedule(int frame, std::span<const ScheduledTask> tas
   makespan_rows_ += 1;
 }
 
-void ResultWriter::append_frame(double time, std::span<const float> xyz, double frame_ms, double schedule_ms) {
+void ResultWriter::append_frame(double time, std::span<const float> xyz, double frame_ms, double schedule_ms,
+                                const ContactFrame& contact) {
   if (xyz.size() != particles_ * 3) {
     throw Error(fmt::format("output: frame has {} values, expected {}", xyz.size(), particles_ * 3));
   }
@@ -268,6 +272,10 @@ void ResultWriter::append_frame(double time, std::span<const float> xyz, double 
   times_.push_back(time);
   append_scalar(frame_ms_, frame_ms);
   append_scalar(schedule_ms_, schedule_ms);
+  const std::int32_t active[1] = {contact.active};
+  append_rows<std::int32_t>(contact_active_, active, H5T_NATIVE_INT32, static_cast<hsize_t>(frames_));
+  append_scalar(contact_min_distance_, contact.min_distance);
+  append_scalar(contact_max_penetration_, contact.max_penetration);
   ++frames_;
   h5_check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flushing the output file");
   // The sidecar grows with the frame count; rewrite it at powers of two.
@@ -282,9 +290,13 @@ void ResultWriter::close_with(bool complete, const std::string& error) {
   closed_ = true;
   positions_.reset();
   time_.reset();
-  for (H5Handle* h : {&frame_ms_, &schedule_ms_, &sched_frame_, &sched_task_, &sched_device_, &sched_pstart_,
-                      &sched_pfinish_, &sched_mstart_, &sched_mfinish_, &wait_frame_, &wait_producer_, &wait_consumer_,
-                      &wait_pdevice_, &wait_cdevice_, &mk_frame_, &mk_predicted_, &mk_measured_, &mk_bytes_}) {
+  for (H5Handle* h : {&frame_ms_,       &schedule_ms_,          &sched_frame_,
+                      &sched_task_,     &sched_device_,         &sched_pstart_,
+                      &sched_pfinish_,  &sched_mstart_,         &sched_mfinish_,
+                      &wait_frame_,     &wait_producer_,        &wait_consumer_,
+                      &wait_pdevice_,   &wait_cdevice_,         &mk_frame_,
+                      &mk_predicted_,   &mk_measured_,          &mk_bytes_,
+                      &contact_active_, &contact_min_distance_, &contact_max_penetration_}) {
     h->reset();
   }
   file_.reset();

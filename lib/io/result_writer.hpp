@@ -4,6 +4,7 @@
 // mode, so a run that is killed leaves a readable file holding every frame
 // flushed before the kill. The root attribute `complete` turns 1 only when
 // the run ended well; a failed run records its `error`.
+#include <limits>
 #include <span>
 #include <string>
 #include <vector>
@@ -38,8 +39,8 @@ struct TaskRecord {
 
 // The substep's tasks and what the scheduler was given.
 struct ScheduleInfo {
-  std::string mode;      // "single", "split", "heft", "async"
-  std::string executor;  // "events" or "fused"
+  std::string mode;               // "single", "split", "heft", "async"
+  std::string executor;           // "events" or "fused"
   std::string memory = "shared";  // "shared" (SVM within a platform) or "separate" (copies between memories)
   std::vector<TaskRecord> tasks;
   std::vector<std::pair<int, int>> edges;
@@ -66,6 +67,16 @@ struct ScheduledTask {
   double measured_start_ms = 0, measured_finish_ms = 0;
 };
 
+// The particles' contact with the colliders in one frame (docs/output-format.md
+// /contact): touching particle-collider pairs, the smallest gap (distance
+// to a surface less its thickness; NaN without colliders) and the largest
+// penetration into a thickened surface (0 when none).
+struct ContactFrame {
+  int active = 0;
+  double min_distance = std::numeric_limits<double>::quiet_NaN();
+  double max_penetration = 0.0;
+};
+
 class ResultWriter {
  public:
   // Creates (truncates) `path` and writes everything but the frames;
@@ -76,7 +87,8 @@ class ResultWriter {
   ~ResultWriter();
 
   // Appends one frame (xyz per particle) and flushes it to disk.
-  void append_frame(double time, std::span<const float> xyz, double frame_ms, double schedule_ms = 0.0);
+  void append_frame(double time, std::span<const float> xyz, double frame_ms, double schedule_ms = 0.0,
+                    const ContactFrame& contact = {});
   // Appends the recorded substep of simulated frame `frame` (written with
   // the next append_frame's flush).
   void append_schedule(int frame, std::span<const ScheduledTask> tasks, std::span<const sched::Wait> waits,
@@ -109,6 +121,7 @@ class ResultWriter {
   H5Handle sched_frame_, sched_task_, sched_device_, sched_pstart_, sched_pfinish_, sched_mstart_, sched_mfinish_;
   H5Handle wait_frame_, wait_producer_, wait_consumer_, wait_pdevice_, wait_cdevice_;
   H5Handle mk_frame_, mk_predicted_, mk_measured_, mk_bytes_;
+  H5Handle contact_active_, contact_min_distance_, contact_max_penetration_;  // /contact, per frame
   hsize_t sched_rows_ = 0, wait_rows_ = 0, makespan_rows_ = 0;
 };
 

@@ -74,9 +74,7 @@ std::vector<std::array<int, 4>> bending_stencils(const std::vector<std::array<in
 
 namespace {
 
-double cot_between(const Vec3& a, const Vec3& b) {
-  return a.dot(b) / a.cross(b).norm();
-}
+double cot_between(const Vec3& a, const Vec3& b) { return a.dot(b) / a.cross(b).norm(); }
 
 // Cotangent weights of the isometric bending model (Bergou et al. 2006, as
 // in Bender's PositionBasedDynamics). Returns false for a degenerate stencil.
@@ -138,6 +136,7 @@ Model build_model(const scene::SceneDesc& scene) {
   Model model;
   model.gravity = Vec3(scene.simulation.gravity[0], scene.simulation.gravity[1], scene.simulation.gravity[2]);
   model.ground = scene.simulation.ground;
+  model.colliders = make_colliders(scene.colliders);
   for (const auto& obj : scene.objects) {
     if (obj.type == scene::ObjectType::solid) {
       add_solid(model, obj, scene.source_path);

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
+#include "scene/collider_reader.hpp"
 #include "scene/object_reader.hpp"
 #include "scene/scene_yaml.hpp"
 #include "scene/yaml_reader.hpp"
@@ -20,7 +21,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr std::array<std::string_view, 6> kRootKeys{"simulation", "objects", "solver", "output", "devices", "memory"};
+constexpr std::array<std::string_view, 7> kRootKeys{"simulation", "objects", "solver",   "output",
+                                                    "devices",    "memory",  "colliders"};
 constexpr std::array<std::string_view, 7> kSimulationKeys{"fps",    "dt",      "substeps", "iterations",
                                                           "frames", "gravity", "ground"};
 // Keys under solver: that configure how the devices run a substep; every
@@ -151,6 +153,13 @@ SceneDesc parse_scene(const std::string& yaml_text, const std::string& source_na
   if (objects.empty()) top.child("objects").fail("'objects' is empty", "add at least one object");
   for (std::size_t i = 0; i < objects.size(); ++i) {
     scene.objects.push_back(read_object(objects[i], static_cast<int>(i), fs::path(base_dir)));
+  }
+
+  if (top.has("colliders")) {
+    const auto colliders = top.child("colliders").sequence();
+    for (std::size_t i = 0; i < colliders.size(); ++i) {
+      scene.colliders.push_back(read_collider(colliders[i], static_cast<int>(i)));
+    }
   }
 
   const YamlReader solver = top.child("solver");
