@@ -18,6 +18,7 @@
 #include "model/cloth_builder.hpp"
 #include "scene/scene_loader.hpp"
 #include "scene/scene_yaml.hpp"
+#include "solver/contact/contact_summary.hpp"
 #include "solver/method_registry.hpp"
 #include "util/error.hpp"
 
@@ -102,6 +103,11 @@ io::RunInfo run_info(const RunOptions& options, const scene::SceneDesc& scene, c
   return info;
 }
 
+io::ContactFrame contact_frame(const std::vector<ats_collider_c>& colliders, const std::vector<float>& xyz) {
+  const solver::ContactSummary s = solver::summarize_contacts(colliders, xyz);
+  return {s.active, s.min_distance, s.max_penetration};
+}
+
 // Keeps only what output needs (object topology and rest shape).
 void release_simulation_state(model::Model& model) {
   model = model::Model{{}, {}, {}, std::move(model.objects), model.gravity, {}, model.ground};
@@ -154,6 +160,7 @@ void run_simulation(const RunOptions& options, RunResult& result,
   solver::SimLayout layout = solver::make_sim_layout(model);
   release_simulation_state(model);
   plan::SubstepPlan plan = with_stiffness_line(scene, [&] { return method.build(layout, settings); });
+  const std::vector<ats_collider_c> colliders = layout.colliders;  // for the per-frame contact record
   layout = {};
   ExecutionOptions exec_options = execution_options(scene);
   exec_options.svm = svm_mode(options.svm_mode);
@@ -200,7 +207,7 @@ void run_simulation(const RunOptions& options, RunResult& result,
                      sim.frame_dt, sim.substeps);
   if (!options.resume) {
     writer.set_checkpoint(0, state.positions, state.velocities);
-    writer.append_frame(0.0, xyz, 0.0);
+    writer.append_frame(0.0, xyz, 0.0, 0.0, contact_frame(colliders, xyz));
   }
   result.frames_written = writer.frames_written();
 
@@ -238,7 +245,7 @@ void run_simulation(const RunOptions& options, RunResult& result,
         record_schedule(writer, frame, used, used_waits, measured);
         state = executor.read_state();
         writer.set_checkpoint(frame, state.positions, state.velocities);
-        writer.append_frame(frame * sim.frame_dt, xyz, ms, schedule_ms);
+        writer.append_frame(frame * sim.frame_dt, xyz, ms, schedule_ms, contact_frame(colliders, xyz));
         result.predicted_makespan_ms.push_back(used.makespan_ms);
         result.measured_makespan_ms.push_back(measured.makespan_ms);
       }

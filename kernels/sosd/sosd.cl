@@ -20,15 +20,18 @@
 #include "common/ats_math.h"
 #include "common/vertex_solve.h"
 #include "common/vertex_system.cl"
+#include "common/vertex_contact.h"
+#include "common/contact_steps.cl"
+#include "common/vertex_friction.cl"
 #include "common/particle_steps.cl"
 #include "async/merge.cl"
 
 #define SOSD_MAX 12 /* 4 vertices x 3 */
 
 /* sys[4 i] = (f, 0), sys[4 i + 1 .. 4 i + 3] = rows of H_ii. */
-ATS_TASK void sosd_vertex_systems(int i, __global const float4* x, __global const float4* x_tilde, __global const int* adj_offsets, __global const int* adj, __global const ats_distance_c* stretch, __global const ats_bend_c* bend, __global const ats_tet_c* tets, __global float4* sys, float inv_h2) {
+ATS_TASK void sosd_vertex_systems(int i, __global const float4* x, __global const float4* x_tilde, __global const int* adj_offsets, __global const int* adj, __global const ats_distance_c* stretch, __global const ats_bend_c* bend, __global const ats_tet_c* tets, __global float4* sys, float inv_h2, __global const ats_collider_c* colliders, int collider_count) {
   if (x[i].w == 0.0f) return; /* pinned: never read */
-  const vertex_system s = gather_vertex_system(i, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend, tets);
+  const vertex_system s = add_contact_terms(gather_vertex_system(i, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend, tets), vs_xyz(x[i]), x[i].w, inv_h2, colliders, collider_count);
   sys[4 * i] = (float4)(s.f.x, s.f.y, s.f.z, 0.0f);
   ATS_UNROLL for (int r = 0; r < 3; ++r) sys[4 * i + 1 + r] = (float4)(s.h.r[r].x, s.h.r[r].y, s.h.r[r].z, 0.0f);
 }

@@ -109,6 +109,11 @@ ResultSummary read_summary(const std::string& path) {
   return s;
 }
 
+std::vector<double> read_series(const std::string& path, const std::string& dataset) {
+  H5Handle file = open_file(path);
+  return read_doubles(file, dataset.c_str());
+}
+
 std::vector<float> read_frame_positions(const std::string& path, std::size_t frame) {
   H5Handle file = open_file(path);
   H5Handle set = h5_check(H5Dopen2(file, "/frames/positions", H5P_DEFAULT), H5Dclose, "/frames/positions");

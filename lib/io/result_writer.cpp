@@ -266,6 +266,7 @@ void ResultWriter::create(const RunInfo& info, std::span<const model::ObjectRang
     create_group(sched, "waits");
     create_group(sched, "makespan");
   }
+  create_group(file_, "contact");
   open_series(true);
   views_ = write_xdmf_cells(file_, objects, particles_);
   h5_check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flushing the output file");
@@ -309,7 +310,9 @@ void ResultWriter::reopen(const RunInfo& info, Checkpoint& resume) {
   }
   checkpoint_ = std::move(*slots);
   frames_ = static_cast<int>(point->frames_written);
-  for (hid_t set : {positions_.get(), time_.get(), frame_ms_.get(), schedule_ms_.get()}) truncate_rows(set, frames_);
+  for (hid_t set : {positions_.get(), time_.get(), frame_ms_.get(), schedule_ms_.get(), contact_active_.get(),
+                    contact_min_distance_.get(), contact_max_penetration_.get()})
+    truncate_rows(set, frames_);
   sched_rows_ = static_cast<hsize_t>(point->schedule_rows);
   wait_rows_ = static_cast<hsize_t>(point->wait_rows);
   makespan_rows_ = static_cast<hsize_t>(point->makespan_rows);
@@ -363,6 +366,9 @@ void ResultWriter::open_series(bool create_them) {
       {"schedule/makespan/predicted_ms", 0, 0, H5T_IEEE_F64LE, &ResultWriter::mk_predicted_},
       {"schedule/makespan/measured_ms", 0, 0, H5T_IEEE_F64LE, &ResultWriter::mk_measured_},
       {"schedule/makespan/bytes_moved", 0, 0, H5T_STD_U64LE, &ResultWriter::mk_bytes_},
+      {"contact/active", 0, 0, H5T_STD_I32LE, &ResultWriter::contact_active_},
+      {"contact/min_distance", 0, 0, H5T_IEEE_F64LE, &ResultWriter::contact_min_distance_},
+      {"contact/max_penetration", 0, 0, H5T_IEEE_F64LE, &ResultWriter::contact_max_penetration_},
   };
   for (const Series& s : series) {
     if (create_them) {
@@ -457,39 +463,8 @@ void ResultWriter::append_schedule(int frame, std::span<const ScheduledTask> tas
   makespan_rows_ += 1;
 }
 
-void ResultWriter::set_checkpoint(long long frame, std::span<const std::byte> positions,
-                                  std::span<const std::byte> velocities) {
-  Checkpoint c;
-  c.frame = frame;
-  c.positions.assign(positions.begin(), positions.end());
-  c.velocities.assign(velocities.begin(), velocities.end());
-  pending_ = std::move(c);
-}
-
-void ResultWriter::check_output_health(std::size_t frame_bytes) const {
-  struct stat st {};
-  if (::stat(writing_.c_str(), &st) != 0 || st.st_dev != device_ || st.st_ino != inode_) {
-    throw runtime_error(
-        fmt::format("the output file '{}' (or its folder) was removed or replaced during the run", writing_));
-  }
-  // Stop before the disk is full rather than in the middle of a flush: a
-  // write that fails half-way can leave the metadata of the last good flush
-  // pointing at space that was never written.
-  struct statvfs fs {};
-  const std::string folder = std::filesystem::path(writing_).has_parent_path()
-                                 ? std::filesystem::path(writing_).parent_path().string()
-                                 : std::string(".");
-  if (::statvfs(folder.c_str(), &fs) == 0) {
-    const unsigned long long free_bytes = static_cast<unsigned long long>(fs.f_bavail) * fs.f_frsize;
-    const unsigned long long needed = 2ull * frame_bytes + (1ull << 20);
-    if (free_bytes < needed) {
-      throw runtime_error(fmt::format("the disk of '{}' is full ({} KiB free, a frame needs ~{} KiB with margin)",
-                                      writing_, free_bytes / 1024, needed / 1024));
-    }
-  }
-}
-
-void ResultWriter::append_frame(double time, std::span<const float> xyz, double frame_ms, double schedule_ms) {
+void ResultWriter::append_frame(double time, std::span<const float> xyz, double frame_ms, double schedule_ms,
+                                const ContactFrame& contact) {
   if (xyz.size() != particles_ * 3) {
     throw std::logic_error(fmt::format("output: frame has {} values, expected {}", xyz.size(), particles_ * 3));
   }
@@ -507,6 +482,10 @@ void ResultWriter::append_frame(double time, std::span<const float> xyz, double 
     append_scalar(time_, time);
     append_scalar(frame_ms_, frame_ms);
     append_scalar(schedule_ms_, schedule_ms);
+    const std::int32_t active[1] = {contact.active};
+    append_rows<std::int32_t>(contact_active_, active, H5T_NATIVE_INT32, static_cast<hsize_t>(frames_));
+    append_scalar(contact_min_distance_, contact.min_distance);
+    append_scalar(contact_max_penetration_, contact.max_penetration);
     if (pending_) {
       pending_->frames_written = frames_ + 1;
       pending_->schedule_rows = static_cast<long long>(sched_rows_);
@@ -568,7 +547,8 @@ void ResultWriter::close_with(bool complete, const std::string& error) {
   for (H5Handle* h : {&positions_,     &time_,         &frame_ms_,      &schedule_ms_,   &sched_frame_,
                       &sched_task_,    &sched_device_, &sched_pstart_,  &sched_pfinish_, &sched_mstart_,
                       &sched_mfinish_, &wait_frame_,   &wait_producer_, &wait_consumer_, &wait_pdevice_,
-                      &wait_cdevice_,  &mk_frame_,     &mk_predicted_,  &mk_measured_,   &mk_bytes_}) {
+                      &wait_cdevice_,  &mk_frame_,     &mk_predicted_,  &mk_measured_,   &mk_bytes_,
+                      &contact_active_, &contact_min_distance_, &contact_max_penetration_}) {
     h->reset();
   }
   h5_check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flushing the output file");

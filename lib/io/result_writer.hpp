@@ -8,6 +8,7 @@
 // when a file is already at the path, the run writes "<stem>.partial<ext>"
 // and renames it over the path only when it completes, so a failing run
 // never destroys an earlier result.
+#include <limits>
 #include <memory>
 #include <optional>
 #include <span>
@@ -78,6 +79,15 @@ struct ScheduledTask {
 // "out.h5" -> "out.partial.h5": where a run writes while an earlier result
 // is at the path.
 std::string partial_path(const std::string& path);
+// The particles' contact with the colliders in one frame (docs/output-format.md
+// /contact): touching particle-collider pairs, the smallest gap (distance
+// to a surface less its thickness; NaN without colliders) and the largest
+// penetration into a thickened surface (0 when none).
+struct ContactFrame {
+  int active = 0;
+  double min_distance = std::numeric_limits<double>::quiet_NaN();
+  double max_penetration = 0.0;
+};
 
 class ResultWriter {
  public:
@@ -94,11 +104,13 @@ class ResultWriter {
   ResultWriter& operator=(const ResultWriter&) = delete;
   ~ResultWriter();
 
-  // Appends one frame (xyz per particle) and flushes it to disk, with the
-  // state set by set_checkpoint() since the last frame. Before writing it
-  // checks that the output is still there and that the disk has room for
-  // the frame; a failed write leaves the file as the last flush made it.
-  void append_frame(double time, std::span<const float> xyz, double frame_ms, double schedule_ms = 0.0);
+  // Appends one frame (xyz per particle) and its contact record, and
+  // flushes it to disk, with the state set by set_checkpoint() since the last
+  // frame. Before writing it checks that the output is still there and that
+  // the disk has room for the frame; a failed write leaves the file as the
+  // last flush made it.
+  void append_frame(double time, std::span<const float> xyz, double frame_ms, double schedule_ms = 0.0,
+                    const ContactFrame& contact = {});
   // The executor's state at the end of simulated frame `frame`, stored with
   // the next append_frame (for --resume).
   void set_checkpoint(long long frame, std::span<const std::byte> positions, std::span<const std::byte> velocities);
@@ -147,6 +159,7 @@ class ResultWriter {
   H5Handle sched_frame_, sched_task_, sched_device_, sched_pstart_, sched_pfinish_, sched_mstart_, sched_mfinish_;
   H5Handle wait_frame_, wait_producer_, wait_consumer_, wait_pdevice_, wait_cdevice_;
   H5Handle mk_frame_, mk_predicted_, mk_measured_, mk_bytes_;
+  H5Handle contact_active_, contact_min_distance_, contact_max_penetration_;  // /contact, per frame
   hsize_t sched_rows_ = 0, wait_rows_ = 0, makespan_rows_ = 0;
 };
 

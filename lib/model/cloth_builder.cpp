@@ -200,6 +200,7 @@ Model build_model(const scene::SceneDesc& scene) {
   model.gravity = Vec3(scene.simulation.gravity[0], scene.simulation.gravity[1], scene.simulation.gravity[2]);
   model.ground = scene.simulation.ground;
   model.air_drag = scene.simulation.air_drag;
+  model.colliders = make_colliders(scene.colliders);
   for (const auto& obj : scene.objects) {
     if (obj.type == scene::ObjectType::solid) {
       add_solid(model, obj, scene.source_path);

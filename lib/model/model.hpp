@@ -9,6 +9,8 @@
 
 #include <Eigen/Core>
 
+#include "model/collider.hpp"
+
 namespace atssim::model {
 
 using Vec3 = Eigen::Vector3d;
@@ -54,11 +56,11 @@ enum class TetEnergy { neo_hookean, stvk, springs };
 // Dm = [x1−x0, x2−x0, x3−x0] at rest, F = Ds·Dm⁻¹. Every tet has positive
 // rest volume (validated when the model is built).
 struct TetSet {
-  std::vector<std::array<int, 4>> tets;      // particle indices
-  std::vector<double> rest_volume;           // m³, det(Dm)/6 > 0
-  std::vector<Eigen::Matrix3d> rest_inverse; // Dm⁻¹
-  std::vector<double> mu;                    // Lamé μ (shear modulus), Pa
-  std::vector<double> lambda;                // Lamé λ, Pa
+  std::vector<std::array<int, 4>> tets;       // particle indices
+  std::vector<double> rest_volume;            // m³, det(Dm)/6 > 0
+  std::vector<Eigen::Matrix3d> rest_inverse;  // Dm⁻¹
+  std::vector<double> mu;                     // Lamé μ (shear modulus), Pa
+  std::vector<double> lambda;                 // Lamé λ, Pa
   std::vector<TetEnergy> energy;
   std::size_t size() const { return tets.size(); }
 };
@@ -70,7 +72,7 @@ struct ObjectRange {
   int vertex_count = 0;
   std::vector<std::array<int, 3>> triangles;  // object-local vertex indices
   std::vector<Vec3> rest_position;
-  std::vector<int> pinned;                    // object-local indices
+  std::vector<int> pinned;  // object-local indices
   // Solids: object-local tetrahedra; `triangles` then holds their outward
   // surface (faces of exactly one tet), so output and XDMF show the body.
   std::vector<std::array<int, 4>> tetrahedra;
@@ -78,15 +80,16 @@ struct ObjectRange {
 
 struct Model {
   Particles particles;
-  EdgeSet stretch;   // empty when the scene models no stretch
-  BendSet bend;      // empty when the scene models no bending
+  EdgeSet stretch;  // empty when the scene models no stretch
+  BendSet bend;     // empty when the scene models no bending
   std::vector<ObjectRange> objects;
   Vec3 gravity{0.0, -9.81, 0.0};
   // Last, with an initializer: code that aggregate-initializes the members
   // above (app/simulation.cpp) keeps compiling without a warning.
-  TetSet tets{};  // empty when the scene has no solid
-  std::optional<double> ground{};  // ground plane height (y), if the scene has one
-  double air_drag = 0.0;           // 1/s: force −m·c·v on every particle
+  TetSet tets{};                      // empty when the scene has no solid
+  std::optional<double> ground{};     // ground plane height (y), if the scene has one
+  double air_drag = 0.0;              // 1/s: force −m·c·v on every particle
+  std::vector<Collider> colliders{};  // analytic obstacles (model/collider.hpp)
 };
 
 }  // namespace atssim::model

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "scene/collider_desc.hpp"
+
 namespace atssim::scene {
 
 using Vec3 = std::array<double, 3>;
@@ -141,6 +143,7 @@ struct SceneDesc {
   std::string resolved_yaml;  // after defaults and --set overrides
   SimulationDesc simulation;
   std::vector<ObjectDesc> objects;
+  std::vector<ColliderDesc> colliders;  // analytic obstacles (empty = none: no contact tasks)
   SolverDesc solver;
   OutputDesc output;
   std::string devices = "default";  // device spec, see `atssim devices`

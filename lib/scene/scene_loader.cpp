@@ -10,6 +10,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "scene/input_file.hpp"
+#include "scene/collider_reader.hpp"
 #include "scene/object_reader.hpp"
 #include "scene/scene_yaml.hpp"
 #include "scene/yaml_keys.hpp"
@@ -22,7 +23,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr std::array<std::string_view, 6> kRootKeys{"simulation", "objects", "solver", "output", "devices", "memory"};
+constexpr std::array<std::string_view, 7> kRootKeys{"simulation", "objects", "solver",   "output",
+                                                    "devices",    "memory",  "colliders"};
 constexpr std::array<std::string_view, 8> kSimulationKeys{"fps",    "dt",      "substeps", "iterations",
                                                           "frames", "gravity", "ground",   "air_drag"};
 // Keys under solver: that configure how the devices run a substep; every
@@ -167,6 +169,13 @@ SceneDesc parse_scene(const std::string& yaml_text, const std::string& source_na
               "give every object its own name");
     }
     names.emplace(obj.name, obj.source_line);
+  }
+
+  if (top.has("colliders")) {
+    const auto colliders = top.child("colliders").sequence();
+    for (std::size_t i = 0; i < colliders.size(); ++i) {
+      scene.colliders.push_back(read_collider(colliders[i], static_cast<int>(i)));
+    }
   }
 
   const YamlReader solver = top.child("solver");

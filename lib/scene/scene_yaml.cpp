@@ -2,6 +2,8 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "scene/collider_reader.hpp"
+
 namespace atssim::scene {
 
 namespace {
@@ -117,6 +119,11 @@ std::string to_resolved_yaml(const SceneDesc& scene) {
   out << YAML::Key << "objects" << YAML::Value << YAML::BeginSeq;
   for (const ObjectDesc& obj : scene.objects) emit_object(out, obj);
   out << YAML::EndSeq;
+  if (!scene.colliders.empty()) {
+    out << YAML::Key << "colliders" << YAML::Value << YAML::BeginSeq;
+    for (const ColliderDesc& c : scene.colliders) emit_collider(out, c);
+    out << YAML::EndSeq;
+  }
   const SolverDesc& solver = scene.solver;
   out << YAML::Key << "solver" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "method" << YAML::Value << solver.method;

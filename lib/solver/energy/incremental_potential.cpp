@@ -8,8 +8,8 @@
 
 namespace atssim::solver::energy {
 
-IncrementalPotential make_incremental_potential(const SimLayout& layout,
-                                                const std::vector<Float4>& predicted, double h) {
+IncrementalPotential make_incremental_potential(const SimLayout& layout, const std::vector<Float4>& predicted,
+                                                double h) {
   if (predicted.size() != layout.x.size()) {
     throw input_error(fmt::format("incremental potential: {} predicted positions for {} particles", predicted.size(),
                                   layout.x.size()));
@@ -54,6 +54,7 @@ IncrementalPotential make_incremental_potential(const SimLayout& layout,
     t.model = c.model == ATS_TET_STVK ? TetModel::stvk : TetModel::neo_hookean;
     p.tets.push_back(t);
   }
+  p.colliders = layout.colliders;
   return p;
 }
 

@@ -82,6 +82,7 @@ plan::SubstepPlan make_xpbd_plan(const SimLayout& layout, const XpbdSettings& se
   // inertia as for inertia_dt (air drag, solver/layout/sim_layout.hpp).
   const float h = static_cast<float>(settings.substep_dt);
   const float dt = static_cast<float>(inertia_dt(layout, settings.substep_dt));
+  const plan::BufferId colliders = layout.colliders.empty() ? -1 : add_collider_buffer(plan, layout);
   const int n = plan.particle_count;
   sched::TaskId last = plan.add_task(
       plan::make_task("predict", plan::TaskKind::predict),
@@ -108,7 +109,9 @@ plan::SubstepPlan make_xpbd_plan(const SimLayout& layout, const XpbdSettings& se
                         it, tet_particles, 4, ATS_TET_LAMBDA_STRIDE * sizeof(float));
     }
     last = add_ground_task(plan, last, layout, b.x, it);
+    last = add_contact_task(plan, last, layout, colliders, b.x, it);
   }
+  last = add_friction_task(plan, last, layout, colliders, b.x, b.x_prev, b.v, settings.substep_dt);
   plan.add_task_after(last, plan::make_task("update_velocity", plan::TaskKind::update_velocity),
                       {"particles_update_velocity",
                        {0, n},
