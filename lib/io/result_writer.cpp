@@ -463,6 +463,38 @@ void ResultWriter::append_schedule(int frame, std::span<const ScheduledTask> tas
   makespan_rows_ += 1;
 }
 
+void ResultWriter::set_checkpoint(long long frame, std::span<const std::byte> positions,
+                                  std::span<const std::byte> velocities) {
+  Checkpoint c;
+  c.frame = frame;
+  c.positions.assign(positions.begin(), positions.end());
+  c.velocities.assign(velocities.begin(), velocities.end());
+  pending_ = std::move(c);
+}
+
+void ResultWriter::check_output_health(std::size_t frame_bytes) const {
+  struct stat st {};
+  if (::stat(writing_.c_str(), &st) != 0 || st.st_dev != device_ || st.st_ino != inode_) {
+    throw runtime_error(
+        fmt::format("the output file '{}' (or its folder) was removed or replaced during the run", writing_));
+  }
+  // Stop before the disk is full rather than in the middle of a flush: a
+  // write that fails half-way can leave the metadata of the last good flush
+  // pointing at space that was never written.
+  struct statvfs fs {};
+  const std::string folder = std::filesystem::path(writing_).has_parent_path()
+                                 ? std::filesystem::path(writing_).parent_path().string()
+                                 : std::string(".");
+  if (::statvfs(folder.c_str(), &fs) == 0) {
+    const unsigned long long free_bytes = static_cast<unsigned long long>(fs.f_bavail) * fs.f_frsize;
+    const unsigned long long needed = 2ull * frame_bytes + (1ull << 20);
+    if (free_bytes < needed) {
+      throw runtime_error(fmt::format("the disk of '{}' is full ({} KiB free, a frame needs ~{} KiB with margin)",
+                                      writing_, free_bytes / 1024, needed / 1024));
+    }
+  }
+}
+
 void ResultWriter::append_frame(double time, std::span<const float> xyz, double frame_ms, double schedule_ms,
                                 const ContactFrame& contact) {
   if (xyz.size() != particles_ * 3) {
