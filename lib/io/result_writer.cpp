@@ -126,7 +126,8 @@ void write_mesh(hid_t file, std::span<const model::ObjectRange> objects) {
 
 std::string partial_path(const std::string& path) {
   std::filesystem::path p(path);
-  const std::string ext = p.extension().string();
+  // Without an extension the sidecars would collide ("out" and "out.partial" -> "out.xdmf").
+  const std::string ext = p.has_extension() ? p.extension().string() : std::string(".h5");
   return p.replace_extension().string() + ".partial" + ext;
 }
 
@@ -242,7 +243,8 @@ void ResultWriter::create(const RunInfo& info, std::span<const model::ObjectRang
   H5Handle fapl = file_access();
   const hid_t id = H5Fcreate(writing_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
   if (id < 0) {
-    throw input_error(fmt::format("cannot create output file '{}': {} (pass -o elsewhere)", writing_, hdf5_failure()));
+    throw runtime_error(
+        fmt::format("cannot create output file '{}': {} (pass -o elsewhere)", writing_, hdf5_failure()));
   }
   file_ = H5Handle(id, H5Fclose);
   write_string_attribute(file_, "format", "atssim");

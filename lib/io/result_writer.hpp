@@ -76,8 +76,8 @@ struct ScheduledTask {
   double measured_start_ms = 0, measured_finish_ms = 0;
 };
 
-// "out.h5" -> "out.partial.h5": where a run writes while an earlier result
-// is at the path.
+// "out.h5" -> "out.partial.h5" ("out" -> "out.partial.h5"): where a run
+// writes while an earlier result is at the path.
 std::string partial_path(const std::string& path);
 // The particles' contact with the colliders in one frame (docs/output-format.md
 // /contact): touching particle-collider pairs, the smallest gap (distance

@@ -62,7 +62,7 @@ TEST_CASE("a second writer of one output path is refused until the first lets go
 
 TEST_CASE("a partial file sits beside the output: out.h5 -> out.partial.h5") {
   CHECK(io::partial_path("dir/out.h5") == "dir/out.partial.h5");
-  CHECK(io::partial_path("run") == "run.partial");
+  CHECK(io::partial_path("run") == "run.partial.h5");  // its sidecar must not be run.xdmf
 }
 
 TEST_CASE("a run at a path that holds a result writes beside it and replaces it only when it completes") {
