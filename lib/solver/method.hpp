@@ -52,6 +52,9 @@ struct MethodDescription {
   std::span<const MethodOption> options;
   std::span<const scene::SolidModel> solid_models;  // the tetrahedral models it simulates
   plan::SubstepPlan (*build)(const SimLayout& layout, const MethodSettings& settings) = nullptr;
+  // Whether its plan keeps particles out of the scene's colliders (contact
+  // and friction tasks); a scene with colliders is refused otherwise.
+  bool colliders = true;
 
   bool simulates(scene::SolidModel model) const;
 };

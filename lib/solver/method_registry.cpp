@@ -21,11 +21,7 @@ namespace {
 
 // One line per method.
 const MethodDescription* const kMethods[] = {
-    &xpbd::kDescription,
-    &vbd::kDescription,
-    &sosd::kDescription,
-    &jpgd::kDescription,
-    &explicit_rk::kDescription,
+    &xpbd::kDescription, &vbd::kDescription, &sosd::kDescription, &jpgd::kDescription, &explicit_rk::kDescription,
 };
 
 std::string names() {
@@ -149,6 +145,19 @@ void check_scene(const scene::SceneDesc& scene, const MethodDescription& method)
     if (const MethodOption* o = find_option(method, given.key)) option_value(given, *o);
   }
   check_solids(scene, method);
+  if (!method.colliders && !scene.colliders.empty()) {
+    const std::string where = !scene.solver.method_where.empty()
+                                  ? scene.solver.method_where
+                                  : fmt::format("{}:{}", scene.source_path, scene.colliders.front().source_line);
+    std::string others;
+    for (const MethodDescription* m : kMethods) {
+      if (m->colliders) others += fmt::format("{}{}", others.empty() ? "" : ", ", m->name);
+    }
+    throw input_error(
+        fmt::format("{}: solver.method {} has no contact with colliders yet; remove the scene's "
+                    "colliders or use solver.method {}",
+                    where, method.name, others));
+  }
 }
 
 MethodSettings method_settings(const scene::SceneDesc& scene, const MethodDescription& method) {

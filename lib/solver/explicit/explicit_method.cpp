@@ -28,6 +28,7 @@ plan::SubstepPlan build(const SimLayout& layout, const MethodSettings& s) {
 const MethodDescription kDescription{
     "explicit", "explicit integration of the elastic forces: semi-implicit Euler, midpoint or RK4 (seed 001 Eqs. 2-4)",
     false,      kOptions,
-    kSolids,    build};
+    kSolids,    build,
+    false};  // no contact tasks yet: a scene with colliders is refused
 
 }  // namespace atssim::solver::explicit_rk

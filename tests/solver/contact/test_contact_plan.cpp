@@ -1,5 +1,7 @@
 #include <catch2/catch.hpp>
 
+#include <fmt/format.h>
+
 #include <string>
 #include <vector>
 
@@ -22,6 +24,7 @@ int tasks_named(const plan::SubstepPlan& p, const std::string& part) {
 TEST_CASE("a scene without colliders gets no contact or friction task, in every method") {
   const scene::SceneDesc s = scene::parse_scene(test::hanging_cloth_yaml(6), "scene.yaml", ".");
   for (const solver::MethodDescription* m : solver::methods()) {
+    if (!m->colliders) continue;  // refused with colliders (tested below)
     INFO(m->name);
     const plan::SubstepPlan p = solver::build_plan(s, *m);
     CHECK(p.tasks_of(plan::TaskKind::friction).empty());
@@ -36,6 +39,7 @@ TEST_CASE("with colliders XPBD and JPGD project after every iteration, and every
       ".");
   const int iterations = s.simulation.iterations;
   for (const solver::MethodDescription* m : solver::methods()) {
+    if (!m->colliders) continue;  // refused with colliders (tested below)
     INFO(m->name);
     const plan::SubstepPlan p = solver::build_plan(s, *m);
     // VBD and SOSD keep particles out through the contact energy alone.
@@ -61,5 +65,18 @@ TEST_CASE("with colliders XPBD and JPGD project after every iteration, and every
       CHECK(p.launches[t][0].range.count == p.particle_count);
     }
     CHECK(p.launches[friction][0].range.count == p.particle_count);
+  }
+}
+
+TEST_CASE("a method without contact is refused for a scene with colliders, naming the collider's line") {
+  const std::string yaml =
+      test::hanging_cloth_yaml(6) + "colliders:\n  - {type: sphere, center: [0, -1, 0], radius: 0.5}\n";
+  const scene::SceneDesc s = scene::parse_scene(yaml, "scene.yaml", ".");
+  for (const solver::MethodDescription* m : solver::methods()) {
+    if (m->colliders) continue;
+    INFO(m->name);
+    const int line = s.colliders.front().source_line;
+    CHECK_THROWS_WITH(solver::build_plan(s, *m), Catch::Contains(fmt::format("scene.yaml:{}", line)) &&
+                                                     Catch::Contains("no contact with colliders"));
   }
 }
