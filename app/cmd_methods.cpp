@@ -40,9 +40,10 @@ Action add_methods_command(CLI::App& cli) {
                         : fmt::format("{}{}", solids.empty() ? "" : ", ", name);
       }
       for (const solver::MethodOption& o : m.options) {
+        const std::string value = o.choices.empty() ? o.default_text() : fmt::format("\"{}\"", o.default_text());
         options += *json ? fmt::format("{}{{\"key\": \"{}\", \"default\": {}, \"min\": {}, \"max\": {}}}",
-                                       options.empty() ? "" : ", ", o.key, o.default_value, o.min, o.max)
-                         : fmt::format("{}solver.{} = {} ({})", options.empty() ? "" : "; ", o.key, o.default_value,
+                                       options.empty() ? "" : ", ", o.key, value, o.min, o.max)
+                         : fmt::format("{}solver.{} = {} ({})", options.empty() ? "" : "; ", o.key, o.default_text(),
                                        o.meaning);
       }
       if (*json) {

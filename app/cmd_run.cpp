@@ -28,9 +28,20 @@ struct RunArgs {
   bool quiet = false;
   bool json = false;
   std::string svm;
+  std::string method;
+  bool resume = false;
 };
 
-void on_signal(int) { request_stop(); }
+// The first Ctrl-C stops the run before its next substep (the frames
+// written are kept); a second one ends the process at once.
+void on_signal(int) {
+  if (stop_requested()) {
+    static const char message[] = "\natssim: interrupted again: exiting now (the frames flushed so far are kept)\n";
+    (void)!::write(STDERR_FILENO, message, sizeof message - 1);
+    ::_exit(130);
+  }
+  request_stop();
+}
 
 void print_progress(const RunProgress& p) {
   const double eta_s = p.mean_ms * (p.frames - p.frame) / 1000.0;
@@ -45,7 +56,11 @@ Action add_run_command(CLI::App& cli, const std::string& command_line) {
   CLI::App* cmd = cli.add_subcommand("run", "Simulate a scene and write the frames to HDF5");
   cmd->add_option("scene", args->scene, "Scene file (YAML, see docs/scene-format.md)")->required();
   cmd->add_option("-o,--output", args->output, "Output HDF5 file (default: the scene's output.path)");
-  cmd->add_option("--frames", args->frames, "Number of frames to simulate")->check(CLI::PositiveNumber);
+  cmd->add_option("--frames", args->frames, "Number of frames to simulate (1 or more)")
+      ->check(CLI::Range(1, 10000000).description("1 or more"));
+  cmd->add_option("--method", args->method, "Solver method (the scene's solver.method; see atssim methods)");
+  cmd->add_flag("--resume", args->resume,
+                "Continue the run a killed or stopped run left at the output path, from its last recorded frame");
   cmd->add_option("--devices", args->devices, "Device spec: default, cpu, gpu, N, cpu/2 (see atssim devices)");
   cmd->add_option("--schedule", args->schedule,
                   "How the substep uses the devices: single, split (blocks divided by device speed), heft, async");
@@ -62,12 +77,23 @@ Action add_run_command(CLI::App& cli, const std::string& command_line) {
                 "Print one JSON object on stdout summarising the run, also when it fails (docs/run-json.md)");
   cmd->add_option("--svm", args->svm, "Shared virtual memory: auto (fine grain when offered) or coarse")
       ->check(CLI::IsMember({"auto", "coarse", "fine"}));
-  return [args, command_line]() {
+  return [args, command_line, cmd]() {
     RunOptions options;
     options.scene_path = args->scene;
     options.command_line = command_line;
     options.svm_mode = args->svm;
     options.overrides = args->sets;
+    options.resume = args->resume;
+    if (cmd->count("--output") > 0 && args->output.empty()) {
+      throw input_error("-o/--output: the output path is empty; pass a file name, e.g. -o run.h5");
+    }
+    if (cmd->count("--devices") > 0 && args->devices.empty()) {
+      throw input_error("--devices: the device spec is empty; pass e.g. --devices cpu (see atssim devices)");
+    }
+    if (cmd->count("--method") > 0 && args->method.empty()) {
+      throw input_error("--method: the method is empty; pass one of those atssim methods lists");
+    }
+    if (!args->method.empty()) options.overrides.push_back("solver.method=" + args->method);
     if (!args->output.empty()) options.overrides.push_back("output.path=" + args->output);
     if (args->frames > 0) options.overrides.push_back("simulation.frames=" + std::to_string(args->frames));
     if (!args->devices.empty()) options.overrides.push_back("devices=" + args->devices);

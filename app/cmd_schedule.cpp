@@ -6,18 +6,20 @@
 
 #include "app/commands.hpp"
 #include "app/execution.hpp"
+#include "app/scene_checks.hpp"
 #include "app/simulation.hpp"
 #include "device/device_set.hpp"
 #include "io/cost_file.hpp"
 #include "plan/substep_plan.hpp"
 #include "scene/scene_loader.hpp"
+#include "util/error.hpp"
 
 namespace atssim::app {
 
 namespace {
 
 struct ScheduleArgs {
-  std::string scene, devices, schedule, executor, memory, costs;
+  std::string scene, devices, schedule, executor, memory, costs, method;
   std::vector<std::string> sets;
   bool json = false, dot = false, csv = false;
 };
@@ -122,13 +124,22 @@ Action add_schedule_command(CLI::App& cli) {
       ->check(CLI::IsMember({"shared", "separate"}));
   cmd->add_option("--costs", args->costs, "Cost table CSV (as --csv prints it) instead of profiling the devices");
   cmd->add_option("--set", args->sets, "Override a scene key (repeatable)");
+  cmd->add_option("--method", args->method, "Solver method (the scene's solver.method; see atssim methods)");
   auto* json = cmd->add_flag("--json", args->json, "Print JSON");
   auto* dot = cmd->add_flag("--dot", args->dot, "Print a Graphviz graph, tasks coloured by device");
   auto* csv = cmd->add_flag("--csv", args->csv, "Print the cost table (ms per task and device) as CSV");
   json->excludes(dot)->excludes(csv);
   dot->excludes(csv);
-  return [args]() {
+  return [args, cmd]() {
     std::vector<std::string> overrides = args->sets;
+    for (const char* flag : {"--devices", "--method", "--costs"}) {
+      if (cmd->count(flag) > 0 && (std::string(flag) == "--devices"  ? args->devices.empty()
+                                   : std::string(flag) == "--method" ? args->method.empty()
+                                                                     : args->costs.empty())) {
+        throw input_error(fmt::format("{}: the value is empty; see atssim schedule --help", flag));
+      }
+    }
+    if (!args->method.empty()) overrides.push_back("solver.method=" + args->method);
     if (!args->devices.empty()) overrides.push_back("devices=" + args->devices);
     if (!args->schedule.empty()) overrides.push_back("solver.schedule=" + args->schedule);
     if (!args->executor.empty()) overrides.push_back("solver.executor=" + args->executor);
@@ -145,7 +156,7 @@ Action add_schedule_command(CLI::App& cli) {
       const auto file = io::read_cost_file(args->costs, cut_for_mode(base, mode, columns).graph);
       planned = schedule_from_costs(base, mode, file.costs, file.latency_ms);
     } else {
-      const device::DeviceSet devices = device::DeviceSet::open(scene.devices, device::parse_memory_mode(scene.memory));
+      const device::DeviceSet devices = open_scene_devices(scene);
       Execution e = prepare_execution(devices, base, execution_options(scene));
       planned.plan = e.plan();
       planned.costs = e.costs.costs();

@@ -1,5 +1,7 @@
 #include "app/convergence.hpp"
 
+#include "app/scene_checks.hpp"
+
 #include <algorithm>
 #include <cstring>
 
@@ -77,7 +79,7 @@ io::ConvergenceResult run_convergence(const ConvergeOptions& o) {
   for (const std::string& method : o.methods) solver::check_scene(scene, solver::method(method));
   const auto& sim = scene.simulation;
   const double h = sim.frame_dt / sim.substeps;
-  const device::DeviceSet devices = device::DeviceSet::open(scene.devices, device::parse_memory_mode(scene.memory));
+  const device::DeviceSet devices = open_scene_devices(scene);
 
   // The state after `frames_before` frames of the scene's own method
   // (solver.method), on one device.

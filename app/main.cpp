@@ -7,9 +7,11 @@
 #include <CLI/CLI.hpp>
 
 #include "app/commands.hpp"
+#include "io/h5_errors.hpp"
 #include "util/error.hpp"
 
 int main(int argc, char** argv) {
+  atssim::io::init_hdf5_for_command_line();
   std::string command_line;
   for (int i = 0; i < argc; ++i) command_line += (i ? " " : "") + std::string(argv[i]);
 
@@ -23,6 +25,18 @@ int main(int argc, char** argv) {
   const atssim::app::Action inspect = atssim::app::add_inspect_command(cli);
   const atssim::app::Action methods = atssim::app::add_methods_command(cli);
 
+  if (argc > 1 && argv[1][0] != '-') {
+    bool known = false;
+    std::string names;
+    for (const CLI::App* sub : cli.get_subcommands({})) {
+      known = known || sub->get_name() == argv[1];
+      names += (names.empty() ? "" : ", ") + sub->get_name();
+    }
+    if (!known) {
+      fmt::print(stderr, "atssim: unknown command '{}'; the commands are {} (see atssim --help)\n", argv[1], names);
+      return 2;
+    }
+  }
   try {
     cli.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -9,13 +9,16 @@
 
 #include <fmt/format.h>
 
+#include "app/blow_up.hpp"
 #include "app/execution.hpp"
+#include "app/scene_checks.hpp"
 #include "device/device_set.hpp"
 #include "device/plan_executor.hpp"
 #include "io/result_writer.hpp"
 #include "model/cloth_builder.hpp"
 #include "scene/scene_loader.hpp"
 #include "scene/scene_yaml.hpp"
+#include "solver/contact/contact_summary.hpp"
 #include "solver/method_registry.hpp"
 #include "util/error.hpp"
 
@@ -25,12 +28,25 @@ namespace {
 
 std::atomic<bool> g_stop{false};
 
-// The first particle whose position is not finite or flew implausibly far.
-int find_blow_up(const std::vector<float>& xyz) {
-  for (std::size_t i = 0; i < xyz.size(); ++i) {
-    if (!std::isfinite(xyz[i]) || std::abs(xyz[i]) > 1e6f) return static_cast<int>(i / 3);
+// xyz triplets of a float4 buffer's bytes (positions, velocities).
+std::vector<float> xyz_of(const std::vector<std::byte>& raw) {
+  const auto* p = reinterpret_cast<const float*>(raw.data());
+  const std::size_t n = raw.size() / (4 * sizeof(float));
+  std::vector<float> xyz(3 * n);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int k = 0; k < 3; ++k) xyz[3 * i + k] = p[4 * i + k];
   }
-  return -1;
+  return xyz;
+}
+
+// Runs one frame's substeps one at a time, so that a stop request (Ctrl-C)
+// is honoured within a substep; the last substep is timed task by task.
+void run_frame(device::PlanExecutor& executor, int substeps, int frame) {
+  for (int s = 0; s < substeps; ++s) {
+    if (g_stop) throw runtime_error(fmt::format("interrupted in frame {} (substep {} of {})", frame, s, substeps));
+    executor.run_substeps(1, s + 1 == substeps);
+    executor.finish();
+  }
 }
 
 device::SvmMode svm_mode(const std::string& text) {
@@ -87,6 +103,11 @@ io::RunInfo run_info(const RunOptions& options, const scene::SceneDesc& scene, c
   return info;
 }
 
+io::ContactFrame contact_frame(const std::vector<ats_collider_c>& colliders, const std::vector<float>& xyz) {
+  const solver::ContactSummary s = solver::summarize_contacts(colliders, xyz);
+  return {s.active, s.min_distance, s.max_penetration};
+}
+
 // Keeps only what output needs (object topology and rest shape).
 void release_simulation_state(model::Model& model) {
   model = model::Model{{}, {}, {}, std::move(model.objects), model.gravity, {}, model.ground};
@@ -104,14 +125,15 @@ scene::SceneDesc load_scene(const std::string& path, std::span<const std::string
   auto& given = scene.solver.method_options;
   for (const solver::MethodOption& o : method.options) {
     const bool set = std::any_of(given.begin(), given.end(), [&](const auto& g) { return g.key == o.key; });
-    if (!set) given.push_back({std::string(o.key), fmt::format("{}", o.default_value), ""});
+    if (!set) given.push_back({std::string(o.key), o.default_text(), ""});
   }
   scene.resolved_yaml = scene::to_resolved_yaml(scene);
   return scene;
 }
 
 plan::SubstepPlan substep_plan_for(const scene::SceneDesc& scene) {
-  return solver::build_plan(scene, solver::method(scene.solver.method, scene.solver.method_where));
+  return with_stiffness_line(
+      scene, [&] { return solver::build_plan(scene, solver::method(scene.solver.method, scene.solver.method_where)); });
 }
 
 RunResult run_simulation(const RunOptions& options, const std::function<void(const RunProgress&)>& progress) {
@@ -127,7 +149,8 @@ void run_simulation(const RunOptions& options, RunResult& result,
   const scene::SceneDesc scene = load_scene(options.scene_path, options.overrides);
   const solver::MethodDescription& method = solver::method(scene.solver.method);
   const solver::MethodSettings settings = solver::method_settings(scene, method);
-  const device::DeviceSet devices = device::DeviceSet::open(scene.devices, device::parse_memory_mode(scene.memory));
+  const device::DeviceSet devices = open_scene_devices(scene);
+  check_schedule_fits(scene, method.gauss_seidel, devices.size());
   const auto& sim = scene.simulation;
 
   // Each stage's data is released once the next holds it, so the peak memory
@@ -136,22 +159,17 @@ void run_simulation(const RunOptions& options, RunResult& result,
   const std::size_t particles = model.particles.size();
   solver::SimLayout layout = solver::make_sim_layout(model);
   release_simulation_state(model);
-  plan::SubstepPlan plan = method.build(layout, settings);
+  plan::SubstepPlan plan = with_stiffness_line(scene, [&] { return method.build(layout, settings); });
+  const std::vector<ats_collider_c> colliders = layout.colliders;  // for the per-frame contact record
   layout = {};
   ExecutionOptions exec_options = execution_options(scene);
-  if (exec_options.mode == ScheduleMode::async && !method.gauss_seidel) {
-    throw input_error(
-        fmt::format("schedule 'async' relaxes Gauss-Seidel iterations, and '{}' iterates Jacobi sweeps "
-                    "that already run on every device with one synchronisation each: use --schedule "
-                    "split or heft",
-                    scene.solver.method));
-  }
   exec_options.svm = svm_mode(options.svm_mode);
   Execution execution = prepare_execution(devices, std::move(plan), exec_options);
   device::PlanExecutor& executor = *execution.executor;
 
   const io::RunInfo info = run_info(options, scene, devices, execution, exec_options);
-  io::ResultWriter writer(scene.output.path, info, model.objects);
+  io::Checkpoint resumed;
+  io::ResultWriter writer(scene.output.path, info, model.objects, options.resume ? &resumed : nullptr);
 
   result.output_path = scene.output.path;
   result.xdmf_path = writer.xdmf_path();
@@ -163,17 +181,44 @@ void run_simulation(const RunOptions& options, RunResult& result,
   result.executor = info.schedule.executor;
   result.memory = info.schedule.memory;
   result.devices = info.devices;
-  std::vector<float> xyz;
-  executor.read_positions(xyz);
-  writer.append_frame(0.0, xyz, 0.0);
+  int first_frame = 1;
+  if (options.resume) {
+    const plan::PlanState fresh = executor.read_state();
+    if (resumed.positions.size() != fresh.positions.size() || resumed.velocities.size() != fresh.velocities.size()) {
+      throw input_error(
+          fmt::format("--resume: the state in '{}' does not fit this scene's plan ({} bytes, the plan "
+                      "has {}); run without --resume",
+                      writer.path(), resumed.positions.size() + resumed.velocities.size(),
+                      fresh.positions.size() + fresh.velocities.size()));
+    }
+    if (resumed.frame >= sim.frames) {
+      throw input_error(
+          fmt::format("--resume: '{}' already holds {} simulated frames; pass --frames with more to "
+                      "go on",
+                      writer.path(), resumed.frame));
+    }
+    executor.reset({resumed.positions, resumed.velocities});
+    first_frame = static_cast<int>(resumed.frame) + 1;
+  }
+  plan::PlanState state = executor.read_state();
+  std::vector<float> xyz = xyz_of(state.positions);
+  const BlowUpBounds bounds =
+      blow_up_bounds(xyz, xyz_of(state.velocities), std::hypot(sim.gravity[0], sim.gravity[1], sim.gravity[2]),
+                     sim.frame_dt, sim.substeps);
+  if (!options.resume) {
+    writer.set_checkpoint(0, state.positions, state.velocities);
+    writer.append_frame(0.0, xyz, 0.0, 0.0, contact_frame(colliders, xyz));
+  }
   result.frames_written = writer.frames_written();
 
   double total_ms = 0.0;
+  std::vector<float> before;
   try {
-    for (int frame = 1; frame <= sim.frames; ++frame) {
+    for (int frame = first_frame; frame <= sim.frames; ++frame) {
       if (g_stop) throw runtime_error(fmt::format("interrupted before frame {}", frame));
       const auto start = std::chrono::steady_clock::now();
-      executor.run_substeps(sim.substeps, true);
+      run_frame(executor, sim.substeps, frame);
+      before.swap(xyz);
       executor.read_positions(xyz);
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
       // Costs from this frame's profiling events refit the table; the
@@ -184,31 +229,37 @@ void run_simulation(const RunOptions& options, RunResult& result,
       const FrameMeasurement measured = refit_and_reschedule(execution, exec_options);
       const double schedule_ms =
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - schedule_start).count();
-      if (const int p = find_blow_up(xyz); p >= 0) {
+      if (const auto why = find_blow_up(before, xyz, bounds, frame * sim.frame_dt, 1)) {
         throw runtime_error(
-            fmt::format("frame {}: the simulation blew up (particle {} is at a non-finite or "
-                        "implausible position); use more substeps or iterations, or softer "
-                        "materials",
-                        frame, p));
+            fmt::format("frame {}: the simulation blew up ({}); use more substeps or iterations, "
+                        "or softer materials",
+                        frame, *why));
       }
+      const int done = frame - first_frame + 1;
       total_ms += ms;
       result.frames_simulated = frame;
       result.frame_ms.push_back(ms);
       result.bytes_moved.push_back(static_cast<double>(measured.bytes_moved));
-      result.mean_frame_ms = total_ms / frame;
+      result.mean_frame_ms = total_ms / done;
       if (frame % scene.output.stride == 0) {
         record_schedule(writer, frame, used, used_waits, measured);
-        writer.append_frame(frame * sim.frame_dt, xyz, ms, schedule_ms);
+        state = executor.read_state();
+        writer.set_checkpoint(frame, state.positions, state.velocities);
+        writer.append_frame(frame * sim.frame_dt, xyz, ms, schedule_ms, contact_frame(colliders, xyz));
         result.predicted_makespan_ms.push_back(used.makespan_ms);
         result.measured_makespan_ms.push_back(measured.makespan_ms);
       }
       result.frames_written = writer.frames_written();
-      if (progress) progress({frame, sim.frames, ms, total_ms / frame});
+      if (progress) progress({frame, sim.frames, ms, total_ms / done});
     }
   } catch (const std::exception& e) {  // atssim::Error included
     const int kept = writer.frames_written();
     writer.fail(e.what());
-    throw runtime_error(fmt::format("{} ({} frames kept in {})", e.what(), kept, writer.path()));
+    const std::string where =
+        writer.path() == writer.target_path()
+            ? writer.path()
+            : fmt::format("{}; the earlier {} was left as it was", writer.path(), writer.target_path());
+    throw runtime_error(fmt::format("{} ({} frames kept in {})", e.what(), kept, where));
   }
   writer.finish();
   result.frames_written = writer.frames_written();

@@ -16,6 +16,9 @@ struct RunOptions {
   std::string command_line;
   // Forced coarse-grain SVM (tests exercise both paths); empty = automatic.
   std::string svm_mode;
+  // Continue the run a killed or stopped run left at the output path from
+  // its last checkpoint (the same positions as an uninterrupted run).
+  bool resume = false;
 };
 
 struct RunProgress {
@@ -70,8 +73,8 @@ scene::SceneDesc load_scene(const std::string& path, std::span<const std::string
 // The substep plan of a validated scene (model -> layout -> solver plan).
 plan::SubstepPlan substep_plan_for(const scene::SceneDesc& scene);
 
-// Set from a signal handler: the run stops after the current frame, keeps
-// what it wrote and fails with "interrupted".
+// Set from a signal handler: the run stops before the next substep, keeps
+// the frames it wrote and fails with "interrupted".
 void request_stop();
 bool stop_requested();
 

@@ -10,7 +10,7 @@ its own small results in a temporary folder and draws one figure:
 The cells: (1) a run with its `--json` summary; (2) positions of a frame from
 /frames/positions; (3) the schedule map of the last recorded substep,
 predicted vs measured; (4) convergence curves from `atssim converge`;
-(5) reading a file while atssim is still writing it (HDF5 SWMR).
+(5) reading a file while atssim is still writing it (reopened per read).
 """
 # %% Setup: where atssim is, a folder for the results.
 import argparse
@@ -96,24 +96,28 @@ with h5py.File(work / "convergence.h5", "r") as f:
     ax.set_title("convergence against the Newton reference")
     ax.legend(fontsize=8)
 
-# %% (5) A file that is still being written: open it in SWMR mode and refresh.
+# %% (5) A file that is still being written: open it read-only, read, close, repeat.
+# atssim writes without SWMR (so that a killed run's file opens with a plain
+# h5py.File), flushing every frame; a reopen sees every flushed frame. A read
+# that lands inside a flush can fail: retry it.
 proc = subprocess.Popen([atssim, "run", scene, "-o", str(work / "live.h5"), "--frames", "400", "--devices", "cpu/2:0",
                          *small, "--quiet"])
 while not (work / "live.h5").exists() or not (work / "live.xdmf").exists():
     time.sleep(0.05)
-seen = []
-with h5py.File(work / "live.h5", "r", swmr=True) as f:
-    positions, times = f["frames/positions"], f["frames/time"]
-    while proc.poll() is None:
-        positions.refresh()
-        times.refresh()
-        n = min(positions.shape[0], times.shape[0])
-        if n and (not seen or n != seen[-1][0]):
-            seen.append((n, float(positions[n - 1, :, 1].min())))  # the lowest point of the newest frame
-        time.sleep(0.02)
-    complete = f.attrs["complete"]  # still 0 for this handle: read it again after the run
+seen, failed_reads = [], 0
+while proc.poll() is None:
+    try:
+        with h5py.File(work / "live.h5", "r") as f:
+            positions, times = f["frames/positions"], f["frames/time"]
+            n = min(positions.shape[0], times.shape[0])
+            if n and (not seen or n != seen[-1][0]):
+                seen.append((n, float(positions[n - 1, :, 1].min())))  # the lowest point of the newest frame
+    except (OSError, KeyError):
+        failed_reads += 1  # caught the writer mid-flush: try again
+    time.sleep(0.02)
 with h5py.File(work / "live.h5", "r") as f:
     complete = int(f.attrs["complete"])
+print(f"{failed_reads} reads caught the writer mid-flush and were retried")
 print(f"read {len(seen)} growing states while the run wrote; complete afterwards: {complete}")
 ax = axes[1, 1]
 ax.plot([n for n, _ in seen], [y for _, y in seen], ".")

@@ -29,7 +29,8 @@ for group in "$@"; do
   case "$group" in
     paraview) packages+=(paraview python3-paraview xvfb xauth) ;;
     slurm) packages+=(slurm-wlm munge) ;;
-    *) echo "atssim setup: unknown group '$group' (groups: paraview, slurm)" >&2; exit 2 ;;
+    fuzz) packages+=(clang libclang-rt-dev) ;;
+    *) echo "atssim setup: unknown group '$group' (groups: paraview, slurm, fuzz)" >&2; exit 2 ;;
   esac
 done
 

@@ -10,16 +10,28 @@ typedef struct {
   float compliance;
 } ats_distance_c;
 
-/* Isometric bending stencil (Bergou et al. 2006): edge v[0]-v[1], opposite
- * vertices v[2], v[3]; energy 0.5/compliance * scale * |sum K_i x_i|^2.
+/* Bending stencil: edge v[0]-v[1], opposite vertices v[2], v[3] (wings of
+ * triangles (v0, v1, v2) and (v0, v3, v1)). Two models
+ * (common/energy_bend_element.h):
+ *   ATS_BEND_ISOMETRIC (Bergou et al. 2006, flat rest shape only):
+ *     energy 0.5/compliance * scale * |sum K_i x_i|^2;
+ *   ATS_BEND_DIHEDRAL (curved rest shapes): energy
+ *     scale/compliance * (theta - rest_angle)^2 (common/energy_dihedral.h),
+ *     scale = 3/2 |e|^2 / (A0 + A1) of the rest stencil, which equals the
+ *     isometric energy to second order for a small fold of a flat stencil;
+ *     K is unused (0).
  * 48 bytes. */
 typedef struct {
   int v[4];
   float K[4];
   float scale;
   float compliance;
-  float pad0, pad1;
+  float rest_angle; /* dihedral: theta_0, radians; isometric: 0 */
+  int model;        /* ATS_BEND_ISOMETRIC or ATS_BEND_DIHEDRAL */
 } ats_bend_c;
+
+#define ATS_BEND_ISOMETRIC 0
+#define ATS_BEND_DIHEDRAL 1
 
 /* A linear tetrahedron (Sifakis & Barbic 2012): vertices, rest-shape
  * inverse Dm^-1 (row-major), rest volume, Lame parameters, energy model

@@ -4,10 +4,12 @@
  * h^2 g (the inertia target, also the first guess). Pinned particles (w = 0)
  * stay. */
 #include "common/task.h"
-/* Semi-implicit Euler for particle i: v += dt g, x += dt v; returns the new
- * position (pinned particles keep theirs and lose their velocity). */
+/* Semi-implicit Euler for particle i: v = (v + dt g) damp, x += dt v;
+ * returns the new position (pinned particles keep theirs and lose their
+ * velocity). damp = 1/(1 + c dt) takes air drag c implicitly
+ * (solver/layout/sim_layout.hpp); 1 without drag (exact: same bits). */
 static inline float4 predict_particle(int i, __global float4* x, __global float4* v, __global float4* x_prev,
-                                      float dt, float gx, float gy, float gz) {
+                                      float dt, float gx, float gy, float gz, float damp) {
   const float4 p = x[i];
   x_prev[i] = p;
   if (p.w == 0.0f) {
@@ -18,14 +20,17 @@ static inline float4 predict_particle(int i, __global float4* x, __global float4
   vel.x += dt * gx;
   vel.y += dt * gy;
   vel.z += dt * gz;
+  vel.x *= damp;
+  vel.y *= damp;
+  vel.z *= damp;
   v[i] = vel;
   const float4 q = (float4)(p.x + dt * vel.x, p.y + dt * vel.y, p.z + dt * vel.z, p.w);
   x[i] = q;
   return q;
 }
 
-ATS_TASK void particles_predict(int i, __global float4* x, __global float4* v, __global float4* x_prev, __global float4* x_tilde, float dt, float gx, float gy, float gz) {
-  x_tilde[i] = predict_particle(i, x, v, x_prev, dt, gx, gy, gz);
+ATS_TASK void particles_predict(int i, __global float4* x, __global float4* v, __global float4* x_prev, __global float4* x_tilde, float dt, float gx, float gy, float gz, float damp) {
+  x_tilde[i] = predict_particle(i, x, v, x_prev, dt, gx, gy, gz, damp);
 }
 
 ATS_TASK void particles_update_velocity(int i, __global const float4* x, __global float4* v, __global const float4* x_prev, float inv_dt) {

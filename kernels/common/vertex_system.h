@@ -3,7 +3,7 @@
  * H = (m/h^2) I + sum_e H_ii^e (stretch blocks projected PSD), gathered over
  * the elements touching the vertex through a CSR list (NvCloth-style, no
  * atomics). Entry code = element << 4 | kind << 2 | slot; kind 0 stretch
- * (slot 0/1), kind 1 bending (slot 0..3), kind 2 tetrahedron (slot 0..3;
+ * (slot 0/1), kind 1 bending (slot 0..3; isometric or dihedral), kind 2 tetrahedron (slot 0..3;
  * stable neo-Hookean or StVK, with the PSD diagonal block).
  * In the common subset of C, C++ and OpenCL C (common/ats_math.h): the
  * kernels (through common/vertex_system.cl) and the host VBD reference run
@@ -13,7 +13,7 @@
 #define ATS_VERTEX_SYSTEM_H
 
 #include "common/element_types.h"
-#include "common/energy_bending.h"
+#include "common/energy_bend_element.h"
 #include "common/energy_inertia.h"
 #include "common/energy_stretch.h"
 #include "common/energy_tet_neohookean.h"
@@ -64,8 +64,8 @@ ATS_FN vertex_system gather_vertex_system(int i, ATS_GLOBAL const ats_float4* x,
       ats_vec3 q[4];
       ATS_UNROLL for (int j = 0; j < 4; ++j) q[j] = vs_xyz(x[c.v[j]]);
       const float stiffness = 1.0f / c.compliance;
-      s.f = ats_sub(s.f, ats_bend_gradient(q, c.K, c.scale, stiffness, slot));
-      s.h = ats_m3_add(s.h, ats_bend_hessian(c.K, c.scale, stiffness, slot, slot));
+      s.f = ats_sub(s.f, ats_bend_element_gradient(c.model, q, c.K, c.scale, stiffness, c.rest_angle, slot));
+      s.h = ats_m3_add(s.h, ats_bend_element_hessian(c.model, q, c.K, c.scale, stiffness, slot, slot));
     }
   }
   return s;

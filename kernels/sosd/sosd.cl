@@ -20,15 +20,18 @@
 #include "common/ats_math.h"
 #include "common/vertex_solve.h"
 #include "common/vertex_system.cl"
+#include "common/vertex_contact.h"
+#include "common/contact_steps.cl"
+#include "common/vertex_friction.cl"
 #include "common/particle_steps.cl"
 #include "async/merge.cl"
 
 #define SOSD_MAX 12 /* 4 vertices x 3 */
 
 /* sys[4 i] = (f, 0), sys[4 i + 1 .. 4 i + 3] = rows of H_ii. */
-ATS_TASK void sosd_vertex_systems(int i, __global const float4* x, __global const float4* x_tilde, __global const int* adj_offsets, __global const int* adj, __global const ats_distance_c* stretch, __global const ats_bend_c* bend, __global const ats_tet_c* tets, __global float4* sys, float inv_h2) {
+ATS_TASK void sosd_vertex_systems(int i, __global const float4* x, __global const float4* x_tilde, __global const int* adj_offsets, __global const int* adj, __global const ats_distance_c* stretch, __global const ats_bend_c* bend, __global const ats_tet_c* tets, __global float4* sys, float inv_h2, __global const ats_collider_c* colliders, int collider_count) {
   if (x[i].w == 0.0f) return; /* pinned: never read */
-  const vertex_system s = gather_vertex_system(i, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend, tets);
+  const vertex_system s = add_contact_terms(gather_vertex_system(i, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend, tets), vs_xyz(x[i]), x[i].w, inv_h2, colliders, collider_count);
   sys[4 * i] = (float4)(s.f.x, s.f.y, s.f.z, 0.0f);
   ATS_UNROLL for (int r = 0; r < 3; ++r) sys[4 * i + 1 + r] = (float4)(s.h.r[r].x, s.h.r[r].y, s.h.r[r].z, 0.0f);
 }
@@ -134,9 +137,13 @@ ATS_TASK void sosd_stretch(int e, __global const float4* x, __global const float
 
 ATS_TASK void sosd_bend(int e, __global const float4* x, __global const float4* sys, __global const ats_bend_c* bend, __global float4* d) {
   const ats_bend_c c = bend[e];
+  ats_vec3 y[4];
+  ATS_UNROLL for (int j = 0; j < 4; ++j) y[j] = vs_xyz(x[c.v[j]]);
   ats_mat3 off[4][4];
   ATS_UNROLL for (int p = 0; p < 4; ++p) {
-    ATS_UNROLL for (int q = p + 1; q < 4; ++q) off[p][q] = ats_bend_hessian(c.K, c.scale, 1.0f / c.compliance, p, q);
+    ATS_UNROLL for (int q = p + 1; q < 4; ++q) {
+      off[p][q] = ats_bend_element_hessian(c.model, y, c.K, c.scale, 1.0f / c.compliance, p, q);
+    }
   }
   sosd_solve(c.v, 4, off, x, sys, d, 4 * e);
 }

@@ -8,13 +8,14 @@
 #include "common/xpbd_bending.h"
 #include "common/xpbd_tet.h"
 #include "common/particle_steps.cl"
+#include "common/contact_steps.cl"
 #include "async/merge.cl"
 
 static inline ats_vec3 xyz(float4 p) { return ats_v3(p.x, p.y, p.z); }
 static inline float4 add_xyz(float4 p, ats_vec3 d) { return (float4)(p.x + d.x, p.y + d.y, p.z + d.z, p.w); }
 
-ATS_TASK void xpbd_predict(int i, __global float4* x, __global float4* v, __global float4* x_prev, float dt, float gx, float gy, float gz) {
-  predict_particle(i, x, v, x_prev, dt, gx, gy, gz);
+ATS_TASK void xpbd_predict(int i, __global float4* x, __global float4* v, __global float4* x_prev, float dt, float gx, float gy, float gz, float damp) {
+  predict_particle(i, x, v, x_prev, dt, gx, gy, gz, damp);
 }
 
 ATS_TASK void xpbd_stretch(int i, __global float4* x, __global const ats_distance_c* c, __global float* lambda,
@@ -41,7 +42,7 @@ ATS_TASK void xpbd_bend(int i, __global float4* x, __global const ats_bend_c* c,
     w[j] = q[j].w;
   }
   const float4 l4 = reset ? (float4)(0.0f) : lambda[i];
-  const ats_bend_step s = ats_xpbd_bend(p, w, con.K, con.scale, con.compliance, xyz(l4), dt);
+  const ats_bend_step s = ats_xpbd_bend_element(p, w, &con, xyz(l4), dt);
   lambda[i] = (float4)(l4.x + s.dlambda.x, l4.y + s.dlambda.y, l4.z + s.dlambda.z, 0.0f);
   ATS_UNROLL for (int j = 0; j < 4; ++j) x[con.v[j]] = add_xyz(q[j], s.dx[j]);
 }

@@ -16,7 +16,7 @@
 #include "common/element_types.h"
 #include "common/energy_inertia.h"
 #include "common/energy_stretch.h"
-#include "common/energy_bending.h"
+#include "common/energy_bend_element.h"
 #include "common/energy_tet_neohookean.h"
 #include "common/energy_tet_stvk.h"
 
@@ -39,7 +39,7 @@ ATS_TASK void energy_bend(int i, __global const float4* x, __global const ats_be
   const ats_bend_c con = c[i];
   ats_vec3 p[4];
   ATS_UNROLL for (int j = 0; j < 4; ++j) p[j] = energy_xyz(x[con.v[j]]);
-  out[out_first + i] = ats_bend_energy(p, con.K, con.scale, 1.0f / con.compliance);
+  out[out_first + i] = ats_bend_element_energy(con.model, p, con.K, con.scale, 1.0f / con.compliance, con.rest_angle);
 }
 
 /* One tet: stable neo-Hookean or StVK (ats_tet_c.model); the host has

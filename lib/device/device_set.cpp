@@ -144,8 +144,8 @@ std::shared_ptr<DeviceSet::Impl> open_impl(const std::string& spec_in, MemoryMod
     if (const auto colon = item.rfind(':'), slash = item.find('/');
         colon != std::string::npos && slash != std::string::npos && colon > slash) {
       const std::string index = item.substr(colon + 1);
-      if (index.empty() || !std::all_of(index.begin(), index.end(), ::isdigit)) {
-        bad_spec(spec, fmt::format("'{}' must end in a sub-device index, as in cpu/2:1", item), all);
+      if (index.empty() || index.size() > 6 || !std::all_of(index.begin(), index.end(), ::isdigit)) {
+        bad_spec(spec, fmt::format("'{}' must end in a sub-device index (0 … 999999), as in cpu/2:1", item), all);
       }
       only = std::stoi(index);
       item = item.substr(0, colon);
@@ -154,8 +154,11 @@ std::shared_ptr<DeviceSet::Impl> open_impl(const std::string& spec_in, MemoryMod
     if (const auto slash = item.find('/'); slash != std::string::npos) {
       selector = item.substr(0, slash);
       const std::string count = item.substr(slash + 1);
-      if (count.empty() || !std::all_of(count.begin(), count.end(), ::isdigit) || std::stoi(count) < 2) {
-        bad_spec(spec, fmt::format("'{}' must be followed by a sub-device count ≥ 2, as in cpu/2", selector), all);
+      if (count.empty() || count.size() > 6 || !std::all_of(count.begin(), count.end(), ::isdigit) ||
+          std::stoi(count) < 2) {
+        bad_spec(spec,
+                 fmt::format("'{}' must be followed by a sub-device count from 2 to 999999, as in cpu/2", selector),
+                 all);
       }
       split = std::stoi(count);
     }

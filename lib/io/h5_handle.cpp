@@ -2,14 +2,13 @@
 
 #include <fmt/format.h>
 
+#include "io/h5_errors.hpp"
 #include "util/error.hpp"
 
 namespace atssim::io {
 
 H5Handle::H5Handle(hid_t id, herr_t (*close)(hid_t)) : id_(id), close_(close) {}
-H5Handle::H5Handle(H5Handle&& other) noexcept : id_(other.id_), close_(other.close_) {
-  other.id_ = H5I_INVALID_HID;
-}
+H5Handle::H5Handle(H5Handle&& other) noexcept : id_(other.id_), close_(other.close_) { other.id_ = H5I_INVALID_HID; }
 H5Handle& H5Handle::operator=(H5Handle&& other) noexcept {
   if (this != &other) {
     reset();
@@ -20,18 +19,33 @@ H5Handle& H5Handle::operator=(H5Handle&& other) noexcept {
   return *this;
 }
 H5Handle::~H5Handle() { reset(); }
+hid_t H5Handle::release() {
+  const hid_t id = id_;
+  id_ = H5I_INVALID_HID;
+  return id;
+}
 void H5Handle::reset() {
   if (id_ >= 0 && close_ != nullptr) close_(id_);
   id_ = H5I_INVALID_HID;
 }
 
+namespace {
+
+[[noreturn]] void throw_failure(const std::string& what) {
+  const std::string cause = hdf5_failure();
+  throw runtime_error(cause.empty() ? fmt::format("HDF5: {} failed", what)
+                                    : fmt::format("HDF5: {} failed: {}", what, cause));
+}
+
+}  // namespace
+
 H5Handle h5_check(hid_t id, herr_t (*close)(hid_t), const std::string& what) {
-  if (id < 0) throw runtime_error(fmt::format("HDF5: {} failed", what));
+  if (id < 0) throw_failure(what);
   return H5Handle(id, close);
 }
 
 void h5_check(herr_t rc, const std::string& what) {
-  if (rc < 0) throw runtime_error(fmt::format("HDF5: {} failed", what));
+  if (rc < 0) throw_failure(what);
 }
 
 H5Handle create_group(hid_t parent, const std::string& name) {
@@ -60,7 +74,8 @@ void write_array(hid_t parent, const std::string& name, std::span<const T> value
   H5Handle space = simple_space(rows, cols);
   H5Handle set = h5_check(H5Dcreate2(parent, name.c_str(), file_type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
                           H5Dclose, "creating " + name);
-  if (!values.empty()) h5_check(H5Dwrite(set, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), "writing " + name);
+  if (!values.empty())
+    h5_check(H5Dwrite(set, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), "writing " + name);
 }
 
 }  // namespace
@@ -77,8 +92,8 @@ void write_string_attribute(hid_t object, const std::string& name, const std::st
 void write_int_attribute(hid_t object, const std::string& name, long long value) {
   H5Handle space = h5_check(H5Screate(H5S_SCALAR), H5Sclose, "scalar space");
   if (H5Aexists(object, name.c_str()) > 0) H5Adelete(object, name.c_str());
-  H5Handle attr = h5_check(H5Acreate2(object, name.c_str(), H5T_STD_I64LE, space, H5P_DEFAULT, H5P_DEFAULT),
-                           H5Aclose, "creating attribute " + name);
+  H5Handle attr = h5_check(H5Acreate2(object, name.c_str(), H5T_STD_I64LE, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+                           "creating attribute " + name);
   h5_check(H5Awrite(attr, H5T_NATIVE_LLONG, &value), "writing attribute " + name);
 }
 

@@ -20,13 +20,17 @@ class H5Handle {
   hid_t get() const { return id_; }
   operator hid_t() const { return id_; }
   void reset();
+  // Gives up ownership without closing (a file whose writes failed is left
+  // as its last flush made it: closing would write more).
+  hid_t release();
 
  private:
   hid_t id_ = H5I_INVALID_HID;
   herr_t (*close_)(hid_t) = nullptr;
 };
 
-// Each throws atssim::Error (runtime) naming `what` when HDF5 fails.
+// Each throws atssim::Error (runtime) naming `what` and HDF5's innermost
+// cause when HDF5 fails (io/h5_errors.hpp).
 H5Handle h5_check(hid_t id, herr_t (*close)(hid_t), const std::string& what);
 void h5_check(herr_t rc, const std::string& what);
 

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "io/h5_errors.hpp"
 #include "io/h5_handle.hpp"
 #include "util/error.hpp"
 
@@ -13,12 +14,14 @@ namespace {
 
 H5Handle open_file(const std::string& path) {
   if (!std::filesystem::exists(path)) throw input_error(fmt::format("{}: file does not exist", path));
-  // Read-only under SWMR so a file that a running simulation still writes opens too.
+  quiet_hdf5();
+  // Plain read-only (the writer uses no SWMR); files of atssim versions that
+  // wrote under SWMR open in SWMR mode.
   hid_t id = -1;
-  H5E_BEGIN_TRY { id = H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, H5P_DEFAULT); }
+  H5E_BEGIN_TRY { id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT); }
   H5E_END_TRY;
   if (id < 0) {
-    H5E_BEGIN_TRY { id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT); }
+    H5E_BEGIN_TRY { id = H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, H5P_DEFAULT); }
     H5E_END_TRY;
   }
   if (id < 0) throw input_error(fmt::format("{}: not an HDF5 file (or damaged)", path));
@@ -104,6 +107,11 @@ ResultSummary read_summary(const std::string& path) {
     s.objects.emplace_back(name);
   }
   return s;
+}
+
+std::vector<double> read_series(const std::string& path, const std::string& dataset) {
+  H5Handle file = open_file(path);
+  return read_doubles(file, dataset.c_str());
 }
 
 std::vector<float> read_frame_positions(const std::string& path, std::size_t frame) {

@@ -25,5 +25,7 @@ struct ResultSummary {
 ResultSummary read_summary(const std::string& path);
 // Positions of one frame, xyz per particle.
 std::vector<float> read_frame_positions(const std::string& path, std::size_t frame);
+// A 1-D series as doubles, e.g. "/contact/max_penetration".
+std::vector<double> read_series(const std::string& path, const std::string& dataset);
 
 }  // namespace atssim::io

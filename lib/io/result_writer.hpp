@@ -1,15 +1,25 @@
 #pragma once
 // Writes a run to HDF5 (format v1, docs/output-format.md) as it goes: every
-// frame is appended and flushed, under HDF5's single-writer/multi-reader
-// mode, so a run that is killed leaves a readable file holding every frame
-// flushed before the kill. The root attribute `complete` turns 1 only when
-// the run ended well; a failed run records its `error`.
+// frame is appended and flushed, so a run that is killed leaves a file that
+// a plain `h5py.File(path, "r")` opens, holding every frame flushed before
+// the kill (no SWMR: a SWMR writer leaves flags that refuse plain readers).
+// The root attribute `complete` turns 1 only when the run ended well; a
+// failed run records its `error`. One writer per path (io/output_lock.hpp);
+// when a file is already at the path, the run writes "<stem>.partial<ext>"
+// and renames it over the path only when it completes, so a failing run
+// never destroys an earlier result.
+#include <limits>
+#include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "io/checkpoint.hpp"
 #include "io/h5_handle.hpp"
+#include "io/output_lock.hpp"
 #include "io/xdmf_views.hpp"
+#include "io/xdmf_writer.hpp"
 #include "model/model.hpp"
 #include "sched/cost_table.hpp"
 #include "sched/schedule.hpp"
@@ -38,8 +48,8 @@ struct TaskRecord {
 
 // The substep's tasks and what the scheduler was given.
 struct ScheduleInfo {
-  std::string mode;      // "single", "split", "heft", "async"
-  std::string executor;  // "events" or "fused"
+  std::string mode;               // "single", "split", "heft", "async"
+  std::string executor;           // "events" or "fused"
   std::string memory = "shared";  // "shared" (SVM within a platform) or "separate" (copies between memories)
   std::vector<TaskRecord> tasks;
   std::vector<std::pair<int, int>> edges;
@@ -66,17 +76,44 @@ struct ScheduledTask {
   double measured_start_ms = 0, measured_finish_ms = 0;
 };
 
+// "out.h5" -> "out.partial.h5" ("out" -> "out.partial.h5"): where a run
+// writes while an earlier result is at the path.
+std::string partial_path(const std::string& path);
+// The particles' contact with the colliders in one frame (docs/output-format.md
+// /contact): touching particle-collider pairs, the smallest gap (distance
+// to a surface less its thickness; NaN without colliders) and the largest
+// penetration into a thickened surface (0 when none).
+struct ContactFrame {
+  int active = 0;
+  double min_distance = std::numeric_limits<double>::quiet_NaN();
+  double max_penetration = 0.0;
+};
+
 class ResultWriter {
  public:
-  // Creates (truncates) `path` and writes everything but the frames;
+  // Creates the output for `path` and writes everything but the frames;
   // `objects` are the simulated objects' particle ranges and topology.
-  ResultWriter(const std::string& path, const RunInfo& info, std::span<const model::ObjectRange> objects);
+  // With `resume`, reopens instead the file a killed or stopped run left
+  // for `path` (its partial file first), drops what came after its newest
+  // checkpoint and fills `*resume` with it; the run goes on from there.
+  // Throws atssim::Error: input when the path cannot be written, is locked
+  // by another run, or (resume) holds no resumable run of this scene.
+  ResultWriter(const std::string& path, const RunInfo& info, std::span<const model::ObjectRange> objects,
+               Checkpoint* resume = nullptr);
   ResultWriter(const ResultWriter&) = delete;
   ResultWriter& operator=(const ResultWriter&) = delete;
   ~ResultWriter();
 
-  // Appends one frame (xyz per particle) and flushes it to disk.
-  void append_frame(double time, std::span<const float> xyz, double frame_ms, double schedule_ms = 0.0);
+  // Appends one frame (xyz per particle) and its contact record, and
+  // flushes it to disk, with the state set by set_checkpoint() since the last
+  // frame. Before writing it checks that the output is still there and that
+  // the disk has room for the frame; a failed write leaves the file as the
+  // last flush made it.
+  void append_frame(double time, std::span<const float> xyz, double frame_ms, double schedule_ms = 0.0,
+                    const ContactFrame& contact = {});
+  // The executor's state at the end of simulated frame `frame`, stored with
+  // the next append_frame (for --resume).
+  void set_checkpoint(long long frame, std::span<const std::byte> positions, std::span<const std::byte> velocities);
   // Appends the recorded substep of simulated frame `frame` (written with
   // the next append_frame's flush).
   void append_schedule(int frame, std::span<const ScheduledTask> tasks, std::span<const sched::Wait> waits,
@@ -87,17 +124,30 @@ class ResultWriter {
   void finish();
   void fail(const std::string& error);
 
-  const std::string& path() const { return path_; }
+  // Where the frames are now (the partial file until a replacing run completes).
+  const std::string& path() const { return writing_; }
+  // The path asked for.
+  const std::string& target_path() const { return path_; }
   std::string xdmf_path() const;
 
  private:
+  void create(const RunInfo& info, std::span<const model::ObjectRange> objects);
+  void reopen(const RunInfo& info, Checkpoint& resume);
+  void open_series(bool create_them);
+  void check_output_health(std::size_t frame_bytes) const;
   void close_with(bool complete, const std::string& error);
-  void write_xdmf() const;
+  void abandon();
   void append_scalar(hid_t set, double value);
   template <typename T>
   void append_rows(hid_t set, std::span<const T> values, hid_t mem_type, hsize_t rows);
 
-  std::string path_;
+  std::unique_ptr<OutputLock> lock_;
+  std::string path_, writing_;
+  unsigned long long device_ = 0, inode_ = 0;  // of writing_, to notice it vanish
+  bool broken_ = false;                        // an HDF5 write failed: write nothing more
+  std::optional<Checkpoint> pending_;
+  CheckpointSlots checkpoint_;
+  XdmfStream xdmf_;
   std::vector<std::string> object_names_;  // for the XDMF sidecar
   XdmfViews views_;
   std::size_t particles_ = 0;
@@ -109,6 +159,7 @@ class ResultWriter {
   H5Handle sched_frame_, sched_task_, sched_device_, sched_pstart_, sched_pfinish_, sched_mstart_, sched_mfinish_;
   H5Handle wait_frame_, wait_producer_, wait_consumer_, wait_pdevice_, wait_cdevice_;
   H5Handle mk_frame_, mk_predicted_, mk_measured_, mk_bytes_;
+  H5Handle contact_active_, contact_min_distance_, contact_max_penetration_;  // /contact, per frame
   hsize_t sched_rows_ = 0, wait_rows_ = 0, makespan_rows_ = 0;
 };
 

@@ -61,4 +61,31 @@ void write_frame_views(hid_t file, XdmfViews& views, std::size_t frames) {
   views.frames = std::max(views.frames, frames);
 }
 
+namespace {
+
+hsize_t length_of(hid_t file, const char* name) {
+  H5Handle set = h5_check(H5Dopen2(file, name, H5P_DEFAULT), H5Dclose, name);
+  H5Handle space = h5_check(H5Dget_space(set), H5Sclose, name);
+  hsize_t dims[1] = {0};
+  H5Sget_simple_extent_dims(space, dims, nullptr);
+  return dims[0];
+}
+
+}  // namespace
+
+XdmfViews read_xdmf_views(hid_t file, std::size_t particles, std::size_t frames) {
+  XdmfViews views;
+  views.particles = particles;
+  views.cell_values = length_of(file, "/xdmf/cells");
+  views.cells = length_of(file, "/xdmf/cell_object");
+  H5Handle group = h5_check(H5Gopen2(file, "xdmf/frames", H5P_DEFAULT), H5Gclose, "/xdmf/frames");
+  std::size_t have = 0;
+  while (H5Lexists(group, std::to_string(have).c_str(), H5P_DEFAULT) > 0) ++have;
+  for (std::size_t f = frames; f < have; ++f) {
+    h5_check(H5Ldelete(group, std::to_string(f).c_str(), H5P_DEFAULT), "deleting a frame view");
+  }
+  views.frames = std::min(have, frames);
+  return views;
+}
+
 }  // namespace atssim::io

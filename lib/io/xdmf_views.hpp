@@ -25,13 +25,15 @@ struct XdmfViews {
 constexpr int kXdmfTriangle = 4;
 constexpr int kXdmfTetrahedron = 6;
 
-// Creates /xdmf with the cells and an empty /xdmf/frames (before SWMR
-// writing starts: SWMR cannot create objects).
+// Creates /xdmf with the cells and an empty /xdmf/frames.
 XdmfViews write_xdmf_cells(hid_t file, std::span<const model::ObjectRange> objects, std::size_t particles);
 
-// Adds the views of frames views.frames … frames − 1 to a file open without
-// SWMR (the writer does it when the run ends: one view costs ~0.3 ms, so
+// Adds the views of frames views.frames … frames − 1 (the writer does it when the run ends: one view costs ~0.3 ms, so
 // views made up front would cost a long run seconds before its first frame).
 void write_frame_views(hid_t file, XdmfViews& views, std::size_t frames);
+
+// The views of a file written before (a resumed run), keeping those of its
+// first `frames` frames and deleting the others.
+XdmfViews read_xdmf_views(hid_t file, std::size_t particles, std::size_t frames);
 
 }  // namespace atssim::io

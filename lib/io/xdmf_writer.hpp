@@ -22,4 +22,30 @@ namespace atssim::io {
 void write_xdmf_file(const std::string& xdmf_path, const std::string& h5_name, const XdmfViews& views,
                      const std::vector<std::string>& object_names, const std::vector<double>& times);
 
+// The sidecar while a run writes: written whole once, then one grid per
+// flushed frame written in place over the closing tags (which follow it in
+// the same write), so it lists every flushed frame at a cost that does not
+// grow with the frame count. Throws atssim::Error (runtime) when a write fails.
+class XdmfStream {
+ public:
+  XdmfStream() = default;
+  XdmfStream(const std::string& xdmf_path, const std::string& h5_name, const XdmfViews& views,
+             const std::vector<std::string>& object_names, const std::vector<double>& times);
+  XdmfStream(const XdmfStream&) = delete;
+  XdmfStream& operator=(const XdmfStream&) = delete;
+  XdmfStream(XdmfStream&& other) noexcept;
+  XdmfStream& operator=(XdmfStream&& other) noexcept;
+  ~XdmfStream();
+
+  void append(double time);
+  void close();
+
+ private:
+  std::string path_, h5_;
+  XdmfViews views_;
+  int fd_ = -1;
+  long long tail_at_ = 0;
+  std::size_t frames_ = 0;
+};
+
 }  // namespace atssim::io

@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
 #include <Eigen/Geometry>
 
 #include "model/object_particles.hpp"
 #include "model/tet_builder.hpp"
+#include "util/error.hpp"
 
 namespace atssim::model {
 
@@ -74,9 +76,7 @@ std::vector<std::array<int, 4>> bending_stencils(const std::vector<std::array<in
 
 namespace {
 
-double cot_between(const Vec3& a, const Vec3& b) {
-  return a.dot(b) / a.cross(b).norm();
-}
+double cot_between(const Vec3& a, const Vec3& b) { return a.dot(b) / a.cross(b).norm(); }
 
 // Cotangent weights of the isometric bending model (Bergou et al. 2006, as
 // in Bender's PositionBasedDynamics). Returns false for a degenerate stencil.
@@ -93,6 +93,60 @@ bool isometric_weights(const std::array<Vec3, 4>& x, std::array<double, 4>& K, d
   return true;
 }
 
+// The dihedral angle of a stencil as kernels/common/energy_dihedral.h
+// measures it: 0 flat, in (−π, π].
+double dihedral_angle(const std::array<Vec3, 4>& x) {
+  const Vec3 e = x[1] - x[0];
+  const Vec3 na = e.cross(x[2] - x[0]);
+  const Vec3 nb = (x[3] - x[0]).cross(e);
+  return std::atan2(nb.cross(na).dot(e) / e.norm(), na.dot(nb));
+}
+
+// 3/2 |e|² / (A0 + A1): the dihedral energy k · scale · θ² then equals the
+// isometric ½ k · 3/(A0 + A1) · |Σ K_i x_i|² to second order for a small
+// fold of a flat stencil (there |Σ K_i x_i| ≈ |e| θ).
+double dihedral_scale(const std::array<Vec3, 4>& x) {
+  const Vec3 e = x[1] - x[0];
+  const double areas = 0.5 * (e.cross(x[2] - x[0]).norm() + (x[3] - x[0]).cross(e).norm());
+  return 1.5 * e.squaredNorm() / areas;
+}
+
+// Rest angles above this make `bend_model: auto` choose the dihedral model.
+constexpr double kFlatAngle = 1e-4;  // radians
+
+void add_bending(Model& model, const scene::ObjectDesc& obj, const scene::TriangleMesh& mesh,
+                 const ObjectRange& range) {
+  struct Stencil {
+    std::array<int, 4> v;
+    std::array<Vec3, 4> x;
+    std::array<double, 4> K;
+    double scale;
+    double angle;
+  };
+  std::vector<Stencil> stencils;
+  bool curved = false;
+  for (const auto& s : bending_stencils(mesh.triangles)) {
+    Stencil st{s, {}, {}, 0.0, 0.0};
+    for (int i = 0; i < 4; ++i) st.x[i] = range.rest_position[s[i]];
+    if (!isometric_weights(st.x, st.K, st.scale)) continue;  // degenerate: bends nothing
+    st.angle = dihedral_angle(st.x);
+    curved = curved || std::abs(st.angle) > kFlatAngle;
+    stencils.push_back(st);
+  }
+  const scene::BendModel choice = obj.material.bend_model;
+  const bool dihedral =
+      choice == scene::BendModel::dihedral || (choice == scene::BendModel::automatic && curved);
+  const int offset = range.vertex_offset;
+  for (const Stencil& st : stencils) {
+    model.bend.stencils.push_back({st.v[0] + offset, st.v[1] + offset, st.v[2] + offset, st.v[3] + offset});
+    model.bend.weights.push_back(dihedral ? std::array<double, 4>{} : st.K);
+    model.bend.scale.push_back(dihedral ? dihedral_scale(st.x) : st.scale);
+    model.bend.rest_angle.push_back(dihedral ? st.angle : 0.0);
+    model.bend.kind.push_back(dihedral ? BendKind::dihedral : BendKind::isometric);
+    model.bend.compliance.push_back(obj.material.bend_compliance);
+  }
+}
+
 void add_cloth(Model& model, const scene::ObjectDesc& obj, const scene::TriangleMesh& mesh,
                const std::string& scene_file) {
   ObjectRange range = begin_object(model, obj, mesh.vertices);
@@ -100,11 +154,30 @@ void add_cloth(Model& model, const scene::ObjectDesc& obj, const scene::Triangle
   const int n = range.vertex_count;
   range.triangles = mesh.triangles;
 
+  check_placed(obj, range.rest_position, scene_file);
   std::vector<double> mass(n, 0.0);
-  for (const auto& t : mesh.triangles) {
+  for (std::size_t k = 0; k < mesh.triangles.size(); ++k) {
+    const auto& t = mesh.triangles[k];
     const Vec3& a = range.rest_position[t[0]];
-    const double area = 0.5 * (range.rest_position[t[1]] - a).cross(range.rest_position[t[2]] - a).norm();
+    const Vec3 e1 = range.rest_position[t[1]] - a, e2 = range.rest_position[t[2]] - a;
+    const double area = 0.5 * e1.cross(e2).norm();
+    const double longest = std::max({e1.squaredNorm(), e2.squaredNorm(), (e2 - e1).squaredNorm()});
+    if (!(area > 1e-12 * longest) || area == 0.0) {
+      throw input_error(
+          fmt::format("{}:{}: object '{}': triangle {} (vertices {}, {}, {}) has zero area (its corners "
+                      "coincide or lie on a line), so it gives its vertices no mass; remove degenerate "
+                      "faces from the mesh",
+                      scene_file, obj.source_line, obj.name, k, t[0], t[1], t[2]));
+    }
     for (int v : t) mass[v] += obj.material.density * area / 3.0;
+  }
+  for (int v = 0; v < n; ++v) {
+    if (!(mass[v] > 0.0) || !std::isfinite(mass[v])) {
+      throw input_error(
+          fmt::format("{}:{}: object '{}': vertex {} has no mass (it belongs to no triangle, or the "
+                      "density is 0); remove unused vertices from the mesh",
+                      scene_file, obj.source_line, obj.name, v));
+    }
   }
 
   append_particles(model, range, mass, pinned_flags(obj, range.rest_position, scene_file));
@@ -116,19 +189,7 @@ void add_cloth(Model& model, const scene::ObjectDesc& obj, const scene::Triangle
       model.stretch.compliance.push_back(obj.material.stretch_compliance);
     }
   }
-  if (obj.material.has_bending) {
-    for (const auto& s : bending_stencils(mesh.triangles)) {
-      std::array<Vec3, 4> x;
-      for (int i = 0; i < 4; ++i) x[i] = range.rest_position[s[i]];
-      std::array<double, 4> K{};
-      double scale_k = 0.0;
-      if (!isometric_weights(x, K, scale_k)) continue;
-      model.bend.stencils.push_back({s[0] + offset, s[1] + offset, s[2] + offset, s[3] + offset});
-      model.bend.weights.push_back(K);
-      model.bend.scale.push_back(scale_k);
-      model.bend.compliance.push_back(obj.material.bend_compliance);
-    }
-  }
+  if (obj.material.has_bending) add_bending(model, obj, mesh, range);
   model.objects.push_back(std::move(range));
 }
 
@@ -138,6 +199,8 @@ Model build_model(const scene::SceneDesc& scene) {
   Model model;
   model.gravity = Vec3(scene.simulation.gravity[0], scene.simulation.gravity[1], scene.simulation.gravity[2]);
   model.ground = scene.simulation.ground;
+  model.air_drag = scene.simulation.air_drag;
+  model.colliders = make_colliders(scene.colliders);
   for (const auto& obj : scene.objects) {
     if (obj.type == scene::ObjectType::solid) {
       add_solid(model, obj, scene.source_path);

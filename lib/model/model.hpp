@@ -9,6 +9,8 @@
 
 #include <Eigen/Core>
 
+#include "model/collider.hpp"
+
 namespace atssim::model {
 
 using Vec3 = Eigen::Vector3d;
@@ -29,14 +31,21 @@ struct EdgeSet {
   std::size_t size() const { return edges.size(); }
 };
 
-// Isometric bending stencils (Bergou et al. 2006): an interior edge (v0, v1)
-// and the opposite vertices v2, v3 of its two triangles. Energy
-// ½ k · scale · |Σ K_i x_i|², zero for a flat rest shape.
+// How a bending stencil measures bending (scene key `bend_model`).
+enum class BendKind {
+  isometric,  // Bergou et al. 2006: ½ k · scale · |Σ K_i x_i|², zero only for a flat rest shape
+  dihedral,   // Grinspun et al. 2003: k · scale · (θ − θ₀)², zero at the rest angle θ₀
+};
+
+// Bending stencils: an interior edge (v0, v1) and the opposite vertices v2,
+// v3 of its two triangles (kernels/common/element_types.h, ats_bend_c).
 struct BendSet {
   std::vector<std::array<int, 4>> stencils;
-  std::vector<std::array<double, 4>> weights;  // K_i (cotangent weights, sum 0)
-  std::vector<double> scale;                   // 3 / (A0 + A1)
+  std::vector<std::array<double, 4>> weights;  // isometric: K_i (cotangent weights, sum 0); dihedral: 0
+  std::vector<double> scale;                   // isometric: 3 / (A0 + A1); dihedral: 3/2 |e|² / (A0 + A1)
   std::vector<double> compliance;              // 1/(N·m)
+  std::vector<double> rest_angle;              // dihedral: θ₀ in radians (common/energy_dihedral.h); isometric: 0
+  std::vector<BendKind> kind;
   std::size_t size() const { return stencils.size(); }
 };
 
@@ -47,11 +56,11 @@ enum class TetEnergy { neo_hookean, stvk, springs };
 // Dm = [x1−x0, x2−x0, x3−x0] at rest, F = Ds·Dm⁻¹. Every tet has positive
 // rest volume (validated when the model is built).
 struct TetSet {
-  std::vector<std::array<int, 4>> tets;      // particle indices
-  std::vector<double> rest_volume;           // m³, det(Dm)/6 > 0
-  std::vector<Eigen::Matrix3d> rest_inverse; // Dm⁻¹
-  std::vector<double> mu;                    // Lamé μ (shear modulus), Pa
-  std::vector<double> lambda;                // Lamé λ, Pa
+  std::vector<std::array<int, 4>> tets;       // particle indices
+  std::vector<double> rest_volume;            // m³, det(Dm)/6 > 0
+  std::vector<Eigen::Matrix3d> rest_inverse;  // Dm⁻¹
+  std::vector<double> mu;                     // Lamé μ (shear modulus), Pa
+  std::vector<double> lambda;                 // Lamé λ, Pa
   std::vector<TetEnergy> energy;
   std::size_t size() const { return tets.size(); }
 };
@@ -63,7 +72,7 @@ struct ObjectRange {
   int vertex_count = 0;
   std::vector<std::array<int, 3>> triangles;  // object-local vertex indices
   std::vector<Vec3> rest_position;
-  std::vector<int> pinned;                    // object-local indices
+  std::vector<int> pinned;  // object-local indices
   // Solids: object-local tetrahedra; `triangles` then holds their outward
   // surface (faces of exactly one tet), so output and XDMF show the body.
   std::vector<std::array<int, 4>> tetrahedra;
@@ -71,14 +80,16 @@ struct ObjectRange {
 
 struct Model {
   Particles particles;
-  EdgeSet stretch;   // empty when the scene models no stretch
-  BendSet bend;      // empty when the scene models no bending
+  EdgeSet stretch;  // empty when the scene models no stretch
+  BendSet bend;     // empty when the scene models no bending
   std::vector<ObjectRange> objects;
   Vec3 gravity{0.0, -9.81, 0.0};
   // Last, with an initializer: code that aggregate-initializes the members
   // above (app/simulation.cpp) keeps compiling without a warning.
-  TetSet tets{};  // empty when the scene has no solid
-  std::optional<double> ground{};  // ground plane height (y), if the scene has one
+  TetSet tets{};                      // empty when the scene has no solid
+  std::optional<double> ground{};     // ground plane height (y), if the scene has one
+  double air_drag = 0.0;              // 1/s: force −m·c·v on every particle
+  std::vector<Collider> colliders{};  // analytic obstacles (model/collider.hpp)
 };
 
 }  // namespace atssim::model

@@ -30,6 +30,18 @@ ObjectRange begin_object(const Model& model, const scene::ObjectDesc& obj,
   return range;
 }
 
+void check_placed(const scene::ObjectDesc& obj, const std::vector<Vec3>& placed, const std::string& scene_file) {
+  for (std::size_t v = 0; v < placed.size(); ++v) {
+    const Vec3& p = placed[v];
+    if (!p.allFinite() || p.cwiseAbs().maxCoeff() > 1e8) {
+      throw input_error(
+          fmt::format("{}:{}: object '{}': vertex {} is at ({:g}, {:g}, {:g}) after the transform, not "
+                      "finite or further than 1e8 m from the origin; fix the mesh, scale or translate",
+                      scene_file, obj.source_line, obj.name, v, p.x(), p.y(), p.z()));
+    }
+  }
+}
+
 std::vector<Vec3> place_vertices(const scene::TransformDesc& transform,
                                  const std::vector<std::array<double, 3>>& vertices) {
   const Eigen::Matrix3d R = rotation_xyz_deg(transform.rotate_deg);

@@ -19,6 +19,11 @@ ObjectRange begin_object(const Model& model, const scene::ObjectDesc& obj,
 std::vector<Vec3> place_vertices(const scene::TransformDesc& transform,
                                  const std::vector<std::array<double, 3>>& vertices);
 
+// Throws atssim::Error (input) naming the object's scene line when a placed
+// vertex is not finite or further than 1e8 m from the origin (float32
+// positions lose all precision beyond).
+void check_placed(const scene::ObjectDesc& obj, const std::vector<Vec3>& placed, const std::string& scene_file);
+
 // 1 for each vertex the object's pins name (by index or world-space box).
 // Throws atssim::Error (input) naming the object's scene line for an index
 // out of range or a box that holds no vertex.

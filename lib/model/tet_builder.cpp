@@ -49,6 +49,28 @@ double longest_edge(const std::array<Vec3, 4>& x) {
       fmt::format("{}:{}: element {} of object '{}' {}; {}", scene_file, obj.source_line, e, obj.name, what, fix));
 }
 
+// A tetrahedral mass-spring body (seed 001): one spring per unique tet edge,
+// stiffness k = E · L₀ (N/m; a bar of section L₀² and length L₀), in the
+// stretch set every method simulates.
+void add_tet_springs(Model& model, const scene::TetMesh& mesh, const ObjectRange& range, double youngs_modulus) {
+  std::vector<std::array<int, 2>> edges;
+  edges.reserve(6 * mesh.tetrahedra.size());
+  for (const auto& t : mesh.tetrahedra) {
+    for (int a = 0; a < 4; ++a) {
+      for (int b = a + 1; b < 4; ++b) edges.push_back({std::min(t[a], t[b]), std::max(t[a], t[b])});
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  const int offset = range.vertex_offset;
+  for (const auto& e : edges) {
+    const double rest = (range.rest_position[e[0]] - range.rest_position[e[1]]).norm();
+    model.stretch.edges.push_back({e[0] + offset, e[1] + offset});
+    model.stretch.rest_length.push_back(rest);
+    model.stretch.compliance.push_back(1.0 / (youngs_modulus * rest));
+  }
+}
+
 }  // namespace
 
 LameParameters lame_parameters(double youngs_modulus, double poisson_ratio) {
@@ -90,6 +112,7 @@ std::vector<double> checked_volumes(scene::TetMesh& mesh, const std::vector<Vec3
 void add_solid(Model& model, const scene::ObjectDesc& obj, const std::string& scene_file) {
   scene::TetMesh mesh = obj.box ? make_tet_box(*obj.box) : obj.tet_mesh;
   ObjectRange range = begin_object(model, obj, mesh.vertices);
+  check_placed(obj, range.rest_position, scene_file);
   const int offset = range.vertex_offset;
   const int n = range.vertex_count;
   const std::vector<double> volume = checked_volumes(mesh, range.rest_position, obj, scene_file);
@@ -99,10 +122,25 @@ void add_solid(Model& model, const scene::ObjectDesc& obj, const std::string& sc
   for (std::size_t e = 0; e < mesh.tetrahedra.size(); ++e) {
     for (int v : mesh.tetrahedra[e]) mass[v] += obj.material.density * volume[e] / 4.0;
   }
+  for (int v = 0; v < n; ++v) {
+    if (!(mass[v] > 0.0) || !std::isfinite(mass[v])) {
+      throw input_error(
+          fmt::format("{}:{}: object '{}': node {} has no mass (it belongs to no tetrahedron); remove "
+                      "unused nodes from the mesh",
+                      scene_file, obj.source_line, obj.name, v));
+    }
+  }
   append_particles(model, range, mass, pinned_flags(obj, range.rest_position, scene_file));
 
-  const LameParameters lame = lame_parameters(obj.material.youngs_modulus, obj.material.poisson_ratio);
   const TetEnergy energy = energy_of(obj.material.solid_model);
+  if (energy == TetEnergy::springs) {
+    add_tet_springs(model, mesh, range, obj.material.youngs_modulus);
+    range.triangles = surface_triangles(mesh.tetrahedra);
+    range.tetrahedra = std::move(mesh.tetrahedra);
+    model.objects.push_back(std::move(range));
+    return;
+  }
+  const LameParameters lame = lame_parameters(obj.material.youngs_modulus, obj.material.poisson_ratio);
   TetSet& tets = model.tets;
   for (std::size_t e = 0; e < mesh.tetrahedra.size(); ++e) {
     const auto& t = mesh.tetrahedra[e];

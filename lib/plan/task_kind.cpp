@@ -11,7 +11,7 @@ namespace atssim::plan {
 namespace {
 
 constexpr int kFirst = static_cast<int>(TaskKind::predict);
-constexpr int kLast = static_cast<int>(TaskKind::energy);
+constexpr int kLast = static_cast<int>(TaskKind::friction);
 
 // In enum order.
 constexpr std::array<KindTraits, kLast - kFirst + 1> kTraits{{
@@ -31,6 +31,7 @@ constexpr std::array<KindTraits, kLast - kFirst + 1> kTraits{{
     {"publish", false, false, true},
     {"merge", false, false, true},
     {"energy", false, false, false},
+    {"friction", false, false, true},
 }};
 
 }  // namespace

@@ -26,6 +26,7 @@ enum class TaskKind : int {
   publish,          // async: a device's positions snapshot for others
   merge,            // async: another device's snapshot merged into this one's copy
   energy,           // per-element terms of the incremental potential
+  friction,         // Coulomb friction of the colliders: after the iterations
 };
 
 struct KindTraits {

@@ -2,6 +2,9 @@
 
 #include <array>
 
+#include <cmath>
+#include <span>
+
 #include <fmt/format.h>
 
 #include "scene/mesh_loader.hpp"
@@ -20,13 +23,14 @@ constexpr std::array<std::string_view, 8> kObjectKeys{"name", "type",      "grid
                                                       "mesh", "transform", "material", "pins"};
 constexpr std::array<std::string_view, 2> kGridKeys{"size", "resolution"};
 constexpr std::array<std::string_view, 3> kTransformKeys{"translate", "rotate", "scale"};
-constexpr std::array<std::string_view, 8> kMaterialKeys{
-    "density",         "stretch_stiffness", "stretch_compliance", "bend_stiffness",
-    "bend_compliance", "youngs_modulus",    "poisson_ratio",      "model"};
+constexpr std::array<std::string_view, 9> kMaterialKeys{
+    "density",         "stretch_stiffness", "stretch_compliance", "bend_stiffness", "bend_compliance",
+    "bend_model",      "youngs_modulus",    "poisson_ratio",      "model"};
 // Keys that only one object type takes; on the other type they are an error
 // that says so, rather than being silently ignored.
-constexpr std::array<std::string_view, 4> kClothOnlyMaterialKeys{"stretch_stiffness", "stretch_compliance",
-                                                                 "bend_stiffness", "bend_compliance"};
+constexpr std::array<std::string_view, 5> kClothOnlyMaterialKeys{"stretch_stiffness", "stretch_compliance",
+                                                                 "bend_stiffness", "bend_compliance", "bend_model"};
+constexpr std::array<std::string_view, 3> kBendModels{"auto", "isometric", "dihedral"};
 constexpr std::array<std::string_view, 3> kSolidOnlyMaterialKeys{"youngs_modulus", "poisson_ratio", "model"};
 constexpr std::array<std::string_view, 3> kSolidModels{"neo_hookean", "stvk", "springs"};
 constexpr double kSolidDefaultDensity = 1000.0;  // kg/m³, water
@@ -35,6 +39,17 @@ constexpr std::array<std::string_view, 2> kPinKeys{"vertices", "boxes"};
 constexpr std::array<std::string_view, 2> kBoxKeys{"min", "max"};
 
 constexpr double kHuge = 1e30;
+constexpr double kFarthest = 1e8;  // m: float32 positions lose all precision beyond
+
+void check_lengths(const YamlReader& r, std::span<const double> values, std::string_view what) {
+  for (double v : values) {
+    if (std::abs(v) > kFarthest) {
+      r.fail(fmt::format("{} {:g} m is absurd (further than {:g} m, where float32 positions lose all precision)", what,
+                         v, kFarthest),
+             "give metres within ±1e8");
+    }
+  }
+}
 
 GridDesc read_grid(const YamlReader& r) {
   r.expect_map(kGridKeys);
@@ -44,6 +59,7 @@ GridDesc read_grid(const YamlReader& r) {
     for (double s : grid.size) {
       if (s <= 0.0) r.child("size").fail("grid size must be positive", "give the side lengths in metres, e.g. [1, 1]");
     }
+    check_lengths(r.child("size"), grid.size, "grid size");
   }
   if (r.has("resolution")) {
     const auto res = r.child("resolution").sequence();
@@ -56,17 +72,20 @@ GridDesc read_grid(const YamlReader& r) {
 TransformDesc read_transform(const YamlReader& r) {
   TransformDesc t;
   r.expect_map(kTransformKeys);
-  if (r.has("translate")) t.translate = r.child("translate").vec3();
+  if (r.has("translate")) {
+    t.translate = r.child("translate").vec3();
+    check_lengths(r.child("translate"), t.translate, "translation");
+  }
   if (r.has("rotate")) t.rotate_deg = r.child("rotate").vec3();
   if (r.has("scale")) {
     const YamlReader s = r.child("scale");
     if (s.node().IsScalar()) {
-      const double k = s.number_in(0.0, kHuge, true, "a scale factor > 0");
+      const double k = s.number_in(0.0, 1e6, true, "a scale factor, 0 < scale ≤ 1e6");
       t.scale = {k, k, k};
     } else {
       t.scale = s.vec3();
       for (double k : t.scale) {
-        if (k <= 0.0) s.fail("scale factors must be positive", "use e.g. [1, 1, 1]");
+        if (k <= 0.0 || k > 1e6) s.fail("scale factors must be positive and at most 1e6", "use e.g. [1, 1, 1]");
       }
     }
   }
@@ -76,7 +95,7 @@ TransformDesc read_transform(const YamlReader& r) {
 // stiffness k > 0 -> compliance 1/k; stiffness 0 -> term not modelled;
 // compliance c ≥ 0 -> modelled (0 = inextensible / perfectly stiff).
 void read_stiffness_pair(const YamlReader& r, const char* stiffness_key, const char* compliance_key, double& compliance,
-                         bool& modelled) {
+                         bool& modelled, std::string& zero_compliance_where) {
   if (r.has(stiffness_key) && r.has(compliance_key)) {
     r.child(compliance_key)
         .fail(fmt::format("both '{}' and '{}' are given", stiffness_key, compliance_key),
@@ -89,7 +108,19 @@ void read_stiffness_pair(const YamlReader& r, const char* stiffness_key, const c
   } else if (r.has(compliance_key)) {
     compliance = r.child(compliance_key).number_in(0.0, kHuge, false, "a compliance ≥ 0 (0 = perfectly stiff)");
     modelled = true;
+    if (compliance == 0.0 && zero_compliance_where.empty()) zero_compliance_where = r.child(compliance_key).where();
   }
+}
+
+BendModel read_bend_model(const YamlReader& k) {
+  const std::string name = k.string();
+  if (name == "auto") return BendModel::automatic;
+  if (name == "isometric") return BendModel::isometric;
+  if (name == "dihedral") return BendModel::dihedral;
+  const std::string guess = closest_match(name, kBendModels);
+  k.fail(fmt::format("unknown bend_model '{}'", name),
+         guess.empty() ? "use auto, isometric or dihedral" : fmt::format("did you mean '{}'?", guess));
+  return BendModel::automatic;
 }
 
 void read_solid_material(const YamlReader& r, MaterialDesc& m) {
@@ -142,8 +173,11 @@ MaterialDesc read_material(const YamlReader& r, ObjectType type, const std::stri
   if (solid) {
     read_solid_material(r, m);
   } else {
-    read_stiffness_pair(r, "stretch_stiffness", "stretch_compliance", m.stretch_compliance, m.has_stretch);
-    read_stiffness_pair(r, "bend_stiffness", "bend_compliance", m.bend_compliance, m.has_bending);
+    read_stiffness_pair(r, "stretch_stiffness", "stretch_compliance", m.stretch_compliance, m.has_stretch,
+                        m.zero_compliance_where);
+    read_stiffness_pair(r, "bend_stiffness", "bend_compliance", m.bend_compliance, m.has_bending,
+                        m.zero_compliance_where);
+    if (r.has("bend_model")) m.bend_model = read_bend_model(r.child("bend_model"));
   }
   return m;
 }
@@ -181,6 +215,7 @@ TetBoxDesc read_tet_box(const YamlReader& r) {
       if (s <= 0.0)
         r.child("size").fail("box size must be positive", "give the side lengths in metres, e.g. [1, 1, 1]");
     }
+    check_lengths(r.child("size"), box.size, "box size");
   }
   if (r.has("resolution")) {
     const auto res = r.child("resolution").sequence();
@@ -253,6 +288,17 @@ ObjectDesc read_object(const YamlReader& r, int index, const fs::path& base_dir)
   ObjectDesc obj;
   obj.source_line = r.line();
   obj.name = r.has("name") ? r.child("name").string() : fmt::format("object{}", index);
+  if (r.has("name")) {
+    const YamlReader n = r.child("name");
+    if (obj.name.empty() || obj.name.find_first_not_of(" \t") == std::string::npos) {
+      n.fail("the object's name is empty", "give it a name such as 'cloth' (or leave 'name' out)");
+    }
+    if (obj.name.find_first_of("/\\") != std::string::npos || obj.name == "." || obj.name == "..") {
+      n.fail(fmt::format("object name '{}' contains '/' or is '.'/'..' (it names a group in the output)", obj.name),
+             "use letters, digits, '_' or '-'");
+    }
+    if (obj.name.size() > 255) n.fail("the object's name is longer than 255 characters", "use a shorter name");
+  }
   obj.type = read_type(r);
   read_shape(r, obj, base_dir);
   if (r.has("transform")) obj.transform = read_transform(r.child("transform"));

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "scene/collider_desc.hpp"
+
 namespace atssim::scene {
 
 using Vec3 = std::array<double, 3>;
@@ -20,6 +22,9 @@ struct SimulationDesc {
   // only collider of this version: a projection at the end of every
   // iteration, no friction); absent = no ground.
   std::optional<double> ground;
+  // Air drag: every free particle feels −m·c·v (c in 1/s; a body moving
+  // alone slows as e^(−c t)); implicit in every method (solver/layout).
+  double air_drag = 0.0;
 };
 
 struct GridDesc {
@@ -36,16 +41,22 @@ struct TransformDesc {
 // A tetrahedral body's elasticity model (issue #6); the solvers come later.
 enum class SolidModel { neo_hookean, stvk, springs };
 
+// Cloth bending model (`bend_model`): automatic = dihedral when the rest
+// shape is curved (some rest dihedral angle above 1e-4 rad), else isometric.
+enum class BendModel { automatic, isometric, dihedral };
+
 struct MaterialDesc {
   double density = 0.2;             // kg/m² for cloth, kg/m³ for solids (default 1000 there)
   double stretch_compliance = 0.0;  // cloth: m/N (inverse stiffness); used when has_stretch
   bool has_stretch = false;
   double bend_compliance = 0.0;  // cloth: 1/(N·m); used when has_bending
   bool has_bending = false;
+  BendModel bend_model = BendModel::automatic;  // cloth
   double youngs_modulus = 1.0e5;  // solids: Pa (> 0)
   double poisson_ratio = 0.3;     // solids: 0 ≤ ν < 0.5
   SolidModel solid_model = SolidModel::neo_hookean;
-  std::string model_where;  // "file:line" (or the --set) that chose solid_model; empty = default
+  std::string model_where;            // "file:line" (or the --set) that chose solid_model; empty = default
+  std::string zero_compliance_where;  // "file:line" of a compliance of 0 (perfectly stiff); empty = none
 };
 
 struct BoxDesc {
@@ -110,6 +121,7 @@ struct MethodOptionDesc {
 struct SolverDesc {
   std::string method = "xpbd";
   std::string method_where;                      // "file:line" (or the --set) that chose the method; empty = default
+  std::string schedule_where;                    // "file:line" (or the --set) that chose the schedule; empty = default
   std::string schedule = "single";               // single | split | heft | async: how the substep uses the devices
   int async_depth = 2;                           // async: iterations in flight at once (1 = serial Gauss-Seidel)
   std::string merge = "average_displacements";   // async: how a device merges another's result
@@ -131,9 +143,11 @@ struct SceneDesc {
   std::string resolved_yaml;  // after defaults and --set overrides
   SimulationDesc simulation;
   std::vector<ObjectDesc> objects;
+  std::vector<ColliderDesc> colliders;  // analytic obstacles (empty = none: no contact tasks)
   SolverDesc solver;
   OutputDesc output;
   std::string devices = "default";  // device spec, see `atssim devices`
+  std::string devices_where;        // "file:line" (or the --set) that gave it; empty = default
   std::string memory = "shared";    // shared (a platform's devices share SVM) | separate (copies through the host)
 };
 

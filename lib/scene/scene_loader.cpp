@@ -9,8 +9,11 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
+#include "scene/input_file.hpp"
+#include "scene/collider_reader.hpp"
 #include "scene/object_reader.hpp"
 #include "scene/scene_yaml.hpp"
+#include "scene/yaml_keys.hpp"
 #include "scene/yaml_reader.hpp"
 #include "util/error.hpp"
 
@@ -20,9 +23,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr std::array<std::string_view, 6> kRootKeys{"simulation", "objects", "solver", "output", "devices", "memory"};
-constexpr std::array<std::string_view, 7> kSimulationKeys{"fps",    "dt",      "substeps", "iterations",
-                                                          "frames", "gravity", "ground"};
+constexpr std::array<std::string_view, 7> kRootKeys{"simulation", "objects", "solver",   "output",
+                                                    "devices",    "memory",  "colliders"};
+constexpr std::array<std::string_view, 8> kSimulationKeys{"fps",    "dt",      "substeps", "iterations",
+                                                          "frames", "gravity", "ground",   "air_drag"};
 // Keys under solver: that configure how the devices run a substep; every
 // other key is an option of a method (MethodOptionDesc).
 constexpr std::array<std::string_view, 8> kScheduleKeys{"method",      "schedule", "async_depth", "merge",
@@ -106,12 +110,17 @@ SimulationDesc read_simulation(const YamlReader& r) {
   if (r.has("fps") && r.has("dt")) {
     r.child("dt").fail("both 'fps' and 'dt' are given", "keep one of them (dt = 1/fps)");
   }
-  if (r.has("fps")) sim.frame_dt = 1.0 / r.child("fps").number_in(0.0, 1e6, true, "frames per second > 0");
+  if (r.has("fps")) {
+    sim.frame_dt = 1.0 / r.child("fps").number_in(0.1, 1e6, false, "frames per second from 0.1 to 1e6 (dt ≤ 10 s)");
+  }
   if (r.has("dt")) sim.frame_dt = r.child("dt").number_in(0.0, 10.0, true, "a frame time in seconds, 0 < dt ≤ 10");
   if (r.has("substeps")) sim.substeps = r.child("substeps").integer_in(1, 10000);
   if (r.has("iterations")) sim.iterations = r.child("iterations").integer_in(1, 100000);
   if (r.has("frames")) sim.frames = r.child("frames").integer_in(1, 10000000);
   if (r.has("ground")) sim.ground = r.child("ground").number_in(-1e6, 1e6, false, "a ground height in metres");
+  if (r.has("air_drag")) {
+    sim.air_drag = r.child("air_drag").number_in(0.0, 1e6, false, "a drag rate in 1/s ≥ 0 (force −m·c·v)");
+  }
   if (r.has("gravity")) {
     sim.gravity = r.child("gravity").vec3();
     for (double g : sim.gravity) {
@@ -134,6 +143,7 @@ SceneDesc parse_scene(const std::string& yaml_text, const std::string& source_na
                                   e.mark.line + 1, e.msg));
   }
   if (!root || root.IsNull()) root = YAML::Node(YAML::NodeType::Map);
+  check_yaml_keys(root, source_name);
   for (const std::string& assignment : overrides) apply_override(root, assignment, source_name, source.overrides);
 
   const YamlReader top(root, "", &source);
@@ -149,8 +159,23 @@ SceneDesc parse_scene(const std::string& yaml_text, const std::string& source_na
   }
   const auto objects = top.child("objects").sequence();
   if (objects.empty()) top.child("objects").fail("'objects' is empty", "add at least one object");
+  std::map<std::string, int> names;  // name -> line
   for (std::size_t i = 0; i < objects.size(); ++i) {
     scene.objects.push_back(read_object(objects[i], static_cast<int>(i), fs::path(base_dir)));
+    const ObjectDesc& obj = scene.objects.back();
+    if (const auto it = names.find(obj.name); it != names.end()) {
+      const YamlReader at = objects[i].has("name") ? objects[i].child("name") : objects[i];
+      at.fail(fmt::format("two objects are named '{}' (the first on line {})", obj.name, it->second),
+              "give every object its own name");
+    }
+    names.emplace(obj.name, obj.source_line);
+  }
+
+  if (top.has("colliders")) {
+    const auto colliders = top.child("colliders").sequence();
+    for (std::size_t i = 0; i < colliders.size(); ++i) {
+      scene.colliders.push_back(read_collider(colliders[i], static_cast<int>(i)));
+    }
   }
 
   const YamlReader solver = top.child("solver");
@@ -168,6 +193,7 @@ SceneDesc parse_scene(const std::string& yaml_text, const std::string& source_na
     if (solver.has("schedule")) {
       const YamlReader m = solver.child("schedule");
       scene.solver.schedule = m.string();
+      scene.solver.schedule_where = m.where();
       bool known = false;
       for (auto k : kSchedules) known = known || scene.solver.schedule == k;
       if (!known) {
@@ -220,10 +246,20 @@ SceneDesc parse_scene(const std::string& yaml_text, const std::string& source_na
   const YamlReader output = top.child("output");
   if (!output.is_null()) {
     output.expect_map(kOutputKeys);
-    if (output.has("path")) scene.output.path = output.child("path").string();
+    if (output.has("path")) {
+      scene.output.path = output.child("path").string();
+      if (scene.output.path.empty())
+        output.child("path").fail("'output.path' is empty", "give a file name such as run.h5");
+    }
     if (output.has("stride")) scene.output.stride = output.child("stride").integer_in(1, 1000000);
   }
-  if (top.has("devices")) scene.devices = top.child("devices").string();
+  if (top.has("devices")) {
+    const YamlReader d = top.child("devices");
+    scene.devices = d.string();
+    scene.devices_where = d.where();
+    if (scene.devices.empty())
+      d.fail("'devices' is empty", "give a device spec such as cpu, 0 or cpu/2 (see atssim devices)");
+  }
   if (top.has("memory")) {
     const YamlReader m = top.child("memory");
     scene.memory = m.string();
@@ -239,13 +275,9 @@ SceneDesc parse_scene(const std::string& yaml_text, const std::string& source_na
 }
 
 SceneDesc load_scene_file(const std::string& path, std::span<const std::string> overrides) {
+  check_input_file(path, "scene file", "", kMaxSceneBytes);
   std::ifstream in(path);
-  if (!fs::exists(path)) {
-    throw input_error(fmt::format("{}: scene file does not exist; check the path", path));
-  }
-  if (!in || fs::is_directory(path)) {
-    throw input_error(fmt::format("{}: scene file cannot be read; check its permissions", path));
-  }
+  if (!in) throw input_error(fmt::format("{}: scene file cannot be read; check its permissions", path));
   std::stringstream text;
   text << in.rdbuf();
   const fs::path base = fs::absolute(fs::path(path)).parent_path();

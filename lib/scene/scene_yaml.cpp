@@ -2,6 +2,8 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "scene/collider_reader.hpp"
+
 namespace atssim::scene {
 
 namespace {
@@ -11,6 +13,15 @@ void flow_seq(YAML::Emitter& out, const Array& values) {
   out << YAML::Flow << YAML::BeginSeq;
   for (const auto& v : values) out << v;
   out << YAML::EndSeq;
+}
+
+const char* bend_model_name(BendModel model) {
+  switch (model) {
+    case BendModel::isometric: return "isometric";
+    case BendModel::dihedral: return "dihedral";
+    case BendModel::automatic: break;
+  }
+  return "auto";
 }
 
 const char* solid_model_name(SolidModel model) {
@@ -64,6 +75,7 @@ void emit_object(YAML::Emitter& out, const ObjectDesc& obj) {
   }
   if (m.has_stretch) out << YAML::Key << "stretch_compliance" << YAML::Value << m.stretch_compliance;
   if (m.has_bending) out << YAML::Key << "bend_compliance" << YAML::Value << m.bend_compliance;
+  if (m.has_bending) out << YAML::Key << "bend_model" << YAML::Value << bend_model_name(m.bend_model);
   out << YAML::EndMap;
   if (!obj.pins.vertices.empty() || !obj.pins.boxes.empty()) {
     out << YAML::Key << "pins" << YAML::Value << YAML::BeginMap;
@@ -102,10 +114,16 @@ std::string to_resolved_yaml(const SceneDesc& scene) {
   out << YAML::Key << "gravity" << YAML::Value;
   flow_seq(out, s.gravity);
   if (s.ground) out << YAML::Key << "ground" << YAML::Value << *s.ground;
+  if (s.air_drag > 0.0) out << YAML::Key << "air_drag" << YAML::Value << s.air_drag;
   out << YAML::EndMap;
   out << YAML::Key << "objects" << YAML::Value << YAML::BeginSeq;
   for (const ObjectDesc& obj : scene.objects) emit_object(out, obj);
   out << YAML::EndSeq;
+  if (!scene.colliders.empty()) {
+    out << YAML::Key << "colliders" << YAML::Value << YAML::BeginSeq;
+    for (const ColliderDesc& c : scene.colliders) emit_collider(out, c);
+    out << YAML::EndSeq;
+  }
   const SolverDesc& solver = scene.solver;
   out << YAML::Key << "solver" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "method" << YAML::Value << solver.method;

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "scene/input_file.hpp"
 #include "util/error.hpp"
 
 namespace atssim::scene {
@@ -17,6 +18,7 @@ bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' |
 }  // namespace
 
 TextLines::TextLines(std::string path, bool hash_comments) : path_(std::move(path)), hash_comments_(hash_comments) {
+  check_input_file(path_, "mesh file", "", kMaxMeshBytes);
   std::ifstream in(path_, std::ios::binary);
   if (!in) throw input_error(fmt::format("{}: cannot be read; check that it exists and is readable", path_));
   for (std::string l; std::getline(in, l);) lines_.push_back(std::move(l));

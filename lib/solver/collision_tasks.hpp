@@ -1,7 +1,9 @@
 #pragma once
-// Collision tasks every method appends at the end of an iteration (He et al.
-// 2025 Fig. 2: collision constraints serialized at the end of an iteration).
-// This version has one collider, a ground plane.
+// Collision tasks every method appends (He et al. 2025 Fig. 2: collision
+// constraints serialized at the end of an iteration): the ground plane, and
+// the contact and friction tasks of the analytic colliders
+// (kernels/common/contact_steps.cl). A scene without colliders gets no
+// contact tasks.
 #include "plan/substep_plan.hpp"
 #include "solver/layout/sim_layout.hpp"
 
@@ -12,5 +14,22 @@ namespace atssim::solver {
 // layout has no ground. Its launch covers independent particles (cut-able).
 sched::TaskId add_ground_task(plan::SubstepPlan& plan, sched::TaskId last, const SimLayout& layout,
                               plan::BufferId positions, int iteration);
+
+// The layout's colliders as a buffer (role elements); an empty one when the
+// layout has none (the vertex kernels take it with a count of 0).
+plan::BufferId add_collider_buffer(plan::SubstepPlan& plan, const SimLayout& layout);
+
+// After `last`, the contact task of iteration `iteration`: every particle of
+// `positions` put back out of the colliders' thickened surfaces. Returns the
+// new last task, or `last` when the layout has no colliders.
+sched::TaskId add_contact_task(plan::SubstepPlan& plan, sched::TaskId last, const SimLayout& layout,
+                               plan::BufferId colliders, plan::BufferId positions, int iteration);
+
+// After `last` (the iterations), Coulomb friction on the substep's
+// displacement of every particle that touches a collider. Returns the new
+// last task, or `last` when the layout has no colliders.
+sched::TaskId add_friction_task(plan::SubstepPlan& plan, sched::TaskId last, const SimLayout& layout,
+                                plan::BufferId colliders, plan::BufferId positions, plan::BufferId start_positions,
+                                plan::BufferId velocities, double substep_dt);
 
 }  // namespace atssim::solver

@@ -14,6 +14,12 @@ double MethodSettings::option(std::string_view key) const {
   return it->second;
 }
 
+std::string MethodOption::default_text() const {
+  const auto i = static_cast<std::size_t>(default_value);
+  if (!choices.empty() && i < choices.size()) return std::string(choices[i]);
+  return fmt::format("{}", default_value);
+}
+
 bool MethodDescription::simulates(scene::SolidModel model) const {
   return std::find(solid_models.begin(), solid_models.end(), model) != solid_models.end();
 }

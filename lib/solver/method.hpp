@@ -23,12 +23,19 @@ struct MethodOption {
   bool min_open = false;        // min itself excluded
   bool max_open = false;        // max itself excluded
   std::string_view meaning;     // for messages: "a step length 0 < step ≤ 1"
+  // A named option (e.g. solver.integrator: rk4): the value is one of these
+  // names and its index is the number the method reads; empty = a number.
+  std::span<const std::string_view> choices{};
+
+  // The default as a scene would write it (a name for a named option).
+  std::string default_text() const;
 };
 
 // The substep and the values of the method's options (defaults filled in).
 struct MethodSettings {
   double substep_dt = 1.0 / 960.0;
   int iterations = 8;
+  int substeps = 16;  // per frame (for messages that say how many a scene needs)
   std::map<std::string, double, std::less<>> options;
 
   // The value of one of the method's options; throws atssim::Error for a
@@ -45,6 +52,9 @@ struct MethodDescription {
   std::span<const MethodOption> options;
   std::span<const scene::SolidModel> solid_models;  // the tetrahedral models it simulates
   plan::SubstepPlan (*build)(const SimLayout& layout, const MethodSettings& settings) = nullptr;
+  // Whether its plan keeps particles out of the scene's colliders (contact
+  // and friction tasks); a scene with colliders is refused otherwise.
+  bool colliders = true;
 
   bool simulates(scene::SolidModel model) const;
 };

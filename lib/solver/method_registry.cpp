@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "model/cloth_builder.hpp"
+#include "solver/explicit/explicit_method.hpp"
 #include "solver/jpgd/jpgd_method.hpp"
 #include "solver/sosd/sosd_method.hpp"
 #include "solver/vbd/vbd_method.hpp"
@@ -20,10 +21,7 @@ namespace {
 
 // One line per method.
 const MethodDescription* const kMethods[] = {
-    &xpbd::kDescription,
-    &vbd::kDescription,
-    &sosd::kDescription,
-    &jpgd::kDescription,
+    &xpbd::kDescription, &vbd::kDescription, &sosd::kDescription, &jpgd::kDescription, &explicit_rk::kDescription,
 };
 
 std::string names() {
@@ -53,6 +51,14 @@ const MethodOption* find_option(const MethodDescription& m, std::string_view key
 
 // The value of a scene option of `method`, checked against its range.
 double option_value(const scene::MethodOptionDesc& given, const MethodOption& option) {
+  if (!option.choices.empty()) {
+    for (std::size_t i = 0; i < option.choices.size(); ++i) {
+      if (option.choices[i] == given.value) return static_cast<double>(i);
+    }
+    const std::string guess = closest_match(given.value, option.choices);
+    throw input_error(fmt::format("{}: solver.{} is '{}'; use {}{}", given.where, given.key, given.value,
+                                  option.meaning, guess.empty() ? "" : fmt::format(" (did you mean '{}'?)", guess)));
+  }
   double v = 0.0;
   std::size_t used = 0;
   try {
@@ -139,6 +145,19 @@ void check_scene(const scene::SceneDesc& scene, const MethodDescription& method)
     if (const MethodOption* o = find_option(method, given.key)) option_value(given, *o);
   }
   check_solids(scene, method);
+  if (!method.colliders && !scene.colliders.empty()) {
+    const std::string where = !scene.solver.method_where.empty()
+                                  ? scene.solver.method_where
+                                  : fmt::format("{}:{}", scene.source_path, scene.colliders.front().source_line);
+    std::string others;
+    for (const MethodDescription* m : kMethods) {
+      if (m->colliders) others += fmt::format("{}{}", others.empty() ? "" : ", ", m->name);
+    }
+    throw input_error(
+        fmt::format("{}: solver.method {} has no contact with colliders yet; remove the scene's "
+                    "colliders or use solver.method {}",
+                    where, method.name, others));
+  }
 }
 
 MethodSettings method_settings(const scene::SceneDesc& scene, const MethodDescription& method) {
@@ -146,6 +165,7 @@ MethodSettings method_settings(const scene::SceneDesc& scene, const MethodDescri
   MethodSettings s;
   s.substep_dt = scene.simulation.frame_dt / scene.simulation.substeps;
   s.iterations = scene.simulation.iterations;
+  s.substeps = scene.simulation.substeps;
   for (const MethodOption& o : method.options) s.options[std::string(o.key)] = o.default_value;
   for (const scene::MethodOptionDesc& given : scene.solver.method_options) {
     if (const MethodOption* o = find_option(method, given.key)) s.options[given.key] = option_value(given, *o);

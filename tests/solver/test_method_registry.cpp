@@ -27,7 +27,7 @@ std::string error_of(const scene::SceneDesc& s, std::string_view method) {
 
 }  // namespace
 
-TEST_CASE("the registry names four methods once each, and every description is complete") {
+TEST_CASE("the registry names five methods once each, and every description is complete") {
   std::set<std::string_view> names;
   for (const solver::MethodDescription* m : solver::methods()) {
     INFO(m->name);
@@ -40,11 +40,22 @@ TEST_CASE("the registry names four methods once each, and every description is c
       CHECK(o.default_value <= o.max);
     }
   }
-  CHECK(names == std::set<std::string_view>{"xpbd", "vbd", "sosd", "jpgd"});
+  CHECK(names == std::set<std::string_view>{"xpbd", "vbd", "sosd", "jpgd", "explicit"});
   CHECK(solver::method("xpbd").gauss_seidel);
   CHECK(solver::method("vbd").gauss_seidel);
   CHECK_FALSE(solver::method("jpgd").gauss_seidel);
   CHECK_FALSE(solver::method("sosd").gauss_seidel);
+  CHECK_FALSE(solver::method("explicit").gauss_seidel);
+}
+
+TEST_CASE("a named option takes one of its names, read as its index; another name is refused with a guess") {
+  const auto s = solver::method_settings(cloth({"solver.integrator=rk4"}), solver::method("explicit"));
+  CHECK(s.option("integrator") == 2.0);
+  CHECK(s.option("allow_unstable") == 0.0);  // default: false
+  CHECK(solver::method("explicit").options[0].default_text() == "semi_euler");
+  const std::string e = error_of(cloth({"solver.integrator=rk5"}), "explicit");
+  CHECK(e.find("solver.integrator is 'rk5'; use semi_euler, midpoint or rk4") != std::string::npos);
+  CHECK(e.find("did you mean 'rk4'?") != std::string::npos);
 }
 
 TEST_CASE("an unknown method is an input error naming the line and the methods") {

@@ -1,6 +1,6 @@
 #include "solver/energy/element_energies.hpp"
 
-#include "common/energy_bending.h"
+#include "common/energy_bend_element.h"
 #include "common/energy_inertia.h"
 #include "common/energy_stretch.h"
 #include "common/energy_tet_neohookean.h"
@@ -18,7 +18,8 @@ std::vector<float> element_energies(const SimLayout& layout, const std::vector<F
   const EnergyOutput where = energy_output(layout);
   std::vector<float> out(where.size, 0.0f);
   // As the kernel gets it: 1/h^2 rounded to float once.
-  const float inv_h2 = static_cast<float>(1.0 / (h * h));
+  const double hi = inertia_dt(layout, h);  // air drag weighs the inertia (sim_layout.hpp)
+  const float inv_h2 = static_cast<float>(1.0 / (hi * hi));
   for (std::size_t i = 0; i < layout.x.size(); ++i) {
     const Float4& p = layout.x[i];
     if (p.w > 0.0f) out[where.inertia_first + i] = ats_inertia_energy(xyz(p), xyz(predicted[i]), 1.0f / p.w, inv_h2);
@@ -32,7 +33,7 @@ std::vector<float> element_energies(const SimLayout& layout, const std::vector<F
     const ats_bend_c& c = layout.bend[i];
     ats_vec3 q[4];
     for (int j = 0; j < 4; ++j) q[j] = xyz(layout.x[c.v[j]]);
-    out[where.bend_first + i] = ats_bend_energy(q, c.K, c.scale, 1.0f / c.compliance);
+    out[where.bend_first + i] = ats_bend_element_energy(c.model, q, c.K, c.scale, 1.0f / c.compliance, c.rest_angle);
   }
   for (std::size_t i = 0; i < layout.tets.size(); ++i) {
     const ats_tet_c& t = layout.tets[i];

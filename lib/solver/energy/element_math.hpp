@@ -13,14 +13,18 @@
 #error "solver/energy/element_math.hpp must come before any float include of common/ats_math.h"
 #endif
 
+#include "common/collider_types.h" /* float records, one type for every file */
+
 namespace atssim::solver::energy::f64 {
 #define ats_real double
+#include "common/collider_distance.h"
 #include "common/energy_bending.h"
+#include "common/energy_dihedral.h"
 #include "common/energy_inertia.h"
+#include "common/energy_membrane_stvk.h"
 #include "common/energy_stretch.h"
 #include "common/energy_tet_neohookean.h"
 #include "common/energy_tet_stvk.h"
-#include "common/energy_membrane_stvk.h"
-#include "common/energy_dihedral.h"
+#include "common/energy_bend_element.h"
 #undef ats_real
 }  // namespace atssim::solver::energy::f64

@@ -62,7 +62,8 @@ plan::SubstepPlan make_energy_plan(const SimLayout& layout, const std::vector<Fl
   std::vector<plan::KernelLaunch> launches;
   plan::KernelLaunch inertia =
       element_launch("energy_inertia", b.x, b.predicted, b.energy, where.inertia_first, plan.particle_count);
-  inertia.args.push_back(Arg::of_float(static_cast<float>(1.0 / (h * h))));
+  const double hi = inertia_dt(layout, h);  // air drag weighs the inertia (sim_layout.hpp)
+  inertia.args.push_back(Arg::of_float(static_cast<float>(1.0 / (hi * hi))));
   launches.push_back(std::move(inertia));
   if (b.stretch >= 0) {
     launches.push_back(element_launch("energy_stretch", b.x, b.stretch, b.energy, where.stretch_first,

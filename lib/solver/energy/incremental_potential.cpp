@@ -8,8 +8,8 @@
 
 namespace atssim::solver::energy {
 
-IncrementalPotential make_incremental_potential(const SimLayout& layout,
-                                                const std::vector<Float4>& predicted, double h) {
+IncrementalPotential make_incremental_potential(const SimLayout& layout, const std::vector<Float4>& predicted,
+                                                double h) {
   if (predicted.size() != layout.x.size()) {
     throw input_error(fmt::format("incremental potential: {} predicted positions for {} particles", predicted.size(),
                                   layout.x.size()));
@@ -17,7 +17,7 @@ IncrementalPotential make_incremental_potential(const SimLayout& layout,
   require_finite_stiffness(layout);
   require_valid_tets(layout);
   IncrementalPotential p;
-  p.h = h;
+  p.h = inertia_dt(layout, h);  // air drag weighs the inertia as for this step (sim_layout.hpp)
   p.predicted = positions_of(predicted);
   p.mass.resize(layout.x.size());
   for (std::size_t i = 0; i < layout.x.size(); ++i) {
@@ -39,6 +39,8 @@ IncrementalPotential make_incremental_potential(const SimLayout& layout,
     }
     t.scale = c.scale;
     t.stiffness = 1.0 / static_cast<double>(c.compliance);
+    t.rest_angle = c.rest_angle;
+    t.model = c.model;
     p.bend.push_back(t);
   }
   p.tets.reserve(layout.tets.size());
@@ -52,6 +54,7 @@ IncrementalPotential make_incremental_potential(const SimLayout& layout,
     t.model = c.model == ATS_TET_STVK ? TetModel::stvk : TetModel::neo_hookean;
     p.tets.push_back(t);
   }
+  p.colliders = layout.colliders;
   return p;
 }
 

@@ -2,13 +2,16 @@
 // The incremental potential of one substep (He et al. 2025 §3.1, Eq. 1),
 //   E(x) = 1/2 h^-2 sum_i m_i |x_i - x~_i|^2 + Psi(x),
 //   Psi  = sum_stretch 1/2 alpha^-1 (|x_a - x_b| - L)^2 + sum_bend 1/2 alpha^-1 |C|^2
-//        + sum_tet V Psi_tet(F),
+//          (isometric; dihedral stencils: scale alpha^-1 (theta - theta_0)^2)
+//        + sum_tet V Psi_tet(F) + sum_i sum_colliders E_c(x_i),
 // whose constraint part XPBD with compliance alpha converges to (Macklin et
 // al. 2016, Eq. 4 and §3); the tets are the hyperelastic energies of
 // kernels/common/energy_tet_*.h (stable neo-Hookean or StVK). Built from the
 // XPBD layout, the very float data the solvers and kernels see, converted to
 // double: the reference then solves exactly their problem, not one that
-// differs by float rounding.
+// differs by float rounding. E_c is the contact energy of a particle and an
+// analytic collider (kernels/common/collider_distance.h), the one the
+// vertex-block methods minimise.
 #include <array>
 #include <vector>
 
@@ -28,7 +31,9 @@ struct BendTerm {
   std::array<int, 4> v{};
   std::array<double, 4> K{};
   double scale = 0.0;
-  double stiffness = 0.0;  // 1 / compliance
+  double stiffness = 0.0;   // 1 / compliance
+  double rest_angle = 0.0;  // dihedral model: theta_0 (radians)
+  int model = ATS_BEND_ISOMETRIC;  // common/element_types.h
 };
 
 enum class TetModel { neo_hookean, stvk };
@@ -49,6 +54,7 @@ struct IncrementalPotential {
   std::vector<StretchTerm> stretch;
   std::vector<BendTerm> bend;
   std::vector<TetTerm> tets;
+  std::vector<ats_collider_c> colliders;  // contact energy of every free particle with each
 
   int particle_count() const { return static_cast<int>(mass.size()); }
   bool is_free(int i) const { return mass[i] > 0.0; }
@@ -58,8 +64,8 @@ struct IncrementalPotential {
 // infinitely stiff constraint has no finite energy, so converging needs
 // finite stiffness. Also when a tet has mu <= 0, lambda < 0 or an unknown
 // model, and when predicted and the layout differ in size.
-IncrementalPotential make_incremental_potential(const SimLayout& layout,
-                                                const std::vector<Float4>& predicted, double h);
+IncrementalPotential make_incremental_potential(const SimLayout& layout, const std::vector<Float4>& predicted,
+                                                double h);
 
 // xyz of float4 positions as one vector of 3 n doubles.
 Eigen::VectorXd positions_of(const std::vector<Float4>& x);

@@ -89,7 +89,10 @@ EnergyTerms energy_terms(const IncrementalPotential& p, const Eigen::VectorXd& x
   EnergyTerms e;
   const double inv_h2 = 1.0 / (p.h * p.h);
   for (int i = 0; i < p.particle_count(); ++i) {
-    if (p.is_free(i)) e.inertia += f64::ats_inertia_energy(vec_at(x, i), vec_at(p.predicted, i), p.mass[i], inv_h2);
+    if (!p.is_free(i)) continue;
+    e.inertia += f64::ats_inertia_energy(vec_at(x, i), vec_at(p.predicted, i), p.mass[i], inv_h2);
+    for (const ats_collider_c& c : p.colliders)
+      e.contact += f64::ats_contact_energy(&c, vec_at(x, i), p.mass[i], inv_h2);
   }
   for (const StretchTerm& t : p.stretch) {
     e.stretch += f64::ats_stretch_energy(vec_at(x, t.a), vec_at(x, t.b), t.rest, t.stiffness);
@@ -97,7 +100,7 @@ EnergyTerms energy_terms(const IncrementalPotential& p, const Eigen::VectorXd& x
   for (const BendTerm& t : p.bend) {
     ats_vec3 q[4];
     bend_positions(t, x, q);
-    e.bend += f64::ats_bend_energy(q, t.K.data(), t.scale, t.stiffness);
+    e.bend += f64::ats_bend_element_energy(t.model, q, t.K.data(), t.scale, t.stiffness, t.rest_angle);
   }
   for (const TetTerm& t : p.tets) {
     ats_vec3 q[4];
@@ -113,7 +116,10 @@ Eigen::VectorXd gradient(const IncrementalPotential& p, const Eigen::VectorXd& x
   Eigen::VectorXd g = Eigen::VectorXd::Zero(x.size());
   const double inv_h2 = 1.0 / (p.h * p.h);
   for (int i = 0; i < p.particle_count(); ++i) {
-    if (p.is_free(i)) add_at(g, i, f64::ats_inertia_gradient(vec_at(x, i), vec_at(p.predicted, i), p.mass[i], inv_h2));
+    if (!p.is_free(i)) continue;
+    add_at(g, i, f64::ats_inertia_gradient(vec_at(x, i), vec_at(p.predicted, i), p.mass[i], inv_h2));
+    for (const ats_collider_c& c : p.colliders)
+      add_at(g, i, f64::ats_contact_gradient(&c, vec_at(x, i), p.mass[i], inv_h2));
   }
   for (const StretchTerm& t : p.stretch) {
     const ats_vec3 ga = f64::ats_stretch_gradient(vec_at(x, t.a), vec_at(x, t.b), t.rest, t.stiffness);
@@ -123,7 +129,9 @@ Eigen::VectorXd gradient(const IncrementalPotential& p, const Eigen::VectorXd& x
   for (const BendTerm& t : p.bend) {
     ats_vec3 q[4];
     bend_positions(t, x, q);
-    for (int k = 0; k < 4; ++k) add_at(g, t.v[k], f64::ats_bend_gradient(q, t.K.data(), t.scale, t.stiffness, k));
+    for (int k = 0; k < 4; ++k) {
+      add_at(g, t.v[k], f64::ats_bend_element_gradient(t.model, q, t.K.data(), t.scale, t.stiffness, t.rest_angle, k));
+    }
   }
   for (const TetTerm& t : p.tets) {
     ats_vec3 q[4];
@@ -142,7 +150,11 @@ std::vector<Eigen::Triplet<double>> hessian_triplets(const IncrementalPotential&
   out.reserve(9 * (p.mass.size() + 4 * p.stretch.size() + 16 * (p.bend.size() + p.tets.size())));
   const double inv_h2 = 1.0 / (p.h * p.h);
   for (int i = 0; i < p.particle_count(); ++i) {
-    if (p.is_free(i)) add_block(out, p, i, i, f64::ats_inertia_hessian(p.mass[i], inv_h2), 1.0);
+    if (!p.is_free(i)) continue;
+    add_block(out, p, i, i, f64::ats_inertia_hessian(p.mass[i], inv_h2), 1.0);
+    for (const ats_collider_c& c : p.colliders) {
+      add_block(out, p, i, i, f64::ats_contact_hessian(&c, vec_at(x, i), p.mass[i], inv_h2), 1.0);
+    }
   }
   for (const StretchTerm& t : p.stretch) {
     const ats_mat3 h = f64::ats_stretch_hessian(vec_at(x, t.a), vec_at(x, t.b), t.rest, t.stiffness, project_psd);
@@ -152,9 +164,12 @@ std::vector<Eigen::Triplet<double>> hessian_triplets(const IncrementalPotential&
     add_block(out, p, t.b, t.a, h, -1.0);
   }
   for (const BendTerm& t : p.bend) {
+    ats_vec3 q[4];
+    bend_positions(t, x, q);
     for (int i = 0; i < 4; ++i) {
       for (int j = 0; j < 4; ++j) {
-        add_block(out, p, t.v[i], t.v[j], f64::ats_bend_hessian(t.K.data(), t.scale, t.stiffness, i, j), 1.0);
+        add_block(out, p, t.v[i], t.v[j], f64::ats_bend_element_hessian(t.model, q, t.K.data(), t.scale, t.stiffness, i, j),
+                  1.0);
       }
     }
   }

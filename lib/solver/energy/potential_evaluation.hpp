@@ -15,8 +15,9 @@ struct EnergyTerms {
   double inertia = 0.0;  // 1/2 h^-2 sum m |x - x~|^2
   double stretch = 0.0;
   double bend = 0.0;
-  double tet = 0.0;  // sum V Psi(F) over the tetrahedra
-  double total() const { return inertia + stretch + bend + tet; }
+  double tet = 0.0;      // sum V Psi(F) over the tetrahedra
+  double contact = 0.0;  // the colliders' contact energy
+  double total() const { return inertia + stretch + bend + tet + contact; }
 };
 
 // x: 3 per particle, pinned ones included (they enter the elastic terms).

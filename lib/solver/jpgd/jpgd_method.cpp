@@ -6,7 +6,9 @@ namespace atssim::solver::jpgd {
 
 namespace {
 
-constexpr scene::SolidModel kSolids[] = {scene::SolidModel::neo_hookean, scene::SolidModel::stvk};
+// springs: tet-edge springs in the stretch set (model/tet_builder.cpp).
+constexpr scene::SolidModel kSolids[] = {scene::SolidModel::neo_hookean, scene::SolidModel::stvk,
+                                         scene::SolidModel::springs};
 
 constexpr MethodOption kOptions[] = {
     {"chebyshev_rho", 0.9, 0.0, 0.999, false, false, "a spectral radius 0 ≤ rho < 1 (0 = no acceleration; jpgd)"},

@@ -31,7 +31,8 @@ plan::SubstepPlan make_jpgd_plan(const SimLayout& layout, const JpgdSettings& se
   // x^{k+1} goes to a different buffer than x^k and x^{k-1}: three rotate.
   const plan::BufferId rotation[3] = {b.x, plan.add_buffer("x_1", plan::BufferRole::scratch, plan::bytes_of(layout.x)),
                                       plan.add_buffer("x_2", plan::BufferRole::scratch, plan::bytes_of(layout.x))};
-  const float inv_h2 = static_cast<float>(1.0 / (settings.substep_dt * settings.substep_dt));
+  const double hi = inertia_dt(layout, settings.substep_dt);  // air drag weighs the inertia (sim_layout.hpp)
+  const float inv_h2 = static_cast<float>(1.0 / (hi * hi));
   const bool heavy_ball = settings.momentum > 0.0;
   const std::vector<double> omega = chebyshev_weights(settings.iterations, heavy_ball ? 0.0 : settings.chebyshev_rho);
   const float beta = heavy_ball ? static_cast<float>(settings.momentum) : 0.0f;
@@ -40,18 +41,27 @@ plan::SubstepPlan make_jpgd_plan(const SimLayout& layout, const JpgdSettings& se
     const plan::BufferId current = rotation[it % 3];
     const plan::BufferId before = it == 0 ? current : rotation[(it + 2) % 3];
     const plan::BufferId next = rotation[(it + 1) % 3];
-    const sched::TaskId t = plan.add_task_after(
-        last, plan::make_task(fmt::format("it{}/jacobi", it + 1), plan::TaskKind::jacobi, it, 0),
-        {"jpgd_step",
-         {0, n},
-         {Arg::of_buffer(current), Arg::of_buffer(before), Arg::of_buffer(next), Arg::of_buffer(b.x_tilde),
-          Arg::of_buffer(b.adjacency_offsets), Arg::of_buffer(b.adjacency), Arg::of_buffer(b.stretch),
-          Arg::of_buffer(b.bend), Arg::of_buffer(b.tets), Arg::of_float(inv_h2),
-          Arg::of_float(static_cast<float>(settings.step)), Arg::of_float(static_cast<float>(omega[it])),
-          Arg::of_float(it == 0 ? 0.0f : beta), Arg::of_int(layout.has_ground ? 1 : 0),
-          Arg::of_float(layout.ground_y)},
-         {particle_write(next)}});
+    std::vector<Arg> args{Arg::of_buffer(current),
+                          Arg::of_buffer(before),
+                          Arg::of_buffer(next),
+                          Arg::of_buffer(b.x_tilde),
+                          Arg::of_buffer(b.adjacency_offsets),
+                          Arg::of_buffer(b.adjacency),
+                          Arg::of_buffer(b.stretch),
+                          Arg::of_buffer(b.bend),
+                          Arg::of_buffer(b.tets),
+                          Arg::of_float(inv_h2),
+                          Arg::of_float(static_cast<float>(settings.step)),
+                          Arg::of_float(static_cast<float>(omega[it])),
+                          Arg::of_float(it == 0 ? 0.0f : beta),
+                          Arg::of_int(layout.has_ground ? 1 : 0),
+                          Arg::of_float(layout.ground_y)};
+    for (const Arg& a : vertex::collider_args(layout, b)) args.push_back(a);
+    const sched::TaskId t =
+        plan.add_task_after(last, plan::make_task(fmt::format("it{}/jacobi", it + 1), plan::TaskKind::jacobi, it, 0),
+                            {"jpgd_step", {0, n}, std::move(args), {particle_write(next)}});
     last = add_ground_task(plan, t, layout, next, it);
+    last = add_contact_task(plan, last, layout, b.colliders, next, it);
   }
   const plan::BufferId result = rotation[settings.iterations % 3];
   if (result != b.x) {
@@ -59,7 +69,7 @@ plan::SubstepPlan make_jpgd_plan(const SimLayout& layout, const JpgdSettings& se
         last, plan::make_task("copy_result", plan::TaskKind::copy),
         {"particles_copy", {0, n}, {Arg::of_buffer(b.x), Arg::of_buffer(result)}, {particle_write(b.x)}});
   }
-  vertex::end_vertex_plan(plan, last, b, settings.substep_dt);
+  vertex::end_vertex_plan(plan, layout, last, b, settings.substep_dt);
   if (ids != nullptr) *ids = b;
   return plan;
 }

@@ -6,7 +6,9 @@ namespace atssim::solver::sosd {
 
 namespace {
 
-constexpr scene::SolidModel kSolids[] = {scene::SolidModel::neo_hookean, scene::SolidModel::stvk};
+// springs: tet-edge springs in the stretch set (model/tet_builder.cpp).
+constexpr scene::SolidModel kSolids[] = {scene::SolidModel::neo_hookean, scene::SolidModel::stvk,
+                                         scene::SolidModel::springs};
 
 constexpr MethodOption kOptions[] = {
     {"stencil_step", 0.7, 0.0, 1.0, true, false, "a step length 0 < step ≤ 1 (sosd)"},

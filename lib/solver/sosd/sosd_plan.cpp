@@ -50,7 +50,8 @@ plan::SubstepPlan make_sosd_plan(const SimLayout& layout, double substep_dt, int
                                       static_cast<int>(layout.tets.size())};
   std::array<int, 3> first_block{0, 0, 0};  // index in `blocks` of each kind's first color
   for (int i = static_cast<int>(blocks.size()) - 1; i >= 0; --i) first_block[blocks[i].kind] = i;
-  const float inv_h2 = static_cast<float>(1.0 / (substep_dt * substep_dt));
+  const double hi = inertia_dt(layout, substep_dt);  // air drag weighs the inertia (sim_layout.hpp)
+  const float inv_h2 = static_cast<float>(1.0 / (hi * hi));
   using Arg = plan::KernelArg;
   for (int it = 0; it < iterations; ++it) {
     const sched::TaskId systems_task =
@@ -59,7 +60,8 @@ plan::SubstepPlan make_sosd_plan(const SimLayout& layout, double substep_dt, int
                              {0, n},
                              {Arg::of_buffer(b.x), Arg::of_buffer(b.x_tilde), Arg::of_buffer(b.adjacency_offsets),
                               Arg::of_buffer(b.adjacency), Arg::of_buffer(b.stretch), Arg::of_buffer(b.bend),
-                              Arg::of_buffer(b.tets), Arg::of_buffer(systems), Arg::of_float(inv_h2)},
+                              Arg::of_buffer(b.tets), Arg::of_buffer(systems), Arg::of_float(inv_h2),
+                              Arg::of_buffer(b.colliders), Arg::of_int(static_cast<int>(layout.colliders.size()))},
                              {plan::WriteSpan::per_element(systems, 4 * kFloat4)}});
     // All stencils read the same x^k and vertex systems, so a block matters
     // only as the main one: one task for it, and per kind one task for the
@@ -108,7 +110,7 @@ plan::SubstepPlan make_sosd_plan(const SimLayout& layout, double substep_dt, int
     if (stencil_tasks.empty()) plan.graph.add_edge(systems_task, combine);
     last = add_ground_task(plan, combine, layout, b.x, it);
   }
-  vertex::end_vertex_plan(plan, last, b, substep_dt);
+  vertex::end_vertex_plan(plan, layout, last, b, substep_dt);
   if (ids != nullptr) *ids = b;
   return plan;
 }

@@ -6,7 +6,9 @@ namespace atssim::solver::vbd {
 
 namespace {
 
-constexpr scene::SolidModel kSolids[] = {scene::SolidModel::neo_hookean, scene::SolidModel::stvk};
+// springs: tet-edge springs in the stretch set (model/tet_builder.cpp).
+constexpr scene::SolidModel kSolids[] = {scene::SolidModel::neo_hookean, scene::SolidModel::stvk,
+                                         scene::SolidModel::springs};
 
 plan::SubstepPlan build(const SimLayout& layout, const MethodSettings& s) {
   return make_vbd_plan(layout, s.substep_dt, s.iterations);

@@ -63,6 +63,7 @@ void VbdReference::substep() {
 // particles_predict (kernels/common/particle_steps.cl).
 void VbdReference::predict() {
   const float dt = static_cast<float>(substep_dt_);
+  const float damp = velocity_damping(layout_, substep_dt_);
   const Float4 g = layout_.gravity;
   sweep(0, static_cast<int>(layout_.x.size()), [&](int i) {
     Float4& p = layout_.x[i];
@@ -72,6 +73,9 @@ void VbdReference::predict() {
       v.x += dt * g.x;
       v.y += dt * g.y;
       v.z += dt * g.z;
+      v.x *= damp;
+      v.y *= damp;
+      v.z *= damp;
       p.x += dt * v.x;
       p.y += dt * v.y;
       p.z += dt * v.z;
@@ -85,7 +89,8 @@ void VbdReference::predict() {
 // vbd_solve (kernels/vbd/vbd.cl): one 3x3 Newton step per vertex of the
 // color, its neighbours (other colors) held fixed.
 void VbdReference::solve_color(int color) {
-  const float inv_h2 = static_cast<float>(1.0 / (substep_dt_ * substep_dt_));
+  const double hi = inertia_dt(layout_, substep_dt_);
+  const float inv_h2 = static_cast<float>(1.0 / (hi * hi));
   const Float4* x = layout_.x.data();
   const int* order = vertices_.colors.order.data();
   sweep(vertices_.colors.offsets[color], vertices_.colors.offsets[color + 1], [&](int k) {

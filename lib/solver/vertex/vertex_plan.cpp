@@ -1,5 +1,6 @@
 #include "solver/vertex/vertex_plan.hpp"
 
+#include "solver/collision_tasks.hpp"
 #include "solver/energy/finite_stiffness.hpp"
 #include "solver/layout/particle_tables.hpp"
 
@@ -24,6 +25,7 @@ sched::TaskId begin_vertex_plan(plan::SubstepPlan& plan, const SimLayout& layout
       plan.add_buffer("adjacency_offsets", BufferRole::topology, plan::bytes_of(vertices.adjacency_offsets));
   b.adjacency = plan.add_buffer("adjacency", BufferRole::topology, plan::bytes_of(vertices.adjacency));
   b.order = plan.add_buffer("vertex_order", BufferRole::topology, plan::bytes_of(vertices.colors.order));
+  b.colliders = add_collider_buffer(plan, layout);
   const float dt = static_cast<float>(substep_dt);
   return plan.add_task(
       plan::make_task("predict", plan::TaskKind::predict),
@@ -31,12 +33,36 @@ sched::TaskId begin_vertex_plan(plan::SubstepPlan& plan, const SimLayout& layout
         {0, n},
         {Arg::of_buffer(b.x), Arg::of_buffer(b.v), Arg::of_buffer(b.x_prev), Arg::of_buffer(b.x_tilde),
          Arg::of_float(dt), Arg::of_float(layout.gravity.x), Arg::of_float(layout.gravity.y),
-         Arg::of_float(layout.gravity.z)},
+         Arg::of_float(layout.gravity.z), Arg::of_float(velocity_damping(layout, substep_dt))},
         {particle_write(b.x), particle_write(b.v), particle_write(b.x_prev), particle_write(b.x_tilde)}}});
 }
 
-void end_vertex_plan(plan::SubstepPlan& plan, sched::TaskId last, const VertexBuffers& b, double substep_dt) {
+std::vector<plan::KernelArg> collider_args(const SimLayout& layout, const VertexBuffers& b) {
+  return {Arg::of_buffer(b.colliders), Arg::of_int(static_cast<int>(layout.colliders.size()))};
+}
+
+void end_vertex_plan(plan::SubstepPlan& plan, const SimLayout& layout, sched::TaskId last, const VertexBuffers& b,
+                     double substep_dt) {
   const int n = plan.particle_count;
+  if (!layout.colliders.empty()) {
+    // Friction from x into a scratch copy, then back: a vertex's normal force
+    // needs its neighbours' positions before their friction step.
+    const plan::BufferId out = plan.add_buffer("x_friction", plan::BufferRole::scratch,
+                                               std::vector<std::byte>(static_cast<std::size_t>(n) * kParticleBytes));
+    last = plan.add_task_after(
+        last, plan::make_task("friction", plan::TaskKind::friction),
+        {"vertex_friction",
+         {0, n},
+         {Arg::of_buffer(b.x), Arg::of_buffer(out), Arg::of_buffer(b.x_prev), Arg::of_buffer(b.x_tilde),
+          Arg::of_buffer(b.adjacency_offsets), Arg::of_buffer(b.adjacency), Arg::of_buffer(b.stretch),
+          Arg::of_buffer(b.bend), Arg::of_buffer(b.tets), Arg::of_buffer(b.colliders),
+          Arg::of_int(static_cast<int>(layout.colliders.size())),
+          Arg::of_float(static_cast<float>(1.0 / (substep_dt * substep_dt)))},
+         {particle_write(out)}});
+    last = plan.add_task_after(
+        last, plan::make_task("friction_copy", plan::TaskKind::copy),
+        {"particles_copy", {0, n}, {Arg::of_buffer(b.x), Arg::of_buffer(out)}, {particle_write(b.x)}});
+  }
   plan.add_task_after(last, plan::make_task("update_velocity", plan::TaskKind::update_velocity),
                       {"particles_update_velocity",
                        {0, n},

@@ -10,7 +10,7 @@ namespace atssim::solver::vertex {
 
 struct VertexBuffers {
   plan::BufferId x = -1, v = -1, x_prev = -1, x_tilde = -1, stretch = -1, bend = -1, tets = -1, adjacency_offsets = -1,
-                 adjacency = -1, order = -1;
+                 adjacency = -1, order = -1, colliders = -1;
 };
 
 // Adds the buffers and the predict task; returns predict's id. Throws
@@ -19,7 +19,12 @@ struct VertexBuffers {
 sched::TaskId begin_vertex_plan(plan::SubstepPlan& plan, const SimLayout& layout, const VertexLayout& vertices,
                                 double substep_dt, VertexBuffers& ids);
 
-// Adds the velocity update after `last`.
-void end_vertex_plan(plan::SubstepPlan& plan, sched::TaskId last, const VertexBuffers& ids, double substep_dt);
+// Adds the friction task (when the layout has colliders) and the velocity
+// update after `last`.
+void end_vertex_plan(plan::SubstepPlan& plan, const SimLayout& layout, sched::TaskId last, const VertexBuffers& ids,
+                     double substep_dt);
+
+// The collider arguments of a vertex kernel: the buffer and the count.
+std::vector<plan::KernelArg> collider_args(const SimLayout& layout, const VertexBuffers& ids);
 
 }  // namespace atssim::solver::vertex

@@ -7,7 +7,8 @@ namespace atssim::solver::xpbd {
 namespace {
 
 // The strain constraints (common/xpbd_tet.h) minimise the StVK energy only.
-constexpr scene::SolidModel kSolids[] = {scene::SolidModel::stvk};
+// springs: tet-edge springs in the stretch set (model/tet_builder.cpp).
+constexpr scene::SolidModel kSolids[] = {scene::SolidModel::stvk, scene::SolidModel::springs};
 
 plan::SubstepPlan build(const SimLayout& layout, const MethodSettings& s) {
   return make_xpbd_plan(layout, {s.substep_dt, s.iterations});

@@ -78,14 +78,19 @@ plan::SubstepPlan make_xpbd_plan(const SimLayout& layout, const XpbdSettings& se
                                    std::vector<std::byte>(layout.tets.size() * ATS_TET_LAMBDA_STRIDE * sizeof(float)));
   }
 
-  const float dt = static_cast<float>(settings.substep_dt);
+  // The step of predict and the velocity update; the constraints weigh the
+  // inertia as for inertia_dt (air drag, solver/layout/sim_layout.hpp).
+  const float h = static_cast<float>(settings.substep_dt);
+  const float dt = static_cast<float>(inertia_dt(layout, settings.substep_dt));
+  const plan::BufferId colliders = layout.colliders.empty() ? -1 : add_collider_buffer(plan, layout);
   const int n = plan.particle_count;
   sched::TaskId last = plan.add_task(
       plan::make_task("predict", plan::TaskKind::predict),
       {{"xpbd_predict",
         {0, n},
-        {Arg::of_buffer(b.x), Arg::of_buffer(b.v), Arg::of_buffer(b.x_prev), Arg::of_float(dt),
-         Arg::of_float(layout.gravity.x), Arg::of_float(layout.gravity.y), Arg::of_float(layout.gravity.z)},
+        {Arg::of_buffer(b.x), Arg::of_buffer(b.v), Arg::of_buffer(b.x_prev), Arg::of_float(h),
+         Arg::of_float(layout.gravity.x), Arg::of_float(layout.gravity.y), Arg::of_float(layout.gravity.z),
+         Arg::of_float(velocity_damping(layout, settings.substep_dt))},
         {particle_write(b.x), particle_write(b.v), particle_write(b.x_prev)}}});
   const auto stretch_particles = particles_of(layout.stretch);
   const auto bend_particles = particles_of(layout.bend);
@@ -104,11 +109,13 @@ plan::SubstepPlan make_xpbd_plan(const SimLayout& layout, const XpbdSettings& se
                         it, tet_particles, 4, ATS_TET_LAMBDA_STRIDE * sizeof(float));
     }
     last = add_ground_task(plan, last, layout, b.x, it);
+    last = add_contact_task(plan, last, layout, colliders, b.x, it);
   }
+  last = add_friction_task(plan, last, layout, colliders, b.x, b.x_prev, b.v, settings.substep_dt);
   plan.add_task_after(last, plan::make_task("update_velocity", plan::TaskKind::update_velocity),
                       {"particles_update_velocity",
                        {0, n},
-                       {Arg::of_buffer(b.x), Arg::of_buffer(b.v), Arg::of_buffer(b.x_prev), Arg::of_float(1.0f / dt)},
+                       {Arg::of_buffer(b.x), Arg::of_buffer(b.v), Arg::of_buffer(b.x_prev), Arg::of_float(1.0f / h)},
                        {particle_write(b.v)}});
   if (ids != nullptr) *ids = b;
   return plan;

@@ -79,6 +79,7 @@ void XpbdReference::substep() {
 
 void XpbdReference::predict() {
   const float dt = static_cast<float>(settings_.substep_dt);
+  const float damp = velocity_damping(layout_, settings_.substep_dt);
   const Float4 g = layout_.gravity;
   sweep(0, static_cast<int>(layout_.x.size()), [&](int i) {
     Float4& p = layout_.x[i];
@@ -91,6 +92,9 @@ void XpbdReference::predict() {
     v.x += dt * g.x;
     v.y += dt * g.y;
     v.z += dt * g.z;
+    v.x *= damp;
+    v.y *= damp;
+    v.z *= damp;
     p.x += dt * v.x;
     p.y += dt * v.y;
     p.z += dt * v.z;
@@ -100,7 +104,7 @@ void XpbdReference::predict() {
 // Blocks in order; inside a block no two constraints share a movable
 // particle, so any order (or thread) inside a block gives the same result.
 void XpbdReference::solve_stretch(bool reset) {
-  const float dt = static_cast<float>(settings_.substep_dt);
+  const float dt = static_cast<float>(inertia_dt(layout_, settings_.substep_dt));
   for (std::size_t b = 0; b + 1 < layout_.stretch_blocks.size(); ++b) {
     sweep(layout_.stretch_blocks[b], layout_.stretch_blocks[b + 1], [&](int i) {
       const ats_distance_c& c = layout_.stretch[i];
@@ -116,7 +120,7 @@ void XpbdReference::solve_stretch(bool reset) {
 }
 
 void XpbdReference::solve_bend(bool reset) {
-  const float dt = static_cast<float>(settings_.substep_dt);
+  const float dt = static_cast<float>(inertia_dt(layout_, settings_.substep_dt));
   for (std::size_t b = 0; b + 1 < layout_.bend_blocks.size(); ++b) {
     sweep(layout_.bend_blocks[b], layout_.bend_blocks[b + 1], [&](int i) {
       const ats_bend_c& c = layout_.bend[i];
@@ -128,7 +132,7 @@ void XpbdReference::solve_bend(bool reset) {
       }
       float* lam = &bend_lambda_[3 * i];
       const ats_vec3 l = reset ? ats_v3(0, 0, 0) : ats_v3(lam[0], lam[1], lam[2]);
-      const ats_bend_step s = ats_xpbd_bend(p, w, c.K, c.scale, c.compliance, l, dt);
+      const ats_bend_step s = ats_xpbd_bend_element(p, w, &c, l, dt);
       lam[0] = l.x + s.dlambda.x;
       lam[1] = l.y + s.dlambda.y;
       lam[2] = l.z + s.dlambda.z;
@@ -138,7 +142,7 @@ void XpbdReference::solve_bend(bool reset) {
 }
 
 void XpbdReference::solve_tets(bool reset) {
-  const float dt = static_cast<float>(settings_.substep_dt);
+  const float dt = static_cast<float>(inertia_dt(layout_, settings_.substep_dt));
   for (std::size_t b = 0; b + 1 < layout_.tet_blocks.size(); ++b) {
     sweep(layout_.tet_blocks[b], layout_.tet_blocks[b + 1], [&](int i) {
       const ats_tet_c& t = layout_.tets[i];
@@ -180,7 +184,7 @@ void XpbdReference::update_velocity() {
 }
 
 double XpbdReference::residual_rms() const {
-  const float dt = static_cast<float>(settings_.substep_dt);
+  const float dt = static_cast<float>(inertia_dt(layout_, settings_.substep_dt));
   double sum = 0.0;
   std::size_t count = 0;
   for (std::size_t i = 0; i < layout_.stretch.size(); ++i) {
@@ -194,10 +198,9 @@ double XpbdReference::residual_rms() const {
     const ats_bend_c& c = layout_.bend[i];
     ats_vec3 p[4];
     for (int j = 0; j < 4; ++j) p[j] = xyz(layout_.x[c.v[j]]);
-    const ats_vec3 cur = ats_bend_curvature(p, c.K, c.scale);
-    const float alpha = c.compliance / (dt * dt);
-    const double r[3] = {cur.x + alpha * bend_lambda_[3 * i], cur.y + alpha * bend_lambda_[3 * i + 1],
-                         cur.z + alpha * bend_lambda_[3 * i + 2]};
+    const ats_vec3 l = ats_v3(bend_lambda_[3 * i], bend_lambda_[3 * i + 1], bend_lambda_[3 * i + 2]);
+    const ats_vec3 res = ats_xpbd_bend_residual(p, &c, l, dt);
+    const double r[3] = {res.x, res.y, res.z};
     for (double v : r) sum += v * v;
     count += 3;
   }

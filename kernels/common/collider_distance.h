@@ -1,0 +1,120 @@
+/* Signed distance of a point to an analytic collider's surface and the
+ * contact energy built on it, in the common subset of C, C++ and OpenCL C
+ * (ats_real: float in kernels, double in the Newton reference).
+ *
+ * The gap of a particle is g = phi(x) - thickness (phi: signed distance,
+ * negative inside). The contact energy of a particle of mass m is the
+ * quadratic penalty of the VBD paper (Chen et al. 2024, §3.5, Eq. 17),
+ *   E_c = 1/2 k min(g, 0)^2,  k = stiffness m / h^2,
+ * its gradient k g n (n = grad phi, the outward normal) and its Gauss-Newton
+ * Hessian k n n^T (the curvature term k g grad^2 phi is dropped: it keeps
+ * the block positive semi-definite). */
+#ifndef ATS_COLLIDER_DISTANCE_H
+#define ATS_COLLIDER_DISTANCE_H
+
+#include "common/ats_math.h"
+#include "common/collider_types.h"
+#include "common/energy_mat3.h"
+
+typedef struct {
+  ats_real phi; /* signed distance to the surface (negative inside) */
+  ats_vec3 n;   /* unit outward normal: the gradient of phi */
+} ats_surface_distance;
+
+ATS_FN ats_vec3 ats_collider_vec(ATS_GLOBAL const float* v) { return ats_v3(v[0], v[1], v[2]); }
+
+/* A normal for a point at the centre of a sphere or on a capsule's axis. */
+ATS_FN ats_surface_distance ats_radial_distance(ats_vec3 d, ats_real radius) {
+  ats_surface_distance s;
+  const ats_real len = ats_length(d);
+  s.phi = len - radius;
+  s.n = len > (ats_real)0 ? ats_scale(d, (ats_real)1 / len) : ats_v3(0, 1, 0);
+  return s;
+}
+
+ATS_FN ats_surface_distance ats_box_distance(ATS_GLOBAL const ats_collider_c* c, ats_vec3 x) {
+  const ats_vec3 d = ats_sub(x, ats_collider_vec(c->c));
+  ats_vec3 axis[3];
+  ats_real p[3], q[3], h[3];
+  ATS_UNROLL for (int k = 0; k < 3; ++k) {
+    axis[k] = ats_collider_vec(c->axes + 4 * k);
+    p[k] = ats_dot(d, axis[k]);
+    h[k] = c->extent[k];
+    q[k] = fabs(p[k]) - h[k];
+  }
+  ats_surface_distance s;
+  if (q[0] > 0 || q[1] > 0 || q[2] > 0) { /* outside: distance to the nearest point of the box */
+    ats_vec3 out = ats_v3(0, 0, 0);
+    ATS_UNROLL for (int k = 0; k < 3; ++k) {
+      if (q[k] > 0) out = ats_add(out, ats_scale(axis[k], p[k] < 0 ? -q[k] : q[k]));
+    }
+    s.phi = ats_length(out);
+    s.n = ats_scale(out, (ats_real)1 / s.phi);
+    return s;
+  }
+  int k = 0; /* inside: the nearest face */
+  if (q[1] > q[k]) k = 1;
+  if (q[2] > q[k]) k = 2;
+  s.phi = q[k];
+  s.n = ats_scale(axis[k], p[k] < 0 ? (ats_real)-1 : (ats_real)1);
+  return s;
+}
+
+ATS_FN ats_surface_distance ats_collider_distance(ATS_GLOBAL const ats_collider_c* c, ats_vec3 x) {
+  const int shape = (int)c->shape;
+  if (shape == ATS_COLLIDER_PLANE) {
+    ats_surface_distance s;
+    s.n = ats_collider_vec(c->n);
+    s.phi = ats_dot(ats_sub(x, ats_collider_vec(c->c)), s.n);
+    return s;
+  }
+  if (shape == ATS_COLLIDER_SPHERE) return ats_radial_distance(ats_sub(x, ats_collider_vec(c->c)), c->radius);
+  if (shape == ATS_COLLIDER_CAPSULE) {
+    const ats_vec3 a = ats_collider_vec(c->c);
+    const ats_vec3 ab = ats_sub(ats_collider_vec(c->n), a);
+    const ats_real len2 = ats_dot(ab, ab);
+    ats_real t = len2 > (ats_real)0 ? ats_dot(ats_sub(x, a), ab) / len2 : (ats_real)0;
+    t = fmin(fmax(t, (ats_real)0), (ats_real)1);
+    return ats_radial_distance(ats_sub(x, ats_add(a, ats_scale(ab, t))), c->radius);
+  }
+  return ats_box_distance(c, x);
+}
+
+/* The gap g = phi - thickness (negative: the particle is inside the
+ * collider's thickened surface) and the normal. */
+ATS_FN ats_surface_distance ats_collider_gap(ATS_GLOBAL const ats_collider_c* c, ats_vec3 x) {
+  ats_surface_distance s = ats_collider_distance(c, x);
+  s.phi -= c->thickness;
+  return s;
+}
+
+/* A particle counts as touching a collider when its gap is below 1 % of
+ * the thickness (projected particles sit at gap 0 up to rounding). */
+ATS_FN int ats_collider_touching(ATS_GLOBAL const ats_collider_c* c, ats_real gap) {
+  return gap <= (ats_real)0.01 * c->thickness;
+}
+
+ATS_FN ats_real ats_contact_energy(ATS_GLOBAL const ats_collider_c* c, ats_vec3 x, ats_real mass, ats_real inv_h2) {
+  const ats_surface_distance s = ats_collider_gap(c, x);
+  if (!(s.phi < 0)) return 0;
+  return (ats_real)0.5 * c->stiffness * mass * inv_h2 * s.phi * s.phi;
+}
+
+ATS_FN ats_vec3 ats_contact_gradient(ATS_GLOBAL const ats_collider_c* c, ats_vec3 x, ats_real mass, ats_real inv_h2) {
+  const ats_surface_distance s = ats_collider_gap(c, x);
+  if (!(s.phi < 0)) return ats_v3(0, 0, 0);
+  return ats_scale(s.n, c->stiffness * mass * inv_h2 * s.phi);
+}
+
+ATS_FN ats_mat3 ats_contact_hessian(ATS_GLOBAL const ats_collider_c* c, ats_vec3 x, ats_real mass, ats_real inv_h2) {
+  const ats_surface_distance s = ats_collider_gap(c, x);
+  ats_mat3 h = ats_m3_diag(0);
+  if (!(s.phi < 0)) return h;
+  const ats_real k = c->stiffness * mass * inv_h2;
+  h.r[0] = ats_scale(s.n, k * s.n.x);
+  h.r[1] = ats_scale(s.n, k * s.n.y);
+  h.r[2] = ats_scale(s.n, k * s.n.z);
+  return h;
+}
+
+#endif

@@ -1,0 +1,65 @@
+/* Contact with analytic colliders (kernels/common/collider_distance.h),
+ * the tasks every method runs when its scene has colliders:
+ *   particles_contact: at the end of every iteration (XPBD, JPGD), a
+ *     particle inside a collider's thickened surface is put back on it
+ *     (XPBD's inequality constraint with zero compliance);
+ *   particles_friction: once per substep, after the iterations, Coulomb
+ *     friction on the substep's displacement (position-based friction,
+ *     Macklin et al. 2014 §6): the normal displacement the contact caused
+ *     this substep, dn = n . (x - x~) with x~ = x_t + h v (v is still the
+ *     predicted velocity), bounds the tangential one: it is removed whole
+ *     while |u_t| <= mu_s dn (static), else shortened by mu_k dn (kinetic).
+ * Both range over independent particles. */
+#include "common/collider_distance.h"
+#include "common/task.h"
+
+ATS_TASK void particles_contact(int i, __global float4* x, __global const ats_collider_c* colliders, int count) {
+  float4 p = x[i];
+  if (p.w == 0.0f) return;
+  for (int c = 0; c < count; ++c) {
+    const ats_surface_distance s = ats_collider_gap(colliders + c, ats_v3(p.x, p.y, p.z));
+    if (s.phi < 0.0f) p = (float4)(p.x - s.phi * s.n.x, p.y - s.phi * s.n.y, p.z - s.phi * s.n.z, p.w);
+  }
+  x[i] = p;
+}
+
+/* The collider particle p touches with the smallest gap (-1: none), and its normal. */
+static inline int touching_collider(float4 p, __global const ats_collider_c* colliders, int count, ats_vec3* normal) {
+  int best = -1;
+  float best_gap = 0.0f;
+  for (int c = 0; c < count; ++c) {
+    const ats_surface_distance s = ats_collider_gap(colliders + c, ats_v3(p.x, p.y, p.z));
+    if (ats_collider_touching(colliders + c, s.phi) && (best < 0 || s.phi < best_gap)) {
+      best = c;
+      best_gap = s.phi;
+      *normal = s.n;
+    }
+  }
+  return best;
+}
+
+/* Coulomb friction on the substep's displacement from q (x_t) to p, given
+ * the normal displacement dn the contact caused (see above). */
+static inline float4 coulomb_friction(float4 p, float4 q, ats_vec3 n, float dn, __global const ats_collider_c* c) {
+  if (!(dn > 0.0f)) return p;
+  const ats_vec3 u = ats_v3(p.x - q.x, p.y - q.y, p.z - q.z);
+  const ats_vec3 ut = ats_sub(u, ats_scale(n, ats_dot(u, n)));
+  const float len = ats_length(ut);
+  if (!(len > 0.0f)) return p;
+  const float keep = len <= c->mu_s * dn ? 0.0f : fmax(0.0f, 1.0f - c->mu_k * dn / len);
+  const ats_vec3 removed = ats_scale(ut, 1.0f - keep);
+  return (float4)(p.x - removed.x, p.y - removed.y, p.z - removed.z, p.w);
+}
+
+ATS_TASK void particles_friction(int i, __global float4* x, __global const float4* x_prev, __global const float4* v, __global const ats_collider_c* colliders, int count, float dt) {
+  const float4 p = x[i];
+  if (p.w == 0.0f) return;
+  ats_vec3 n;
+  const int c = touching_collider(p, colliders, count, &n);
+  if (c < 0) return;
+  const float4 q = x_prev[i];
+  const float4 vel = v[i];
+  const ats_vec3 predicted = ats_v3(q.x + dt * vel.x, q.y + dt * vel.y, q.z + dt * vel.z);
+  const float dn = ats_dot(ats_sub(ats_v3(p.x, p.y, p.z), predicted), n);
+  x[i] = coulomb_friction(p, q, n, dn, colliders + c);
+}

@@ -1,0 +1,21 @@
+/* The contact energy (common/collider_distance.h) in a vertex's force and
+ * Hessian block, for the vertex-block methods (VBD, JPGD, SOSD) and the
+ * host VBD reference: every collider's penalty term of the particle. */
+#ifndef ATS_VERTEX_CONTACT_H
+#define ATS_VERTEX_CONTACT_H
+
+#include "common/collider_distance.h"
+#include "common/vertex_system.h"
+
+ATS_FN vertex_system add_contact_terms(vertex_system s, ats_vec3 xi, float inv_mass, float inv_h2,
+                                       ATS_GLOBAL const ats_collider_c* colliders, int count) {
+  if (inv_mass == 0.0f) return s;
+  const float mass = 1.0f / inv_mass;
+  for (int c = 0; c < count; ++c) {
+    s.f = ats_sub(s.f, ats_contact_gradient(colliders + c, xi, mass, inv_h2));
+    s.h = ats_m3_add(s.h, ats_contact_hessian(colliders + c, xi, mass, inv_h2));
+  }
+  return s;
+}
+
+#endif

@@ -1,0 +1,145 @@
+#include "io/checkpoint.hpp"
+
+#include <array>
+#include <cstring>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "util/error.hpp"
+
+namespace atssim::io {
+
+namespace {
+
+constexpr int kSlots = 2;
+constexpr int kFields = 6;  // frame, frames_written, schedule_rows, wait_rows, makespan_rows, hash
+
+std::uint64_t fnv1a(std::uint64_t h, const void* data, std::size_t size) {
+  const auto* p = static_cast<const unsigned char*>(data);
+  for (std::size_t i = 0; i < size; ++i) h = (h ^ p[i]) * 1099511628211ull;
+  return h;
+}
+
+std::uint64_t hash_of(const Checkpoint& c) {
+  std::uint64_t h = 14695981039346656037ull;
+  const long long fields[5] = {c.frame, c.frames_written, c.schedule_rows, c.wait_rows, c.makespan_rows};
+  h = fnv1a(h, fields, sizeof fields);
+  h = fnv1a(h, c.positions.data(), c.positions.size());
+  return fnv1a(h, c.velocities.data(), c.velocities.size());
+}
+
+std::array<long long, kSlots * kFields> read_index(hid_t index) {
+  std::array<long long, kSlots * kFields> rows{};
+  h5_check(H5Dread(index, H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, rows.data()), "reading /checkpoint/index");
+  return rows;
+}
+
+// Selects row `slot` of a [2, cols] dataset.
+H5Handle row_space(hid_t set, int slot, hsize_t cols) {
+  H5Handle space = h5_check(H5Dget_space(set), H5Sclose, "checkpoint space");
+  const hsize_t start[2] = {static_cast<hsize_t>(slot), 0}, count[2] = {1, cols};
+  h5_check(H5Sselect_hyperslab(space, H5S_SELECT_SET, start, nullptr, count, nullptr), "selecting a checkpoint slot");
+  return space;
+}
+
+}  // namespace
+
+CheckpointSlots CheckpointSlots::create(hid_t file, std::size_t position_bytes, std::size_t velocity_bytes) {
+  CheckpointSlots s;
+  s.position_bytes_ = position_bytes;
+  s.velocity_bytes_ = velocity_bytes;
+  H5Handle group = create_group(file, "checkpoint");
+  write_int_attribute(group, "positions_bytes", static_cast<long long>(position_bytes));
+  write_int_attribute(group, "velocities_bytes", static_cast<long long>(velocity_bytes));
+  const hsize_t state_dims[2] = {kSlots, std::max<hsize_t>(1, position_bytes + velocity_bytes)};
+  H5Handle state_space = h5_check(H5Screate_simple(2, state_dims, nullptr), H5Sclose, "checkpoint space");
+  s.state_ = h5_check(H5Dcreate2(group, "state", H5T_STD_U8LE, state_space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                      H5Dclose, "creating /checkpoint/state");
+  const hsize_t index_dims[2] = {kSlots, kFields};
+  H5Handle index_space = h5_check(H5Screate_simple(2, index_dims, nullptr), H5Sclose, "checkpoint space");
+  s.index_ = h5_check(H5Dcreate2(group, "index", H5T_STD_I64LE, index_space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                      H5Dclose, "creating /checkpoint/index");
+  std::array<long long, kSlots * kFields> empty{};
+  for (int k = 0; k < kSlots; ++k) empty[k * kFields] = -1;
+  h5_check(H5Dwrite(s.index_, H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, empty.data()),
+           "writing /checkpoint/index");
+  return s;
+}
+
+std::optional<CheckpointSlots> CheckpointSlots::open(hid_t file) {
+  if (H5Lexists(file, "checkpoint", H5P_DEFAULT) <= 0) return std::nullopt;
+  CheckpointSlots s;
+  H5Handle group = h5_check(H5Gopen2(file, "checkpoint", H5P_DEFAULT), H5Gclose, "opening /checkpoint");
+  for (auto [name, out] :
+       {std::pair{"positions_bytes", &s.position_bytes_}, {"velocities_bytes", &s.velocity_bytes_}}) {
+    H5Handle attr = h5_check(H5Aopen(group, name, H5P_DEFAULT), H5Aclose, name);
+    long long v = 0;
+    h5_check(H5Aread(attr, H5T_NATIVE_LLONG, &v), name);
+    *out = static_cast<std::size_t>(v);
+  }
+  s.state_ = h5_check(H5Dopen2(group, "state", H5P_DEFAULT), H5Dclose, "opening /checkpoint/state");
+  s.index_ = h5_check(H5Dopen2(group, "index", H5P_DEFAULT), H5Dclose, "opening /checkpoint/index");
+  const auto rows = read_index(s.index_);
+  s.next_slot_ = rows[0] <= rows[kFields] ? 0 : 1;  // overwrite the older one
+  return s;
+}
+
+void CheckpointSlots::write(const Checkpoint& c) {
+  if (c.positions.size() != position_bytes_ || c.velocities.size() != velocity_bytes_) {
+    throw std::logic_error(fmt::format("checkpoint: state of {}+{} bytes, the file holds {}+{}", c.positions.size(),
+                                       c.velocities.size(), position_bytes_, velocity_bytes_));
+  }
+  const int slot = next_slot_;
+  std::vector<std::byte> bytes(c.positions);
+  bytes.insert(bytes.end(), c.velocities.begin(), c.velocities.end());
+  if (bytes.empty()) bytes.resize(1);
+  const hsize_t cols = bytes.size();
+  H5Handle space = row_space(state_, slot, cols);
+  const hsize_t count[2] = {1, cols};
+  H5Handle mem = h5_check(H5Screate_simple(2, count, nullptr), H5Sclose, "checkpoint memory");
+  h5_check(H5Dwrite(state_, H5T_NATIVE_UCHAR, mem, space, H5P_DEFAULT, bytes.data()), "writing /checkpoint/state");
+  const std::uint64_t hash = hash_of(c);
+  long long fields[kFields] = {c.frame, c.frames_written, c.schedule_rows, c.wait_rows, c.makespan_rows, 0};
+  std::memcpy(&fields[5], &hash, sizeof hash);
+  H5Handle ispace = row_space(index_, slot, kFields);
+  const hsize_t icount[2] = {1, kFields};
+  H5Handle imem = h5_check(H5Screate_simple(2, icount, nullptr), H5Sclose, "checkpoint memory");
+  h5_check(H5Dwrite(index_, H5T_NATIVE_LLONG, imem, ispace, H5P_DEFAULT, fields), "writing /checkpoint/index");
+  next_slot_ = 1 - slot;
+}
+
+std::optional<Checkpoint> CheckpointSlots::take_newest(long long frames_available) {
+  auto rows = read_index(index_);
+  std::optional<Checkpoint> best;
+  int best_slot = -1;
+  const hsize_t cols = std::max<std::size_t>(1, position_bytes_ + velocity_bytes_);
+  for (int slot = 0; slot < kSlots; ++slot) {
+    const long long* f = &rows[slot * kFields];
+    if (f[0] < 0 || f[1] > frames_available || (best && best->frame >= f[0])) continue;
+    Checkpoint c{f[0], f[1], f[2], f[3], f[4], {}, {}};
+    std::vector<std::byte> bytes(cols);
+    H5Handle space = row_space(state_, slot, cols);
+    const hsize_t count[2] = {1, cols};
+    H5Handle mem = h5_check(H5Screate_simple(2, count, nullptr), H5Sclose, "checkpoint memory");
+    if (H5Dread(state_, H5T_NATIVE_UCHAR, mem, space, H5P_DEFAULT, bytes.data()) < 0) continue;
+    c.positions.assign(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(position_bytes_));
+    c.velocities.assign(bytes.begin() + static_cast<std::ptrdiff_t>(position_bytes_),
+                        bytes.begin() + static_cast<std::ptrdiff_t>(position_bytes_ + velocity_bytes_));
+    std::uint64_t stored = 0;
+    std::memcpy(&stored, &f[5], sizeof stored);
+    if (hash_of(c) == stored) {
+      best = std::move(c);
+      best_slot = slot;
+    }
+  }
+  if (!best) return best;
+  for (int slot = 0; slot < kSlots; ++slot) {
+    if (slot != best_slot) rows[slot * kFields] = -1;
+  }
+  h5_check(H5Dwrite(index_, H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, rows.data()), "writing /checkpoint/index");
+  next_slot_ = 1 - best_slot;
+  return best;
+}
+
+}  // namespace atssim::io

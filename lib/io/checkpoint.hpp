@@ -1,0 +1,48 @@
+#pragma once
+// The state a killed or stopped run resumes from (/checkpoint,
+// docs/output-format.md): the executor's positions and velocities bytes of
+// the last recorded frame, and how many rows of every series belong to it.
+// Two slots written in turn, each with a hash, so a kill in the middle of a
+// write leaves the other slot whole.
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "io/h5_handle.hpp"
+
+namespace atssim::io {
+
+struct Checkpoint {
+  long long frame = -1;          // simulated frame the state is the end of (0: the initial state)
+  long long frames_written = 0;  // rows of /frames and /timing that belong to it
+  long long schedule_rows = 0;   // rows of /schedule/{frame,task,…}
+  long long wait_rows = 0;       // rows of /schedule/waits/*
+  long long makespan_rows = 0;   // rows of /schedule/makespan/*
+  std::vector<std::byte> positions, velocities;
+};
+
+class CheckpointSlots {
+ public:
+  CheckpointSlots() = default;
+  // Makes /checkpoint for states of these sizes.
+  static CheckpointSlots create(hid_t file, std::size_t position_bytes, std::size_t velocity_bytes);
+  // Opens the /checkpoint of a file written before; empty when it has none.
+  static std::optional<CheckpointSlots> open(hid_t file);
+
+  // Writes `c` into the slot not holding the newest checkpoint.
+  void write(const Checkpoint& c);
+  // The newest slot whose hash matches and whose rows do not exceed
+  // `frames_available` frames; the other slot is emptied (a resumed run
+  // writes over what came after) and is written next.
+  std::optional<Checkpoint> take_newest(long long frames_available);
+
+  bool valid() const { return state_.get() >= 0; }
+
+ private:
+  H5Handle state_, index_;
+  std::size_t position_bytes_ = 0, velocity_bytes_ = 0;
+  int next_slot_ = 0;
+};
+
+}  // namespace atssim::io

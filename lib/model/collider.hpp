@@ -1,0 +1,31 @@
+#pragma once
+// Analytic colliders of the model (scene `colliders:`), in world
+// coordinates: what the contact tasks of every method keep particles out of.
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "scene/collider_desc.hpp"
+
+namespace atssim::model {
+
+struct Collider {
+  std::string name;
+  scene::ColliderShape shape = scene::ColliderShape::plane;
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();     // plane: on it; sphere, box: centre; capsule: end a
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitY();   // plane: unit normal
+  Eigen::Vector3d end = Eigen::Vector3d::Zero();       // capsule: end b
+  Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();  // box: rows are its local axes in world coordinates
+  Eigen::Vector3d half = Eigen::Vector3d::Ones();      // box: half extents
+  double radius = 0.0;
+  double thickness = 0.0;
+  double static_friction = 0.0, kinetic_friction = 0.0;
+  double stiffness = 0.0;  // contact energy stiffness relative to m/h^2
+};
+
+// The scene's colliders placed in the world (plane normals normalised, box
+// rotations applied).
+std::vector<Collider> make_colliders(const std::vector<scene::ColliderDesc>& colliders);
+
+}  // namespace atssim::model

@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Fuzzes the scene parser with libFuzzer (Debian's clang; `bash scripts/setup.sh fuzz`
+# installs it). Not run by CI: it is CPU-heavy, so it runs niced, one worker.
+#
+#   scripts/fuzz_scene.sh [RUNS] [extra libFuzzer flags]   (default 1000000 runs)
+#
+# Builds build/fuzz/fuzz_scene from lib/scene + lib/util with
+# -fsanitize=fuzzer,address,undefined; the seed corpus is every bundled scene
+# and every bad-input case; new inputs go to build/fuzz/corpus, crashes to
+# build/fuzz/crash-*. Turn a crash into a case under tests/bad_input/cases.
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+runs="${1:-1000000}"
+shift || true
+out="$root/build/fuzz"
+mkdir -p "$out/corpus" "$out/seeds"
+cxx="$(command -v clang++-14 || command -v clang++ || true)"
+if [[ -z "$cxx" ]]; then
+  echo "fuzz_scene.sh: clang++ is not installed (bash scripts/setup.sh fuzz)" >&2
+  exit 2
+fi
+sources=("$root"/lib/scene/*.cpp "$root"/lib/util/*.cpp "$root"/tests/fuzz/fuzz_scene.cpp)
+if [[ ! -x "$out/fuzz_scene" || -n "$(find "${sources[@]}" "$root"/lib/scene "$root"/lib/util -newer "$out/fuzz_scene" 2>/dev/null | head -1)" ]]; then
+  echo "building $out/fuzz_scene"
+  nice -n 19 "$cxx" -std=c++20 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
+    -I"$root/lib" $(pkg-config --cflags yaml-cpp assimp fmt 2>/dev/null || true) "${sources[@]}" \
+    -lyaml-cpp -lassimp -lfmt -o "$out/fuzz_scene"
+fi
+cp "$root"/scenes/*.yaml "$root"/tests/bad_input/cases/*.yaml "$out/seeds/"
+cd "$out"
+echo "nice -n 19 $out/fuzz_scene -runs=$runs -timeout=10 -rss_limit_mb=2048 -max_len=8192 $* corpus seeds"
+exec nice -n 19 "$out/fuzz_scene" -runs="$runs" -timeout=10 -rss_limit_mb=2048 -max_len=8192 -print_final_stats=1 \
+  "$@" corpus seeds

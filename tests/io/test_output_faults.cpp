@@ -1,0 +1,195 @@
+// The output under faults (lib/io): one writer per path, a run that fails
+// never replaces an earlier result, checkpoints that survive a torn write,
+// and resuming a run into the same file.
+#include <catch2/catch.hpp>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "io/checkpoint.hpp"
+#include "io/output_lock.hpp"
+#include "io/result_reader.hpp"
+#include "io/result_writer.hpp"
+#include "model/cloth_builder.hpp"
+#include "scene/scene_loader.hpp"
+#include "support/scenes.hpp"
+#include "support/temp_dir.hpp"
+#include "util/error.hpp"
+
+using namespace atssim;
+
+namespace {
+
+model::Model small_model() {
+  return model::build_model(scene::parse_scene(test::hanging_cloth_yaml(5), "s.yaml", "."));
+}
+
+io::RunInfo run_info(const std::string& resolved = "a: 1\nframes: 3\n") {
+  io::DeviceRecord d;
+  d.name = "test device";
+  return {"atssim run s.yaml", "a: 1\n", resolved, {d}, {}};
+}
+
+std::vector<std::byte> bytes_of(std::size_t n, int seed) {
+  std::vector<std::byte> b(n);
+  for (std::size_t i = 0; i < n; ++i) b[i] = std::byte(static_cast<unsigned char>(seed * 31 + i * 7));
+  return b;
+}
+
+std::vector<float> frame_of(std::size_t n, int f) { return std::vector<float>(n * 3, float(f)); }
+
+}  // namespace
+
+TEST_CASE("a second writer of one output path is refused until the first lets go") {
+  test::TempDir dir;
+  const std::string path = dir.file("out.h5");
+  {
+    io::OutputLock first(path);
+    CHECK(std::filesystem::exists(path + ".lock"));
+    try {
+      io::OutputLock second(path);
+      FAIL("the second lock was granted");
+    } catch (const Error& e) {
+      CHECK(e.kind() == ErrorKind::input);
+      CHECK(std::string(e.what()).find("another atssim run is writing") != std::string::npos);
+    }
+  }
+  CHECK_FALSE(std::filesystem::exists(path + ".lock"));
+  io::OutputLock again(path);  // free again
+}
+
+TEST_CASE("a partial file sits beside the output: out.h5 -> out.partial.h5") {
+  CHECK(io::partial_path("dir/out.h5") == "dir/out.partial.h5");
+  CHECK(io::partial_path("run") == "run.partial.h5");  // its sidecar must not be run.xdmf
+}
+
+TEST_CASE("a run at a path that holds a result writes beside it and replaces it only when it completes") {
+  test::TempDir dir;
+  const auto m = small_model();
+  const std::size_t n = m.particles.size();
+  const std::string path = dir.file("out.h5");
+  {
+    io::ResultWriter w(path, run_info(), m.objects);
+    w.append_frame(0.0, frame_of(n, 7), 0.0);
+    w.finish();
+  }
+  {
+    io::ResultWriter w(path, run_info(), m.objects);
+    CHECK(w.path() == dir.file("out.partial.h5"));
+    w.append_frame(0.0, frame_of(n, 1), 0.0);
+    w.append_frame(0.1, frame_of(n, 2), 0.0);
+    w.fail("frame 2: interrupted");
+  }
+  auto s = io::read_summary(path);
+  CHECK(s.complete);
+  CHECK(s.frames == 1);
+  CHECK(io::read_frame_positions(path, 0) == frame_of(n, 7));
+  CHECK(io::read_summary(dir.file("out.partial.h5")).frames == 2);
+  {
+    io::ResultWriter w(path, run_info(), m.objects);
+    w.append_frame(0.0, frame_of(n, 3), 0.0);
+    w.append_frame(0.1, frame_of(n, 4), 0.0);
+    w.finish();
+    CHECK(w.path() == path);
+  }
+  s = io::read_summary(path);
+  CHECK(s.complete);
+  CHECK(s.frames == 2);
+  CHECK(io::read_frame_positions(path, 1) == frame_of(n, 4));
+  CHECK_FALSE(std::filesystem::exists(dir.file("out.partial.h5")));
+  CHECK_FALSE(std::filesystem::exists(dir.file("out.partial.xdmf")));
+}
+
+TEST_CASE("a checkpoint slot whose bytes were torn is skipped for the other slot") {
+  test::TempDir dir;
+  const std::string path = dir.file("c.h5");
+  const hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  REQUIRE(file >= 0);
+  {
+    auto slots = io::CheckpointSlots::create(file, 16, 8);
+    for (int k = 1; k <= 3; ++k) slots.write({k, k + 1, 0, 0, 0, bytes_of(16, k), bytes_of(8, -k)});
+    // Frame 3 went to slot 0 (1 -> 0, 2 -> 1, 3 -> 0): tear its state bytes.
+    const hid_t state = H5Dopen2(file, "checkpoint/state", H5P_DEFAULT);
+    const hid_t space = H5Dget_space(state);
+    const hsize_t start[2] = {0, 5}, count[2] = {1, 1};
+    H5Sselect_hyperslab(space, H5S_SELECT_SET, start, nullptr, count, nullptr);
+    const hid_t mem = H5Screate_simple(2, count, nullptr);
+    const unsigned char torn = 0xEE;
+    REQUIRE(H5Dwrite(state, H5T_NATIVE_UCHAR, mem, space, H5P_DEFAULT, &torn) >= 0);
+    H5Sclose(mem);
+    H5Sclose(space);
+    H5Dclose(state);
+  }
+  auto reopened = io::CheckpointSlots::open(file);
+  REQUIRE(reopened);
+  const auto c = reopened->take_newest(100);
+  REQUIRE(c);
+  CHECK(c->frame == 2);
+  CHECK(c->frames_written == 3);
+  CHECK(c->positions == bytes_of(16, 2));
+  CHECK(c->velocities == bytes_of(8, -2));
+  CHECK_FALSE(reopened->take_newest(2));  // frame 2 needs 3 frames in the file
+  H5Fclose(file);
+}
+
+TEST_CASE("a stopped run resumes from its last checkpoint into the same file") {
+  test::TempDir dir;
+  const auto m = small_model();
+  const std::size_t n = m.particles.size();
+  const std::string path = dir.file("run.h5");
+  {
+    io::ResultWriter w(path, run_info(), m.objects);
+    for (int f = 0; f < 4; ++f) {
+      w.set_checkpoint(f, bytes_of(n * 16, f), bytes_of(n * 16, 100 + f));
+      w.append_frame(f * 0.1, frame_of(n, f), 1.0);
+    }
+    w.fail("interrupted");
+  }
+  io::Checkpoint c;
+  {
+    // Frames may change on resume; the rest of the resolved scene may not.
+    io::ResultWriter w(path, run_info("a: 1\nframes: 9\n"), m.objects, &c);
+    CHECK(c.frame == 3);
+    CHECK(c.frames_written == 4);
+    CHECK(c.positions == bytes_of(n * 16, 3));
+    CHECK(c.velocities == bytes_of(n * 16, 103));
+    CHECK(w.frames_written() == 4);
+    w.set_checkpoint(4, bytes_of(n * 16, 4), bytes_of(n * 16, 104));
+    w.append_frame(0.4, frame_of(n, 4), 1.0);
+    w.finish();
+  }
+  const auto s = io::read_summary(path);
+  CHECK(s.complete);
+  CHECK(s.frames == 5);
+  CHECK(s.time.size() == 5);
+  for (int f = 0; f < 5; ++f) CHECK(io::read_frame_positions(path, f) == frame_of(n, f));
+  std::ifstream x(dir.file("run.xdmf"));
+  std::stringstream text;
+  text << x.rdbuf();
+  CHECK(text.str().find("Name=\"frame4\"") != std::string::npos);
+  CHECK(text.str().find("Name=\"frame5\"") == std::string::npos);
+}
+
+TEST_CASE("resuming is refused for a complete run and for a different scene") {
+  test::TempDir dir;
+  const auto m = small_model();
+  const std::size_t n = m.particles.size();
+  const std::string path = dir.file("run.h5");
+  {
+    io::ResultWriter w(path, run_info(), m.objects);
+    w.set_checkpoint(0, bytes_of(16, 0), {});
+    w.append_frame(0.0, frame_of(n, 0), 0.0);
+    w.fail("interrupted");
+  }
+  io::Checkpoint c;
+  CHECK_THROWS_WITH(io::ResultWriter(path, run_info("a: 2\nframes: 3\n"), m.objects, &c),
+                    Catch::Contains("different scene"));
+  {
+    io::ResultWriter w(path, run_info(), m.objects, &c);
+    w.finish();
+  }
+  CHECK_THROWS_WITH(io::ResultWriter(path, run_info(), m.objects, &c), Catch::Contains("complete run"));
+  CHECK_THROWS_WITH(io::ResultWriter(dir.file("none.h5"), run_info(), m.objects, &c), Catch::Contains("no '"));
+}
