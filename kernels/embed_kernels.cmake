@@ -70,6 +70,13 @@ function(generate_tasks program source cl_var table_var count_var)
       string(REGEX MATCH "${ident}$" pname "${p}")
       string(REGEX REPLACE "${ident}$" "" ptype "${p}")
       strip("${ptype}" ptype)
+      # The dispatcher unpacks the parameters from its argument array `a`
+      # beside the element index `i`: a parameter of either name would
+      # shadow them and break the program build far from its cause.
+      if(pname STREQUAL "a" OR pname STREQUAL "i")
+        message(FATAL_ERROR "program ${program}: task function ${name} has a parameter named '${pname}', "
+                            "which the fused dispatcher uses itself; rename it")
+      endif()
       if(ptype MATCHES "\\*")
         string(APPEND kinds "b")
         if(ptype MATCHES "const")
