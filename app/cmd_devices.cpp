@@ -1,6 +1,6 @@
 // `atssim devices`: every OpenCL platform and device atssim can use.
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include "app/commands.hpp"
 #include "device/device_info.hpp"
@@ -15,18 +15,20 @@ Action add_devices_command(CLI::App& cli) {
   return [json]() {
     const auto devices = device::list_devices();
     if (devices.empty()) {
-      throw runtime_error("no OpenCL device found: install an OpenCL driver (on Debian: pocl-opencl-icd; "
-                          "scripts/setup.sh installs it)");
+      throw runtime_error(
+          "no OpenCL device found: install an OpenCL driver (on Debian: pocl-opencl-icd; "
+          "scripts/setup.sh installs it)");
     }
     if (*json) {
       fmt::print("[\n");
       for (std::size_t i = 0; i < devices.size(); ++i) {
         const auto& d = devices[i];
-        fmt::print("  {{\"index\": {}, \"name\": \"{}\", \"platform\": \"{}\", \"vendor\": \"{}\", \"type\": \"{}\", "
-                   "\"compute_units\": {}, \"version\": \"{}\", \"c_version\": \"{}\", \"svm\": \"{}\", "
-                   "\"max_sub_devices\": {}}}{}\n",
-                   d.index, d.name, d.platform, d.vendor, d.type, d.compute_units, d.version, d.c_version,
-                   svm_text(d.svm), d.max_sub_devices, i + 1 < devices.size() ? "," : "");
+        fmt::print(
+            "  {{\"index\": {}, \"name\": \"{}\", \"platform\": \"{}\", \"vendor\": \"{}\", \"type\": \"{}\", "
+            "\"compute_units\": {}, \"version\": \"{}\", \"c_version\": \"{}\", \"svm\": \"{}\", "
+            "\"max_sub_devices\": {}}}{}\n",
+            d.index, d.name, d.platform, d.vendor, d.type, d.compute_units, d.version, d.c_version, svm_text(d.svm),
+            d.max_sub_devices, i + 1 < devices.size() ? "," : "");
       }
       fmt::print("]\n");
       return 0;

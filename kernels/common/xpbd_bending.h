@@ -62,9 +62,10 @@ ATS_FN ats_bend_step ats_xpbd_dihedral(const ats_vec3 x[4], const float w[4], fl
 }
 
 /* The step of a stencil under its model (ats_bend_c.model). */
-ATS_FN ats_bend_step ats_xpbd_bend_element(const ats_vec3 x[4], const float w[4], const ats_bend_c* c,
-                                           ats_vec3 lambda, float dt) {
-  if (c->model == ATS_BEND_DIHEDRAL) return ats_xpbd_dihedral(x, w, c->rest_angle, c->scale, c->compliance, lambda.x, dt);
+ATS_FN ats_bend_step ats_xpbd_bend_element(const ats_vec3 x[4], const float w[4], const ats_bend_c* c, ats_vec3 lambda,
+                                           float dt) {
+  if (c->model == ATS_BEND_DIHEDRAL)
+    return ats_xpbd_dihedral(x, w, c->rest_angle, c->scale, c->compliance, lambda.x, dt);
   return ats_xpbd_bend(x, w, c->K, c->scale, c->compliance, lambda, dt);
 }
 

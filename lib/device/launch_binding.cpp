@@ -72,9 +72,10 @@ std::vector<std::vector<int>> bind_launches(const plan::SubstepPlan& plan) {
                                   launch.args[a].buffer == w.buffer && a < sig->access.size() && sig->access[a] == 'w');
         }
         if (!writable) {
-          throw runtime_error(fmt::format("internal error: task '{}' declares a write to buffer {}, which {} is not "
-                                          "passed as a writable argument",
-                                          task, w.buffer, sig->name));
+          throw runtime_error(
+              fmt::format("internal error: task '{}' declares a write to buffer {}, which {} is not "
+                          "passed as a writable argument",
+                          task, w.buffer, sig->name));
         }
       }
       if (launch.range.first < 0 || launch.range.count < 0) {

@@ -343,7 +343,8 @@ const plan::TransferPlan* PlanExecutor::transfer_plan() const {
 
 PlanExecutor::Link PlanExecutor::measure_link(std::size_t from, std::size_t to, int repetitions) {
   impl_->finish();
-  if (impl_->set.memory_of[from] == impl_->set.memory_of[to]) return {measure_latency_ms(from, to, 2 * repetitions), 0.0};
+  if (impl_->set.memory_of[from] == impl_->set.memory_of[to])
+    return {measure_latency_ms(from, to, 2 * repetitions), 0.0};
   const LinkMeasurement m = device::measure_link(impl_->resources, from, to, repetitions);
   return {m.latency_ms, m.ms_per_byte};
 }

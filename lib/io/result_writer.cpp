@@ -578,11 +578,29 @@ void ResultWriter::close_with(bool complete, const std::string& error) {
   write_frame_views(file_, views_, static_cast<std::size_t>(frames_));
   write_int_attribute(file_, "complete", complete ? 1 : 0);
   write_string_attribute(file_, "error", error);
-  for (H5Handle* h : {&positions_,     &time_,         &frame_ms_,      &schedule_ms_,   &sched_frame_,
-                      &sched_task_,    &sched_device_, &sched_pstart_,  &sched_pfinish_, &sched_mstart_,
-                      &sched_mfinish_, &wait_frame_,   &wait_producer_, &wait_consumer_, &wait_pdevice_,
-                      &wait_cdevice_,  &mk_frame_,     &mk_predicted_,  &mk_measured_,   &mk_bytes_,
-                      &contact_active_, &contact_min_distance_, &contact_max_penetration_}) {
+  for (H5Handle* h : {&positions_,
+                      &time_,
+                      &frame_ms_,
+                      &schedule_ms_,
+                      &sched_frame_,
+                      &sched_task_,
+                      &sched_device_,
+                      &sched_pstart_,
+                      &sched_pfinish_,
+                      &sched_mstart_,
+                      &sched_mfinish_,
+                      &wait_frame_,
+                      &wait_producer_,
+                      &wait_consumer_,
+                      &wait_pdevice_,
+                      &wait_cdevice_,
+                      &mk_frame_,
+                      &mk_predicted_,
+                      &mk_measured_,
+                      &mk_bytes_,
+                      &contact_active_,
+                      &contact_min_distance_,
+                      &contact_max_penetration_}) {
     h->reset();
   }
   h5_check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flushing the output file");

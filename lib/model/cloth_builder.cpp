@@ -134,8 +134,7 @@ void add_bending(Model& model, const scene::ObjectDesc& obj, const scene::Triang
     stencils.push_back(st);
   }
   const scene::BendModel choice = obj.material.bend_model;
-  const bool dihedral =
-      choice == scene::BendModel::dihedral || (choice == scene::BendModel::automatic && curved);
+  const bool dihedral = choice == scene::BendModel::dihedral || (choice == scene::BendModel::automatic && curved);
   const int offset = range.vertex_offset;
   for (const Stencil& st : stencils) {
     model.bend.stencils.push_back({st.v[0] + offset, st.v[1] + offset, st.v[2] + offset, st.v[3] + offset});

@@ -52,8 +52,8 @@ struct MaterialDesc {
   double bend_compliance = 0.0;  // cloth: 1/(N·m); used when has_bending
   bool has_bending = false;
   BendModel bend_model = BendModel::automatic;  // cloth
-  double youngs_modulus = 1.0e5;  // solids: Pa (> 0)
-  double poisson_ratio = 0.3;     // solids: 0 ≤ ν < 0.5
+  double youngs_modulus = 1.0e5;                // solids: Pa (> 0)
+  double poisson_ratio = 0.3;                   // solids: 0 ≤ ν < 0.5
   SolidModel solid_model = SolidModel::neo_hookean;
   std::string model_where;            // "file:line" (or the --set) that chose solid_model; empty = default
   std::string zero_compliance_where;  // "file:line" of a compliance of 0 (perfectly stiff); empty = none
