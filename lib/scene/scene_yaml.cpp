@@ -17,9 +17,12 @@ void flow_seq(YAML::Emitter& out, const Array& values) {
 
 const char* bend_model_name(BendModel model) {
   switch (model) {
-    case BendModel::isometric: return "isometric";
-    case BendModel::dihedral: return "dihedral";
-    case BendModel::automatic: break;
+    case BendModel::isometric:
+      return "isometric";
+    case BendModel::dihedral:
+      return "dihedral";
+    case BendModel::automatic:
+      break;
   }
   return "auto";
 }
@@ -135,7 +138,15 @@ std::string to_resolved_yaml(const SceneDesc& scene) {
   out << YAML::Key << "executor" << YAML::Value << solver.executor;
   out << YAML::Key << "wait_timeout" << YAML::Value << solver.wait_timeout_s;
   for (const MethodOptionDesc& o : solver.method_options) {
-    out << YAML::Key << o.key << YAML::Value << YAML::Load(o.value);
+    // The value as written; text that is no YAML of its own (a quoted
+    // string holding ": ") is kept as a string (found by fuzzing).
+    YAML::Node value;
+    try {
+      value = YAML::Load(o.value);
+    } catch (const YAML::Exception&) {
+      value = YAML::Node(o.value);
+    }
+    out << YAML::Key << o.key << YAML::Value << value;
   }
   out << YAML::EndMap;
   out << YAML::Key << "output" << YAML::Value << YAML::BeginMap << YAML::Key << "path" << YAML::Value
