@@ -9,8 +9,8 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
-#include "scene/input_file.hpp"
 #include "scene/collider_reader.hpp"
+#include "scene/input_file.hpp"
 #include "scene/object_reader.hpp"
 #include "scene/scene_yaml.hpp"
 #include "scene/yaml_keys.hpp"

@@ -275,8 +275,8 @@ TEST_CASE("a solid the method cannot simulate: one line naming the line that cho
   INFO(r.err);
   CHECK(r.code == 0);
   // springs solids: tet-edge springs, which every method simulates (issue #13)
-  r = run_atssim(dir, "run " + scene + " -o " + dir.file("out.h5") +
-                          " --set objects.0.material.model=springs --frames 1 --quiet");
+  r = run_atssim(
+      dir, "run " + scene + " -o " + dir.file("out.h5") + " --set objects.0.material.model=springs --frames 1 --quiet");
   INFO(r.err);
   CHECK(r.code == 0);
 }

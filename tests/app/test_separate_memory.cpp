@@ -44,9 +44,9 @@ std::string cloth_and_box(const std::string& method) {
 
 struct Outcome {
   std::vector<float> xyz;
-  std::size_t bytes = 0;            // counted by the executor over the measured substeps
-  std::size_t planned_bytes = 0;    // the transfer plan's bytes per substep
-  std::size_t written_bytes = 0;    // what the tasks write in a substep, each task counted alone
+  std::size_t bytes = 0;          // counted by the executor over the measured substeps
+  std::size_t planned_bytes = 0;  // the transfer plan's bytes per substep
+  std::size_t written_bytes = 0;  // what the tasks write in a substep, each task counted alone
   std::vector<sched::CopyTiming> copies;
 };
 
@@ -163,8 +163,7 @@ TEST_CASE("the fused executor is refused when devices share no memory, with a cl
   options.mode = app::ScheduleMode::split;
   options.executor = device::ExecutorKind::fused;
   options.profile_repetitions = 1;
-  CHECK_THROWS_WITH(app::prepare_execution(separate, app::substep_plan_for(scene), options),
-                    Catch::Contains("memor"));
+  CHECK_THROWS_WITH(app::prepare_execution(separate, app::substep_plan_for(scene), options), Catch::Contains("memor"));
   options.executor = device::ExecutorKind::automatic;
   app::Execution e = app::prepare_execution(separate, app::substep_plan_for(scene), options);
   CHECK(e.executor->kind() == device::ExecutorKind::events);
@@ -193,7 +192,8 @@ TEST_CASE("every launch of every method names what it writes, also cut into part
         const bool part = plan.graph.task(t).part >= 0;
         bool declared = false;
         for (const plan::WriteSpan& w : launch.writes) {
-          declared = declared || (w.buffer == launch.args[a].buffer && !(part && w.kind == plan::WriteSpan::Kind::whole));
+          declared =
+              declared || (w.buffer == launch.args[a].buffer && !(part && w.kind == plan::WriteSpan::Kind::whole));
         }
         INFO(plan.graph.task(t).name << " " << launch.function << " argument " << a);
         CHECK(declared);
@@ -204,7 +204,8 @@ TEST_CASE("every launch of every method names what it writes, also cut into part
   CHECK(checked > 0);
 }
 
-TEST_CASE("asynchronous Gauss-Seidel across memories: publish and merge become copies, and the replay agrees", "[memory]") {
+TEST_CASE("asynchronous Gauss-Seidel across memories: publish and merge become copies, and the replay agrees",
+          "[memory]") {
   // Every data flow of an async plan is an edge of its graph, so running
   // its schedule on device 0 alone (one memory, no copies) must give the
   // same bits as the two memories exchanging what the edges carry.

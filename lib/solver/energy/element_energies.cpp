@@ -13,8 +13,7 @@ namespace {
 ats_vec3 xyz(const Float4& p) { return ats_v3(p.x, p.y, p.z); }
 }  // namespace
 
-std::vector<float> element_energies(const SimLayout& layout, const std::vector<Float4>& predicted,
-                                    double h) {
+std::vector<float> element_energies(const SimLayout& layout, const std::vector<Float4>& predicted, double h) {
   const EnergyOutput where = energy_output(layout);
   std::vector<float> out(where.size, 0.0f);
   // As the kernel gets it: 1/h^2 rounded to float once.

@@ -31,8 +31,8 @@ struct BendTerm {
   std::array<int, 4> v{};
   std::array<double, 4> K{};
   double scale = 0.0;
-  double stiffness = 0.0;   // 1 / compliance
-  double rest_angle = 0.0;  // dihedral model: theta_0 (radians)
+  double stiffness = 0.0;          // 1 / compliance
+  double rest_angle = 0.0;         // dihedral model: theta_0 (radians)
   int model = ATS_BEND_ISOMETRIC;  // common/element_types.h
 };
 

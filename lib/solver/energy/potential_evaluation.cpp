@@ -168,8 +168,8 @@ std::vector<Eigen::Triplet<double>> hessian_triplets(const IncrementalPotential&
     bend_positions(t, x, q);
     for (int i = 0; i < 4; ++i) {
       for (int j = 0; j < 4; ++j) {
-        add_block(out, p, t.v[i], t.v[j], f64::ats_bend_element_hessian(t.model, q, t.K.data(), t.scale, t.stiffness, i, j),
-                  1.0);
+        add_block(out, p, t.v[i], t.v[j],
+                  f64::ats_bend_element_hessian(t.model, q, t.K.data(), t.scale, t.stiffness, i, j), 1.0);
       }
     }
   }

@@ -84,14 +84,14 @@ plan::SubstepPlan make_xpbd_plan(const SimLayout& layout, const XpbdSettings& se
   const float dt = static_cast<float>(inertia_dt(layout, settings.substep_dt));
   const plan::BufferId colliders = layout.colliders.empty() ? -1 : add_collider_buffer(plan, layout);
   const int n = plan.particle_count;
-  sched::TaskId last = plan.add_task(
-      plan::make_task("predict", plan::TaskKind::predict),
-      {{"xpbd_predict",
-        {0, n},
-        {Arg::of_buffer(b.x), Arg::of_buffer(b.v), Arg::of_buffer(b.x_prev), Arg::of_float(h),
-         Arg::of_float(layout.gravity.x), Arg::of_float(layout.gravity.y), Arg::of_float(layout.gravity.z),
-         Arg::of_float(velocity_damping(layout, settings.substep_dt))},
-        {particle_write(b.x), particle_write(b.v), particle_write(b.x_prev)}}});
+  sched::TaskId last =
+      plan.add_task(plan::make_task("predict", plan::TaskKind::predict),
+                    {{"xpbd_predict",
+                      {0, n},
+                      {Arg::of_buffer(b.x), Arg::of_buffer(b.v), Arg::of_buffer(b.x_prev), Arg::of_float(h),
+                       Arg::of_float(layout.gravity.x), Arg::of_float(layout.gravity.y),
+                       Arg::of_float(layout.gravity.z), Arg::of_float(velocity_damping(layout, settings.substep_dt))},
+                      {particle_write(b.x), particle_write(b.v), particle_write(b.x_prev)}}});
   const auto stretch_particles = particles_of(layout.stretch);
   const auto bend_particles = particles_of(layout.bend);
   const auto tet_particles = particles_of(layout.tets);
