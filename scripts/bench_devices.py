@@ -43,6 +43,26 @@ DEVICE_VARIANTS = [  # label, devices, schedule
 ]
 
 
+def bench_arguments(sizes: str) -> argparse.ArgumentParser:
+    """The options every device benchmark takes (the caller's docstring describes it)."""
+    ap = argparse.ArgumentParser(description=sys.modules["__main__"].__doc__.splitlines()[0])
+    ap.add_argument("--methods", default="xpbd,vbd")
+    ap.add_argument("--sizes", default=sizes)
+    ap.add_argument("--rounds", type=int, default=2, help="runs per variant; the fastest median counts")
+    ap.add_argument("--frames", type=int, default=10, help="timed frames at 64x64 (fewer for bigger cloths)")
+    return ap
+
+
+def binaries_ready() -> bool:
+    """Whether atssim and the native reference are built; sets the pocl kernel cache."""
+    for path in (BIN, NATIVE):
+        if not os.path.exists(path):
+            print(f"{path} is missing: build first (scripts/test.sh)", file=sys.stderr)
+            return False
+    os.environ.setdefault("POCL_CACHE_DIR", os.path.expanduser("~/.cache/atssim/pocl"))
+    return True
+
+
 def frames_for(size: int, frames: int) -> int:
     """Fewer frames for the big cloths (each frame of 256x256 VBD takes seconds)."""
     return max(3, frames * 64 // size) if size > 64 else frames
@@ -75,18 +95,11 @@ def run_atssim(method: str, size: int, executor: str, devices: str, schedule: st
 
 
 def main() -> int:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = bench_arguments("64,128,256")
     ap.add_argument("--executor", default="events,fused", help="comma separated: events, fused")
-    ap.add_argument("--methods", default="xpbd,vbd")
-    ap.add_argument("--sizes", default="64,128,256")
-    ap.add_argument("--rounds", type=int, default=2, help="runs per variant; the fastest median counts")
-    ap.add_argument("--frames", type=int, default=10, help="timed frames at 64x64 (fewer for bigger cloths)")
     args = ap.parse_args()
-    for path in (BIN, NATIVE):
-        if not os.path.exists(path):
-            print(f"{path} is missing: build first (scripts/test.sh)", file=sys.stderr)
-            return 2
-    os.environ.setdefault("POCL_CACHE_DIR", os.path.expanduser("~/.cache/atssim/pocl"))
+    if not binaries_ready():
+        return 2
     executors = args.executor.split(",")
     methods = args.methods.split(",")
     sizes = [int(s) for s in args.sizes.split(",")]

@@ -17,12 +17,11 @@ by round; the fastest round counts.
 usage: scripts/bench_memory.py [--methods xpbd,vbd] [--sizes 64,256] [--rounds 2] [--frames 10]
 Build first (scripts/test.sh or scripts/quickstart.sh).
 """
-import argparse
 import os
 import sys
 import tempfile
 
-from bench_devices import BIN, NATIVE, frames_for, run_atssim_frames, run_native
+from bench_devices import bench_arguments, binaries_ready, frames_for, run_atssim_frames, run_native
 
 VARIANTS = [  # label, devices, schedule, executor, memory
     ("events 1 sub-device", "cpu/2:0", "single", "events", "shared"),
@@ -39,17 +38,9 @@ def mib(b: float) -> str:
 
 
 def main() -> int:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--methods", default="xpbd,vbd")
-    ap.add_argument("--sizes", default="64,256")
-    ap.add_argument("--rounds", type=int, default=2, help="runs per variant; the fastest median counts")
-    ap.add_argument("--frames", type=int, default=10, help="timed frames at 64x64 (fewer for bigger cloths)")
-    args = ap.parse_args()
-    for path in (BIN, NATIVE):
-        if not os.path.exists(path):
-            print(f"{path} is missing: build first (scripts/test.sh)", file=sys.stderr)
-            return 2
-    os.environ.setdefault("POCL_CACHE_DIR", os.path.expanduser("~/.cache/atssim/pocl"))
+    args = bench_arguments("64,256").parse_args()
+    if not binaries_ready():
+        return 2
     methods = args.methods.split(",")
     sizes = [int(s) for s in args.sizes.split(",")]
     results = {}

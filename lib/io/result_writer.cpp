@@ -1,162 +1,21 @@
 #include "io/result_writer.hpp"
 
-#include <sys/stat.h>
-#include <sys/statvfs.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <chrono>
 #include <filesystem>
-#include <sstream>
 #include <stdexcept>
 
-#include <fmt/chrono.h>
 #include <fmt/format.h>
 
 #include "io/h5_errors.hpp"
+#include "io/h5_series.hpp"
+#include "io/output_health.hpp"
+#include "io/run_header.hpp"
 #include "io/xdmf_writer.hpp"
 #include "util/error.hpp"
-
-#ifndef ATSSIM_VERSION
-#define ATSSIM_VERSION "0.0.0"
-#endif
 
 namespace atssim::io {
 
 namespace {
-
-// An extendible 1-D (cols = 0) or [F, rows, cols] dataset, chunked by frame.
-H5Handle create_series(hid_t parent, const std::string& name, std::size_t rows, std::size_t cols, hid_t file_type) {
-  const int rank = cols == 0 ? 1 : 3;
-  hsize_t dims[3] = {0, rows, cols};
-  hsize_t max[3] = {H5S_UNLIMITED, rows, cols};
-  hsize_t chunk[3] = {hsize_t(cols == 0 ? 256 : 1), rows, cols};
-  H5Handle space = h5_check(H5Screate_simple(rank, dims, max), H5Sclose, "series space");
-  H5Handle props = h5_check(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "dataset properties");
-  h5_check(H5Pset_chunk(props, rank, chunk), "chunking " + name);
-  return h5_check(H5Dcreate2(parent, name.c_str(), file_type, space, H5P_DEFAULT, props, H5P_DEFAULT), H5Dclose,
-                  "creating " + name);
-}
-
-std::string now_iso8601() {
-  const auto now = std::chrono::system_clock::now();
-  return fmt::format("{:%Y-%m-%dT%H:%M:%SZ}", fmt::gmtime(std::chrono::system_clock::to_time_t(now)));
-}
-
-void write_devices(hid_t file, const std::vector<DeviceRecord>& devices) {
-  H5Handle g = create_group(file, "devices");
-  std::vector<std::string> name, vendor, type, platform, version, svm;
-  std::vector<int> units, index, sub;
-  for (const auto& d : devices) {
-    name.push_back(d.name);
-    vendor.push_back(d.vendor);
-    type.push_back(d.type);
-    platform.push_back(d.platform);
-    version.push_back(d.version);
-    svm.push_back(d.svm);
-    units.push_back(d.compute_units);
-    index.push_back(d.index);
-    sub.push_back(d.sub_device);
-  }
-  write_string_array(g, "name", name);
-  write_string_array(g, "vendor", vendor);
-  write_string_array(g, "type", type);
-  write_string_array(g, "platform", platform);
-  write_string_array(g, "version", version);
-  write_string_array(g, "svm", svm);
-  write_int_array(g, "compute_units", units, 0);
-  write_int_array(g, "index", index, 0);
-  write_int_array(g, "sub_device", sub, 0);
-}
-
-void write_schedule_info(hid_t file, const ScheduleInfo& info, std::size_t devices) {
-  H5Handle g = create_group(file, "schedule");
-  write_string_attribute(g, "mode", info.mode);
-  write_string_attribute(g, "executor", info.executor);
-  write_string_attribute(g, "memory", info.memory);
-  H5Handle tasks = create_group(g, "tasks");
-  std::vector<std::string> name, kind;
-  std::vector<int> iteration, block, part;
-  for (const TaskRecord& t : info.tasks) {
-    name.push_back(t.name);
-    kind.push_back(t.kind);
-    iteration.push_back(t.iteration);
-    block.push_back(t.block);
-    part.push_back(t.part);
-  }
-  write_string_array(tasks, "name", name);
-  write_string_array(tasks, "kind", kind);
-  write_int_array(tasks, "iteration", iteration, 0);
-  write_int_array(tasks, "block", block, 0);
-  write_int_array(tasks, "part", part, 0);
-  std::vector<int> from, to;
-  for (const auto& [a, b] : info.edges) {
-    from.push_back(a);
-    to.push_back(b);
-  }
-  write_int_array(tasks, "edge_from", from, 0);
-  write_int_array(tasks, "edge_to", to, 0);
-  H5Handle dev = h5_check(H5Gopen2(file, "devices", H5P_DEFAULT), H5Gclose, "/devices");
-  if (info.costs.tasks > 0) write_double_array(dev, "costs_ms", info.costs.ms, info.costs.devices);
-  if (!info.latency_ms.empty()) write_double_array(dev, "latency_ms", info.latency_ms, devices);
-  if (!info.ms_per_byte.empty()) write_double_array(dev, "ms_per_byte", info.ms_per_byte, devices);
-  if (!info.split_fractions.empty()) write_double_array(dev, "split_fractions", info.split_fractions, 0);
-}
-
-void write_mesh(hid_t file, std::span<const model::ObjectRange> objects) {
-  H5Handle mesh = create_group(file, "mesh");
-  for (const auto& obj : objects) {
-    H5Handle g = create_group(mesh, obj.name);
-    std::vector<float> rest;
-    for (const auto& p : obj.rest_position) rest.insert(rest.end(), {float(p.x()), float(p.y()), float(p.z())});
-    std::vector<int> tris;
-    for (const auto& t : obj.triangles) tris.insert(tris.end(), t.begin(), t.end());
-    write_float_array(g, "rest_positions", rest, 3);
-    write_int_array(g, "triangles", tris, 3);
-    write_int_array(g, "pinned", obj.pinned, 0);
-    std::vector<int> tets;
-    for (const auto& t : obj.tetrahedra) tets.insert(tets.end(), t.begin(), t.end());
-    write_int_array(g, "tetrahedra", tets, 4);  // [k, 4]; empty for cloth
-    write_int_attribute(g, "vertex_offset", obj.vertex_offset);
-    write_int_attribute(g, "vertex_count", obj.vertex_count);
-  }
-}
-
-}  // namespace
-
-std::string partial_path(const std::string& path) {
-  std::filesystem::path p(path);
-  // Without an extension the sidecars would collide ("out" and "out.partial" -> "out.xdmf").
-  const std::string ext = p.has_extension() ? p.extension().string() : std::string(".h5");
-  return p.replace_extension().string() + ".partial" + ext;
-}
-
-namespace {
-
-void check_output_folder(const std::string& path) {
-  if (path.empty()) throw input_error("the output path is empty: pass -o FILE.h5 or set output.path");
-  const std::filesystem::path p(path);
-  std::error_code ec;
-  if (std::filesystem::is_directory(p, ec)) {
-    throw input_error(fmt::format("output '{}' is a folder: pass -o with a file name, e.g. -o {}/run.h5", path, path));
-  }
-  const std::filesystem::path folder = p.has_parent_path() ? p.parent_path() : std::filesystem::path(".");
-  if (!std::filesystem::is_directory(folder, ec)) {
-    throw input_error(
-        fmt::format("cannot create output file '{}': its folder '{}' does not exist (make it, or pass "
-                    "-o elsewhere)",
-                    path, folder.string()));
-  }
-  if (::access(folder.c_str(), W_OK) != 0) {
-    throw input_error(
-        fmt::format("cannot create output file '{}': its folder '{}' is not writable (pass -o "
-                    "elsewhere)",
-                    path, folder.string()));
-  }
-  if (std::filesystem::exists(p, ec) && !std::filesystem::is_regular_file(p, ec)) {
-    throw input_error(fmt::format("output '{}' exists and is not a regular file: pass -o elsewhere", path));
-  }
-}
 
 // Without HDF5's file locking: a reader (a notebook watching the run, or
 // `atssim inspect`) may open the file while it is written; OutputLock keeps
@@ -167,52 +26,50 @@ H5Handle file_access() {
   return fapl;
 }
 
-// /scene/resolved without the keys a resumed run may change (frames, output path).
-std::string resumable_part(const std::string& resolved) {
-  std::string out, line;
-  std::istringstream in(resolved);
-  while (std::getline(in, line)) {
-    const auto key = line.find_first_not_of(' ');
-    if (key != std::string::npos && (line.compare(key, 7, "frames:") == 0 || line.compare(key, 5, "path:") == 0))
-      continue;
-    out += line + "\n";
+// The file type of a series (a function: HDF5's type ids exist only once
+// the library is open, after main() has started).
+hid_t file_type(SeriesKind kind) {
+  switch (kind) {
+    case SeriesKind::f64:
+      return H5T_IEEE_F64LE;
+    case SeriesKind::f32:
+      return H5T_IEEE_F32LE;
+    case SeriesKind::i32:
+      return H5T_STD_I32LE;
+    case SeriesKind::u64:
+      return H5T_STD_U64LE;
   }
-  return out;
-}
-
-std::string read_string_dataset(hid_t file, const char* name) {
-  H5Handle set = h5_check(H5Dopen2(file, name, H5P_DEFAULT), H5Dclose, name);
-  H5Handle type = h5_check(H5Dget_type(set), H5Tclose, name);
-  std::string value(H5Tget_size(type), '\0');
-  h5_check(H5Dread(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, value.data()), name);
-  return value.substr(0, value.find('\0'));
-}
-
-long long read_int_attribute(hid_t object, const char* name) {
-  if (H5Aexists(object, name) <= 0) return 0;
-  H5Handle attr = h5_check(H5Aopen(object, name, H5P_DEFAULT), H5Aclose, name);
-  long long v = 0;
-  h5_check(H5Aread(attr, H5T_NATIVE_LLONG, &v), name);
-  return v;
-}
-
-hsize_t rows_of(hid_t set) {
-  H5Handle space = h5_check(H5Dget_space(set), H5Sclose, "series space");
-  hsize_t dims[3] = {0, 0, 0};
-  H5Sget_simple_extent_dims(space, dims, nullptr);
-  return dims[0];
-}
-
-void truncate_rows(hid_t set, hsize_t rows) {
-  H5Handle space = h5_check(H5Dget_space(set), H5Sclose, "series space");
-  hsize_t dims[3] = {0, 0, 0};
-  const int rank = H5Sget_simple_extent_dims(space, dims, nullptr);
-  if (rank < 1 || dims[0] == rows) return;
-  dims[0] = rows;
-  h5_check(H5Dset_extent(set, dims), "truncating a series");
+  return H5T_IEEE_F64LE;
 }
 
 }  // namespace
+
+// Every per-frame series: its path, shape and file type.
+const ResultWriter::SeriesSpec ResultWriter::kSeries[] = {
+    {"frames/time", false, 0, SeriesKind::f64, &ResultWriter::time_},
+    {"frames/positions", true, 3, SeriesKind::f32, &ResultWriter::positions_},
+    {"timing/frame_ms", false, 0, SeriesKind::f64, &ResultWriter::frame_ms_},
+    {"timing/schedule_ms", false, 0, SeriesKind::f64, &ResultWriter::schedule_ms_},
+    {"schedule/frame", false, 0, SeriesKind::i32, &ResultWriter::sched_frame_},
+    {"schedule/task", false, 0, SeriesKind::i32, &ResultWriter::sched_task_},
+    {"schedule/device", false, 0, SeriesKind::i32, &ResultWriter::sched_device_},
+    {"schedule/predicted_start_ms", false, 0, SeriesKind::f64, &ResultWriter::sched_pstart_},
+    {"schedule/predicted_finish_ms", false, 0, SeriesKind::f64, &ResultWriter::sched_pfinish_},
+    {"schedule/measured_start_ms", false, 0, SeriesKind::f64, &ResultWriter::sched_mstart_},
+    {"schedule/measured_finish_ms", false, 0, SeriesKind::f64, &ResultWriter::sched_mfinish_},
+    {"schedule/waits/frame", false, 0, SeriesKind::i32, &ResultWriter::wait_frame_},
+    {"schedule/waits/producer", false, 0, SeriesKind::i32, &ResultWriter::wait_producer_},
+    {"schedule/waits/consumer", false, 0, SeriesKind::i32, &ResultWriter::wait_consumer_},
+    {"schedule/waits/producer_device", false, 0, SeriesKind::i32, &ResultWriter::wait_pdevice_},
+    {"schedule/waits/consumer_device", false, 0, SeriesKind::i32, &ResultWriter::wait_cdevice_},
+    {"schedule/makespan/frame", false, 0, SeriesKind::i32, &ResultWriter::mk_frame_},
+    {"schedule/makespan/predicted_ms", false, 0, SeriesKind::f64, &ResultWriter::mk_predicted_},
+    {"schedule/makespan/measured_ms", false, 0, SeriesKind::f64, &ResultWriter::mk_measured_},
+    {"schedule/makespan/bytes_moved", false, 0, SeriesKind::u64, &ResultWriter::mk_bytes_},
+    {"contact/active", false, 0, SeriesKind::i32, &ResultWriter::contact_active_},
+    {"contact/min_distance", false, 0, SeriesKind::f64, &ResultWriter::contact_min_distance_},
+    {"contact/max_penetration", false, 0, SeriesKind::f64, &ResultWriter::contact_max_penetration_},
+};
 
 ResultWriter::ResultWriter(const std::string& path, const RunInfo& info, std::span<const model::ObjectRange> objects,
                            Checkpoint* resume)
@@ -227,11 +84,7 @@ ResultWriter::ResultWriter(const std::string& path, const RunInfo& info, std::sp
   } else {
     create(info, objects);
   }
-  struct stat st {};
-  if (::stat(writing_.c_str(), &st) == 0) {
-    device_ = st.st_dev;
-    inode_ = st.st_ino;
-  }
+  opened_ = identify_output(writing_);
   xdmf_ = XdmfStream(xdmf_path(), std::filesystem::path(writing_).filename().string(), views_, object_names_, times_);
 }
 
@@ -247,28 +100,7 @@ void ResultWriter::create(const RunInfo& info, std::span<const model::ObjectRang
         fmt::format("cannot create output file '{}': {} (pass -o elsewhere)", writing_, hdf5_failure()));
   }
   file_ = H5Handle(id, H5Fclose);
-  write_string_attribute(file_, "format", "atssim");
-  write_int_attribute(file_, "format_version", kFormatVersion);
-  write_string_attribute(file_, "atssim_version", ATSSIM_VERSION);
-  write_string_attribute(file_, "command_line", info.command_line);
-  write_string_attribute(file_, "created", now_iso8601());
-  write_int_attribute(file_, "complete", 0);
-  write_string_attribute(file_, "error", "");
-
-  H5Handle scene = create_group(file_, "scene");
-  write_string_dataset(scene, "yaml", info.scene_yaml);
-  write_string_dataset(scene, "resolved", info.resolved_yaml);
-  write_devices(file_, info.devices);
-  write_schedule_info(file_, info.schedule, info.devices.size());
-  write_mesh(file_, objects);
-  create_group(file_, "frames");
-  create_group(file_, "timing");
-  {
-    H5Handle sched = h5_check(H5Gopen2(file_, "schedule", H5P_DEFAULT), H5Gclose, "/schedule");
-    create_group(sched, "waits");
-    create_group(sched, "makespan");
-  }
-  create_group(file_, "contact");
+  write_run_header(file_, info, objects);
   open_series(true);
   views_ = write_xdmf_cells(file_, objects, particles_);
   h5_check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flushing the output file");
@@ -341,40 +173,9 @@ void ResultWriter::reopen(const RunInfo& info, Checkpoint& resume) {
 
 // The series, created (a new file) or opened (a resumed one).
 void ResultWriter::open_series(bool create_them) {
-  struct Series {
-    const char* path;
-    std::size_t rows, cols;
-    hid_t type;
-    H5Handle ResultWriter::*member;
-  };
-  const Series series[] = {
-      {"frames/time", 0, 0, H5T_IEEE_F64LE, &ResultWriter::time_},
-      {"frames/positions", particles_, 3, H5T_IEEE_F32LE, &ResultWriter::positions_},
-      {"timing/frame_ms", 0, 0, H5T_IEEE_F64LE, &ResultWriter::frame_ms_},
-      {"timing/schedule_ms", 0, 0, H5T_IEEE_F64LE, &ResultWriter::schedule_ms_},
-      {"schedule/frame", 0, 0, H5T_STD_I32LE, &ResultWriter::sched_frame_},
-      {"schedule/task", 0, 0, H5T_STD_I32LE, &ResultWriter::sched_task_},
-      {"schedule/device", 0, 0, H5T_STD_I32LE, &ResultWriter::sched_device_},
-      {"schedule/predicted_start_ms", 0, 0, H5T_IEEE_F64LE, &ResultWriter::sched_pstart_},
-      {"schedule/predicted_finish_ms", 0, 0, H5T_IEEE_F64LE, &ResultWriter::sched_pfinish_},
-      {"schedule/measured_start_ms", 0, 0, H5T_IEEE_F64LE, &ResultWriter::sched_mstart_},
-      {"schedule/measured_finish_ms", 0, 0, H5T_IEEE_F64LE, &ResultWriter::sched_mfinish_},
-      {"schedule/waits/frame", 0, 0, H5T_STD_I32LE, &ResultWriter::wait_frame_},
-      {"schedule/waits/producer", 0, 0, H5T_STD_I32LE, &ResultWriter::wait_producer_},
-      {"schedule/waits/consumer", 0, 0, H5T_STD_I32LE, &ResultWriter::wait_consumer_},
-      {"schedule/waits/producer_device", 0, 0, H5T_STD_I32LE, &ResultWriter::wait_pdevice_},
-      {"schedule/waits/consumer_device", 0, 0, H5T_STD_I32LE, &ResultWriter::wait_cdevice_},
-      {"schedule/makespan/frame", 0, 0, H5T_STD_I32LE, &ResultWriter::mk_frame_},
-      {"schedule/makespan/predicted_ms", 0, 0, H5T_IEEE_F64LE, &ResultWriter::mk_predicted_},
-      {"schedule/makespan/measured_ms", 0, 0, H5T_IEEE_F64LE, &ResultWriter::mk_measured_},
-      {"schedule/makespan/bytes_moved", 0, 0, H5T_STD_U64LE, &ResultWriter::mk_bytes_},
-      {"contact/active", 0, 0, H5T_STD_I32LE, &ResultWriter::contact_active_},
-      {"contact/min_distance", 0, 0, H5T_IEEE_F64LE, &ResultWriter::contact_min_distance_},
-      {"contact/max_penetration", 0, 0, H5T_IEEE_F64LE, &ResultWriter::contact_max_penetration_},
-  };
-  for (const Series& s : series) {
+  for (const SeriesSpec& s : kSeries) {
     if (create_them) {
-      this->*s.member = create_series(file_, s.path, s.rows, s.cols, s.type);
+      this->*s.member = create_series(file_, s.path, s.per_particle ? particles_ : 0, s.cols, file_type(s.kind));
     } else {
       this->*s.member = h5_check(H5Dopen2(file_, s.path, H5P_DEFAULT), H5Dclose, fmt::format("opening /{}", s.path));
     }
@@ -402,19 +203,7 @@ ResultWriter::~ResultWriter() {
 
 void ResultWriter::append_scalar(hid_t set, double value) {
   const double one[1] = {value};
-  append_rows<double>(set, one, H5T_NATIVE_DOUBLE, static_cast<hsize_t>(frames_));
-}
-
-template <typename T>
-void ResultWriter::append_rows(hid_t set, std::span<const T> values, hid_t mem_type, hsize_t rows) {
-  if (values.empty()) return;
-  const hsize_t size[1] = {rows + values.size()};
-  h5_check(H5Dset_extent(set, size), "extending a series");
-  H5Handle space = h5_check(H5Dget_space(set), H5Sclose, "series space");
-  const hsize_t start[1] = {rows}, count[1] = {values.size()};
-  h5_check(H5Sselect_hyperslab(space, H5S_SELECT_SET, start, nullptr, count, nullptr), "selecting rows");
-  H5Handle mem = h5_check(H5Screate_simple(1, count, nullptr), H5Sclose, "memory space");
-  h5_check(H5Dwrite(set, mem_type, mem, space, H5P_DEFAULT, values.data()), "writing rows of a series");
+  append_series_rows<double>(set, one, H5T_NATIVE_DOUBLE, static_cast<hsize_t>(frames_));
 }
 
 void ResultWriter::append_schedule(int frame, std::span<const ScheduledTask> tasks, std::span<const sched::Wait> waits,
@@ -430,13 +219,13 @@ void ResultWriter::append_schedule(int frame, std::span<const ScheduledTask> tas
     mf.push_back(t.measured_finish_ms);
   }
   hsize_t rows = sched_rows_;
-  append_rows<int>(sched_frame_, f, H5T_NATIVE_INT, rows);
-  append_rows<int>(sched_task_, task, H5T_NATIVE_INT, rows);
-  append_rows<int>(sched_device_, device, H5T_NATIVE_INT, rows);
-  append_rows<double>(sched_pstart_, ps, H5T_NATIVE_DOUBLE, rows);
-  append_rows<double>(sched_pfinish_, pf, H5T_NATIVE_DOUBLE, rows);
-  append_rows<double>(sched_mstart_, ms, H5T_NATIVE_DOUBLE, rows);
-  append_rows<double>(sched_mfinish_, mf, H5T_NATIVE_DOUBLE, rows);
+  append_series_rows<int>(sched_frame_, f, H5T_NATIVE_INT, rows);
+  append_series_rows<int>(sched_task_, task, H5T_NATIVE_INT, rows);
+  append_series_rows<int>(sched_device_, device, H5T_NATIVE_INT, rows);
+  append_series_rows<double>(sched_pstart_, ps, H5T_NATIVE_DOUBLE, rows);
+  append_series_rows<double>(sched_pfinish_, pf, H5T_NATIVE_DOUBLE, rows);
+  append_series_rows<double>(sched_mstart_, ms, H5T_NATIVE_DOUBLE, rows);
+  append_series_rows<double>(sched_mfinish_, mf, H5T_NATIVE_DOUBLE, rows);
   sched_rows_ += tasks.size();
 
   std::vector<int> wf(waits.size(), frame), producer, consumer, pdev, cdev;
@@ -447,21 +236,21 @@ void ResultWriter::append_schedule(int frame, std::span<const ScheduledTask> tas
     cdev.push_back(static_cast<int>(w.consumer_device));
   }
   rows = wait_rows_;
-  append_rows<int>(wait_frame_, wf, H5T_NATIVE_INT, rows);
-  append_rows<int>(wait_producer_, producer, H5T_NATIVE_INT, rows);
-  append_rows<int>(wait_consumer_, consumer, H5T_NATIVE_INT, rows);
-  append_rows<int>(wait_pdevice_, pdev, H5T_NATIVE_INT, rows);
-  append_rows<int>(wait_cdevice_, cdev, H5T_NATIVE_INT, rows);
+  append_series_rows<int>(wait_frame_, wf, H5T_NATIVE_INT, rows);
+  append_series_rows<int>(wait_producer_, producer, H5T_NATIVE_INT, rows);
+  append_series_rows<int>(wait_consumer_, consumer, H5T_NATIVE_INT, rows);
+  append_series_rows<int>(wait_pdevice_, pdev, H5T_NATIVE_INT, rows);
+  append_series_rows<int>(wait_cdevice_, cdev, H5T_NATIVE_INT, rows);
   wait_rows_ += waits.size();
 
   rows = makespan_rows_;
   const int fr[1] = {frame};
   const double p[1] = {predicted_makespan_ms}, m[1] = {measured_makespan_ms};
-  append_rows<int>(mk_frame_, fr, H5T_NATIVE_INT, rows);
-  append_rows<double>(mk_predicted_, p, H5T_NATIVE_DOUBLE, rows);
-  append_rows<double>(mk_measured_, m, H5T_NATIVE_DOUBLE, rows);
+  append_series_rows<int>(mk_frame_, fr, H5T_NATIVE_INT, rows);
+  append_series_rows<double>(mk_predicted_, p, H5T_NATIVE_DOUBLE, rows);
+  append_series_rows<double>(mk_measured_, m, H5T_NATIVE_DOUBLE, rows);
   const std::uint64_t b[1] = {bytes_moved};
-  append_rows<std::uint64_t>(mk_bytes_, b, H5T_NATIVE_UINT64, rows);
+  append_series_rows<std::uint64_t>(mk_bytes_, b, H5T_NATIVE_UINT64, rows);
   makespan_rows_ += 1;
 }
 
@@ -474,29 +263,6 @@ void ResultWriter::set_checkpoint(long long frame, std::span<const std::byte> po
   pending_ = std::move(c);
 }
 
-void ResultWriter::check_output_health(std::size_t frame_bytes) const {
-  struct stat st {};
-  if (::stat(writing_.c_str(), &st) != 0 || st.st_dev != device_ || st.st_ino != inode_) {
-    throw runtime_error(
-        fmt::format("the output file '{}' (or its folder) was removed or replaced during the run", writing_));
-  }
-  // Stop before the disk is full rather than in the middle of a flush: a
-  // write that fails half-way can leave the metadata of the last good flush
-  // pointing at space that was never written.
-  struct statvfs fs {};
-  const std::string folder = std::filesystem::path(writing_).has_parent_path()
-                                 ? std::filesystem::path(writing_).parent_path().string()
-                                 : std::string(".");
-  if (::statvfs(folder.c_str(), &fs) == 0) {
-    const unsigned long long free_bytes = static_cast<unsigned long long>(fs.f_bavail) * fs.f_frsize;
-    const unsigned long long needed = 2ull * frame_bytes + (1ull << 20);
-    if (free_bytes < needed) {
-      throw runtime_error(fmt::format("the disk of '{}' is full ({} KiB free, a frame needs ~{} KiB with margin)",
-                                      writing_, free_bytes / 1024, needed / 1024));
-    }
-  }
-}
-
 void ResultWriter::append_frame(double time, std::span<const float> xyz, double frame_ms, double schedule_ms,
                                 const ContactFrame& contact) {
   if (xyz.size() != particles_ * 3) {
@@ -504,7 +270,7 @@ void ResultWriter::append_frame(double time, std::span<const float> xyz, double 
   }
   if (broken_) throw runtime_error(fmt::format("output '{}': an earlier write failed", writing_));
   const std::size_t state_bytes = pending_ ? pending_->positions.size() + pending_->velocities.size() : 0;
-  check_output_health(xyz.size() * sizeof(float) + state_bytes);
+  check_output_health(writing_, opened_, xyz.size() * sizeof(float) + state_bytes);
   try {
     const hsize_t size[3] = {static_cast<hsize_t>(frames_ + 1), particles_, 3};
     h5_check(H5Dset_extent(positions_, size), "extending /frames/positions");
@@ -517,7 +283,7 @@ void ResultWriter::append_frame(double time, std::span<const float> xyz, double 
     append_scalar(frame_ms_, frame_ms);
     append_scalar(schedule_ms_, schedule_ms);
     const std::int32_t active[1] = {contact.active};
-    append_rows<std::int32_t>(contact_active_, active, H5T_NATIVE_INT32, static_cast<hsize_t>(frames_));
+    append_series_rows<std::int32_t>(contact_active_, active, H5T_NATIVE_INT32, static_cast<hsize_t>(frames_));
     append_scalar(contact_min_distance_, contact.min_distance);
     append_scalar(contact_max_penetration_, contact.max_penetration);
     if (pending_) {
@@ -559,13 +325,8 @@ void ResultWriter::fail(const std::string& error) {
 // (main() calls H5dont_atexit(), so nothing is flushed at exit either.)
 void ResultWriter::abandon() {
   closed_ = true;
-  for (H5Handle* h :
-       {&positions_,     &time_,          &frame_ms_,      &schedule_ms_,  &sched_frame_,   &sched_task_,
-        &sched_device_,  &sched_pstart_,  &sched_pfinish_, &sched_mstart_, &sched_mfinish_, &wait_frame_,
-        &wait_producer_, &wait_consumer_, &wait_pdevice_,  &wait_cdevice_, &mk_frame_,      &mk_predicted_,
-        &mk_measured_,   &mk_bytes_,      &file_}) {
-    (void)h->release();
-  }
+  for (const SeriesSpec& s : kSeries) (void)(this->*s.member).release();
+  (void)file_.release();
   checkpoint_ = CheckpointSlots();
   xdmf_.close();
 }
@@ -578,31 +339,7 @@ void ResultWriter::close_with(bool complete, const std::string& error) {
   write_frame_views(file_, views_, static_cast<std::size_t>(frames_));
   write_int_attribute(file_, "complete", complete ? 1 : 0);
   write_string_attribute(file_, "error", error);
-  for (H5Handle* h : {&positions_,
-                      &time_,
-                      &frame_ms_,
-                      &schedule_ms_,
-                      &sched_frame_,
-                      &sched_task_,
-                      &sched_device_,
-                      &sched_pstart_,
-                      &sched_pfinish_,
-                      &sched_mstart_,
-                      &sched_mfinish_,
-                      &wait_frame_,
-                      &wait_producer_,
-                      &wait_consumer_,
-                      &wait_pdevice_,
-                      &wait_cdevice_,
-                      &mk_frame_,
-                      &mk_predicted_,
-                      &mk_measured_,
-                      &mk_bytes_,
-                      &contact_active_,
-                      &contact_min_distance_,
-                      &contact_max_penetration_}) {
-    h->reset();
-  }
+  for (const SeriesSpec& s : kSeries) (this->*s.member).reset();
   h5_check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flushing the output file");
   file_.reset();
   write_xdmf_file(xdmf_path(), std::filesystem::path(writing_).filename().string(), views_, object_names_, times_);

@@ -17,55 +17,18 @@
 
 #include "io/checkpoint.hpp"
 #include "io/h5_handle.hpp"
+#include "io/output_health.hpp"
 #include "io/output_lock.hpp"
+#include "io/run_header.hpp"
+#include "io/run_info.hpp"
 #include "io/xdmf_views.hpp"
 #include "io/xdmf_writer.hpp"
 #include "model/model.hpp"
-#include "sched/cost_table.hpp"
 #include "sched/schedule.hpp"
 
 namespace atssim::io {
 
-constexpr int kFormatVersion = 1;
-
-// A device as the output describes it (plain data: the writer links no OpenCL).
-struct DeviceRecord {
-  std::string name, vendor, type, platform, version;
-  std::string svm;  // e.g. "coarse+fine+atomics"
-  int compute_units = 0;
-  int index = -1;  // in `atssim devices`
-  int sub_device = -1;
-};
-
-// One task of the substep plan.
-struct TaskRecord {
-  std::string name;
-  std::string kind;  // "predict", "stretch", … (plan::TaskKind)
-  int iteration = -1;
-  int block = -1;
-  int part = -1;
-};
-
-// The substep's tasks and what the scheduler was given.
-struct ScheduleInfo {
-  std::string mode;               // "single", "split", "heft", "async"
-  std::string executor;           // "events" or "fused"
-  std::string memory = "shared";  // "shared" (SVM within a platform) or "separate" (copies between memories)
-  std::vector<TaskRecord> tasks;
-  std::vector<std::pair<int, int>> edges;
-  sched::CostTable costs;               // pre-profiled, ms, task × device
-  std::vector<double> latency_ms;       // device × device hop latency
-  std::vector<double> ms_per_byte;      // device × device copy cost per byte (separate memories; empty if shared)
-  std::vector<double> split_fractions;  // share of each device ("split")
-};
-
-struct RunInfo {
-  std::string command_line;
-  std::string scene_yaml;     // as given
-  std::string resolved_yaml;  // after defaults and --set
-  std::vector<DeviceRecord> devices;
-  ScheduleInfo schedule;
-};
+enum class SeriesKind { f64, f32, i32, u64 };  // a series' element type in the file
 
 // One task of the substep recorded in a frame: where it ran, when the
 // scheduler predicted it, when it ran (ms from the substep's first start).
@@ -76,9 +39,6 @@ struct ScheduledTask {
   double measured_start_ms = 0, measured_finish_ms = 0;
 };
 
-// "out.h5" -> "out.partial.h5" ("out" -> "out.partial.h5"): where a run
-// writes while an earlier result is at the path.
-std::string partial_path(const std::string& path);
 // The particles' contact with the colliders in one frame (docs/output-format.md
 // /contact): touching particle-collider pairs, the smallest gap (distance
 // to a surface less its thickness; NaN without colliders) and the largest
@@ -134,17 +94,23 @@ class ResultWriter {
   void create(const RunInfo& info, std::span<const model::ObjectRange> objects);
   void reopen(const RunInfo& info, Checkpoint& resume);
   void open_series(bool create_them);
-  void check_output_health(std::size_t frame_bytes) const;
   void close_with(bool complete, const std::string& error);
   void abandon();
   void append_scalar(hid_t set, double value);
-  template <typename T>
-  void append_rows(hid_t set, std::span<const T> values, hid_t mem_type, hsize_t rows);
+
+  struct SeriesSpec {
+    const char* path;
+    bool per_particle;  // [F, particles, cols] rather than [F]
+    std::size_t cols;
+    SeriesKind kind;
+    H5Handle ResultWriter::*member;
+  };
+  static const SeriesSpec kSeries[];
 
   std::unique_ptr<OutputLock> lock_;
   std::string path_, writing_;
-  unsigned long long device_ = 0, inode_ = 0;  // of writing_, to notice it vanish
-  bool broken_ = false;                        // an HDF5 write failed: write nothing more
+  OutputIdentity opened_;  // writing_, to notice it vanish
+  bool broken_ = false;    // an HDF5 write failed: write nothing more
   std::optional<Checkpoint> pending_;
   CheckpointSlots checkpoint_;
   XdmfStream xdmf_;

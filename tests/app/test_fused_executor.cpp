@@ -17,28 +17,6 @@ using namespace atssim;
 
 namespace {
 
-// A cloth above the ground beside a soft box lying on it: stretch, bending,
-// tetrahedra and the ground task in one substep.
-std::string cloth_and_box(const std::string& method) {
-  const std::string solid = method == "xpbd" ? "stvk" : "neo_hookean";
-  return "simulation: {fps: 60, substeps: 2, iterations: 4, ground: 0.0}\n"
-         "objects:\n"
-         "  - name: cloth\n"
-         "    grid: {size: [1, 1], resolution: [14, 14]}\n"
-         "    transform: {translate: [0, 0.3, 0]}\n"
-         "    material: {density: 0.2, stretch_stiffness: 1.0e3, bend_stiffness: 1.0e-3}\n"
-         "    pins: {boxes: [{min: [-0.51, 0.29, -0.51], max: [-0.49, 0.31, -0.49]}]}\n"
-         "  - name: box\n"
-         "    type: solid\n"
-         "    box: {size: [0.2, 0.2, 0.2], resolution: [2, 2, 2]}\n"
-         "    transform: {translate: [0.8, 0.09, 0], rotate: [0, 0, 10]}\n"
-         "    material: {density: 1000, youngs_modulus: 5.0e4, poisson_ratio: 0.3, model: " +
-         solid +
-         "}\n"
-         "solver: {method: " +
-         method + "}\n";
-}
-
 std::vector<float> run(const device::DeviceSet& devices, const plan::SubstepPlan& plan, app::ScheduleMode mode,
                        device::ExecutorKind kind, int substeps) {
   app::ExecutionOptions options;
@@ -60,7 +38,7 @@ std::vector<float> run(const device::DeviceSet& devices, const plan::SubstepPlan
 TEST_CASE("fused execution equals events execution bit for bit for every method and schedule", "[fused]") {
   const std::string method = GENERATE("xpbd", "vbd", "sosd", "jpgd");
   const auto mode = GENERATE(app::ScheduleMode::single, app::ScheduleMode::split, app::ScheduleMode::heft);
-  const auto scene = scene::parse_scene(cloth_and_box(method), "s.yaml", ".");
+  const auto scene = scene::parse_scene(test::cloth_and_box_yaml(method, 14), "s.yaml", ".");
   const plan::SubstepPlan plan = app::substep_plan_for(scene);
   const auto devices = device::DeviceSet::open(mode == app::ScheduleMode::single ? "cpu" : "cpu/2");
   const std::vector<float> events = run(devices, plan, mode, device::ExecutorKind::events, 3);

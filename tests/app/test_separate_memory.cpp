@@ -15,32 +15,11 @@
 #include "kernels/embedded_programs.hpp"
 #include "plan/element_sets.hpp"
 #include "scene/scene_loader.hpp"
+#include "support/scenes.hpp"
 
 using namespace atssim;
 
 namespace {
-
-// A pinned cloth beside a soft box on the ground: stretch, bending,
-// tetrahedra and the ground task in one substep.
-std::string cloth_and_box(const std::string& method) {
-  const std::string solid = method == "xpbd" ? "stvk" : "neo_hookean";
-  return "simulation: {fps: 60, substeps: 2, iterations: 4, ground: 0.0}\n"
-         "objects:\n"
-         "  - name: cloth\n"
-         "    grid: {size: [1, 1], resolution: [12, 12]}\n"
-         "    transform: {translate: [0, 0.3, 0]}\n"
-         "    material: {density: 0.2, stretch_stiffness: 1.0e3, bend_stiffness: 1.0e-3}\n"
-         "    pins: {boxes: [{min: [-0.51, 0.29, -0.51], max: [-0.49, 0.31, -0.49]}]}\n"
-         "  - name: box\n"
-         "    type: solid\n"
-         "    box: {size: [0.2, 0.2, 0.2], resolution: [2, 2, 2]}\n"
-         "    transform: {translate: [0.8, 0.09, 0], rotate: [0, 0, 10]}\n"
-         "    material: {density: 1000, youngs_modulus: 5.0e4, poisson_ratio: 0.3, model: " +
-         solid +
-         "}\n"
-         "solver: {method: " +
-         method + "}\n";
-}
 
 struct Outcome {
   std::vector<float> xyz;
@@ -98,7 +77,7 @@ TEST_CASE("devices with memories of their own reproduce the shared-memory result
   const std::string method = GENERATE("xpbd", "vbd", "sosd", "jpgd");
   const auto mode = GENERATE(app::ScheduleMode::split, app::ScheduleMode::heft);
   INFO(method << " " << app::to_string(mode));
-  const auto scene = scene::parse_scene(cloth_and_box(method), "s.yaml", ".");
+  const auto scene = scene::parse_scene(test::cloth_and_box_yaml(method, 12), "s.yaml", ".");
   const plan::SubstepPlan plan = app::substep_plan_for(scene);
   const auto shared = device::DeviceSet::open("cpu/2", device::MemoryMode::shared);
   const auto separate = device::DeviceSet::open("cpu/2", device::MemoryMode::separate);
@@ -137,7 +116,7 @@ TEST_CASE("devices with memories of their own reproduce the shared-memory result
 }
 
 TEST_CASE("a link between memories measures a positive latency and cost per byte", "[memory]") {
-  const auto scene = scene::parse_scene(cloth_and_box("xpbd"), "s.yaml", ".");
+  const auto scene = scene::parse_scene(test::cloth_and_box_yaml("xpbd", 12), "s.yaml", ".");
   const auto separate = device::DeviceSet::open("cpu/2", device::MemoryMode::separate);
   app::ExecutionOptions options;
   options.mode = app::ScheduleMode::split;
@@ -157,7 +136,7 @@ TEST_CASE("a link between memories measures a positive latency and cost per byte
 }
 
 TEST_CASE("the fused executor is refused when devices share no memory, with a clear reason", "[memory]") {
-  const auto scene = scene::parse_scene(cloth_and_box("xpbd"), "s.yaml", ".");
+  const auto scene = scene::parse_scene(test::cloth_and_box_yaml("xpbd", 12), "s.yaml", ".");
   const auto separate = device::DeviceSet::open("cpu/2", device::MemoryMode::separate);
   app::ExecutionOptions options;
   options.mode = app::ScheduleMode::split;
@@ -175,7 +154,7 @@ TEST_CASE("every launch of every method names what it writes, also cut into part
   // send the other parts' stale elements along. Every method declares.
   const std::string method = GENERATE("xpbd", "vbd", "sosd", "jpgd");
   INFO(method);
-  const auto scene = scene::parse_scene(cloth_and_box(method), "s.yaml", ".");
+  const auto scene = scene::parse_scene(test::cloth_and_box_yaml(method, 12), "s.yaml", ".");
   const plan::SubstepPlan plan = app::cut_for_mode(app::substep_plan_for(scene), app::ScheduleMode::split, 2);
   const auto tasks = kernels::program_tasks(plan.program);
   std::size_t checked = 0;
@@ -213,7 +192,7 @@ TEST_CASE("asynchronous Gauss-Seidel across memories: publish and merge become c
       GENERATE(plan::MergeStrategy::average_displacements, plan::MergeStrategy::main_precedence);
   INFO(plan::to_string(strategy));
   const auto devices = device::DeviceSet::open("cpu/2", device::MemoryMode::separate);
-  const auto scene = scene::parse_scene(cloth_and_box("xpbd"), "s.yaml", ".");
+  const auto scene = scene::parse_scene(test::cloth_and_box_yaml("xpbd", 12), "s.yaml", ".");
   const plan::SubstepPlan plan = app::substep_plan_for(scene);
   app::ExecutionOptions options;
   options.mode = app::ScheduleMode::async;
