@@ -4,6 +4,7 @@
 #include <array>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -36,6 +37,25 @@ constexpr std::array<std::string_view, 4> kSchedules{"single", "split", "heft", 
 constexpr std::array<std::string_view, 3> kMerges{"average_displacements", "average_positions", "main_precedence"};
 constexpr std::array<std::string_view, 2> kOutputKeys{"path", "stride"};
 
+// A list index: decimal digits only ("0x1", "1e2" or "0\x01" are none), below 2^31.
+std::optional<std::size_t> list_index(const std::string& key) {
+  if (key.empty() || key.size() > 9) return std::nullopt;
+  std::size_t index = 0;
+  for (char c : key) {
+    if (c < '0' || c > '9') return std::nullopt;
+    index = index * 10 + static_cast<std::size_t>(c - '0');
+  }
+  return index;
+}
+
+// The first `count` keys of an override path, joined with dots.
+std::string joined(const std::vector<std::string>& keys, std::size_t count) {
+  if (count == 0) return "the scene's top level";
+  std::string out;
+  for (std::size_t k = 0; k < count; ++k) out += (k ? "." : "") + keys[k];
+  return out;
+}
+
 // Applies "a.b.0.c=value": walks (creating maps as needed) and replaces the
 // leaf with the value parsed as YAML.
 void apply_override(YAML::Node& root, const std::string& assignment, const std::string& source,
@@ -62,13 +82,12 @@ void apply_override(YAML::Node& root, const std::string& assignment, const std::
   for (std::size_t i = 0; i + 1 < keys.size(); ++i) {
     YAML::Node parent = chain.back();
     YAML::Node next;
+    if (parent.IsScalar()) {
+      throw input_error(fmt::format("--set {}: '{}' is a value, not a map: it has no key '{}'", assignment,
+                                    joined(keys, i), keys[i]));
+    }
     if (parent.IsSequence()) {
-      std::size_t index = 0;
-      try {
-        index = std::stoul(keys[i]);
-      } catch (...) {
-        index = parent.size();
-      }
+      const std::size_t index = list_index(keys[i]).value_or(parent.size());
       if (index >= parent.size()) {
         throw input_error(fmt::format("--set {}: '{}' is a list of {} items; use an index from 0 to {}", assignment,
                                       keys[i - (i > 0 ? 1 : 0)], parent.size(),
@@ -85,13 +104,14 @@ void apply_override(YAML::Node& root, const std::string& assignment, const std::
     chain.push_back(next);
   }
   YAML::Node leaf_parent = chain.back();
+  if (leaf_parent.IsScalar()) {
+    throw input_error(fmt::format("--set {}: '{}' is a value, not a map: it has no key '{}'", assignment,
+                                  joined(keys, keys.size() - 1), keys.back()));
+  }
   if (leaf_parent.IsSequence()) {
-    std::size_t index = 0;
-    try {
-      index = std::stoul(keys.back());
-    } catch (...) {
-      throw input_error(fmt::format("--set {}: '{}' is not a list index", assignment, keys.back()));
-    }
+    const std::optional<std::size_t> found = list_index(keys.back());
+    if (!found) throw input_error(fmt::format("--set {}: '{}' is not a list index", assignment, keys.back()));
+    const std::size_t index = *found;
     if (index >= leaf_parent.size()) {
       throw input_error(fmt::format("--set {}: index {} is past the end of the list", assignment, index));
     }
@@ -144,7 +164,13 @@ SceneDesc parse_scene(const std::string& yaml_text, const std::string& source_na
   }
   if (!root || root.IsNull()) root = YAML::Node(YAML::NodeType::Map);
   check_yaml_keys(root, source_name);
-  for (const std::string& assignment : overrides) apply_override(root, assignment, source_name, source.overrides);
+  for (const std::string& assignment : overrides) {
+    try {
+      apply_override(root, assignment, source_name, source.overrides);
+    } catch (const YAML::Exception& e) {  // a walk the checks above did not foresee: still the --set's fault
+      throw input_error(fmt::format("--set {}: cannot apply it to this scene ({})", assignment, e.msg));
+    }
+  }
 
   const YamlReader top(root, "", &source);
   top.expect_map(kRootKeys);
