@@ -161,7 +161,10 @@ int run(const Options& o) {
     return 0;
   }
   const device::DeviceSet devices = app::open_scene_devices(scene);
-  device::PlanExecutor executor(devices, std::move(plan));
+  // The events executor: on a loaded machine the fused one's spin waits starve each other.
+  device::ExecutorOptions options;
+  options.kind = device::ExecutorKind::events;
+  device::PlanExecutor executor(devices, std::move(plan), options);
 
   const Energy e0 = energy_of(layout, model.particles.mass, layout.x, layout.v, h);
   const double scale = total_mass * 9.81 * std::sqrt(2.0) + std::abs(e0.elastic) + e0.kinetic;
