@@ -111,7 +111,7 @@ io::ConvergenceResult run_convergence(const ConvergeOptions& o) {
         if (p.w > 0.0f) p.y = std::max(p.y, state.ground_y);
       }
     }
-    result.energy_start = solver::energy::incremental_potential(at_start, predicted, h);
+    result.energy_start = solver::energy::incremental_potential(at_start, predicted, h, &state.x);
   }
   const solver::newton::NewtonResult newton = solver::newton::newton_reference(state, predicted, h);
   result.energy_reference = newton.energy;
@@ -140,7 +140,7 @@ io::ConvergenceResult run_convergence(const ConvergeOptions& o) {
       std::nth_element(times.begin(), times.begin() + times.size() / 2, times.end());
       solver::SimLayout after = state;
       after.x = x;
-      const double energy = solver::energy::incremental_potential(after, predicted, h);
+      const double energy = solver::energy::incremental_potential(after, predicted, h, &state.x);
       trace.iterations.push_back(k);
       trace.energy.push_back(energy);
       trace.relative_error.push_back(span > 0.0 ? (energy - result.energy_reference) / span : 0.0);

@@ -4,8 +4,11 @@
 // tbb::parallel_for per color in an arena of N threads. scripts/ compares it
 // with atssim's device runs on the same scene.
 //
-//   bench_native --scene scenes/hanging_cloth.yaml --method xpbd|vbd --resolution N
-//                --threads 1|2 --frames F [--warmup W]
+//   bench_native --scene scenes/hanging_cloth.yaml --method xpbd|vbd|explicit --resolution N
+//                --threads 1|2 --frames F [--warmup W] [--integrator semi_euler|midpoint|rk4]
+//                [--shape cloth|solid]
+// (explicit: the explicit reference's semi-implicit Euler, midpoint or RK4;
+// solid: N sets objects.0.box.resolution=[N,N,N] instead of the grid's.)
 //
 // Prints one line of JSON: method, resolution, threads, frames, median_ms and
 // min_ms of a frame (the scene's substeps), and checksum, the sum of the
@@ -21,6 +24,7 @@
 
 #include "model/cloth_builder.hpp"
 #include "scene/scene_loader.hpp"
+#include "solver/explicit/explicit_reference.hpp"
 #include "solver/layout/sim_layout.hpp"
 #include "solver/method_registry.hpp"
 #include "solver/vbd/vbd_reference.hpp"
@@ -33,7 +37,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-enum class Method { xpbd, vbd };
+enum class Method { xpbd, vbd, explicit_rk };
 
 struct Options {
   std::string scene;
@@ -42,6 +46,9 @@ struct Options {
   int threads = 1;
   int frames = 10;
   int warmup = 3;
+  std::string integrator = "semi_euler";
+  std::string shape = "cloth";
+  int substeps = 0;  // 0: the scene's
 };
 
 struct FrameTimes {
@@ -73,9 +80,12 @@ double checksum(const solver::SimLayout& state) {
 }
 
 int run(const Options& o) {
-  const Method method = o.method == "vbd" ? Method::vbd : Method::xpbd;
-  const std::vector<std::string> overrides{fmt::format("objects.0.grid.resolution=[{0},{0}]", o.resolution),
-                                           "solver.method=" + o.method};
+  const Method method = o.method == "vbd" ? Method::vbd : o.method == "explicit" ? Method::explicit_rk : Method::xpbd;
+  std::vector<std::string> overrides{o.shape == "solid"
+                                         ? fmt::format("objects.0.box.resolution=[{0},{0},{0}]", o.resolution)
+                                         : fmt::format("objects.0.grid.resolution=[{0},{0}]", o.resolution),
+                                     "solver.method=" + o.method, "solver.integrator=" + o.integrator};
+  if (o.substeps > 0) overrides.push_back(fmt::format("simulation.substeps={}", o.substeps));
   const scene::SceneDesc scene = scene::load_scene_file(o.scene, overrides);
   solver::check_scene(scene, solver::method(o.method));
   const solver::SimLayout layout = solver::make_sim_layout(model::build_model(scene));
@@ -86,6 +96,14 @@ int run(const Options& o) {
   double sum = 0.0;
   if (method == Method::xpbd) {
     solver::xpbd::XpbdReference reference(layout, {h, sim.iterations}, o.threads);
+    times = time_frames(reference, sim.substeps, o);
+    sum = checksum(reference.state());
+  } else if (method == Method::explicit_rk) {
+    using solver::explicit_rk::Integrator;
+    const Integrator integrator = o.integrator == "rk4"        ? Integrator::rk4
+                                  : o.integrator == "midpoint" ? Integrator::midpoint
+                                                               : Integrator::semi_euler;
+    solver::explicit_rk::ExplicitReference reference(layout, {h, integrator}, o.threads);
     times = time_frames(reference, sim.substeps, o);
     sum = checksum(reference.state());
   } else {
@@ -104,9 +122,18 @@ int run(const Options& o) {
 
 int main(int argc, char** argv) {
   Options o;
-  CLI::App cli{"Frame time of the native host XPBD / VBD loop (the host references) on 1 or more threads"};
+  CLI::App cli{"Frame time of the native host XPBD / VBD / explicit loop (the host references) on 1 or more threads"};
   cli.add_option("--scene", o.scene, "Scene file (YAML); its first object must be a grid cloth")->required();
-  cli.add_option("--method", o.method, "xpbd or vbd")->required()->check(CLI::IsMember({"xpbd", "vbd"}));
+  cli.add_option("--method", o.method, "xpbd, vbd or explicit")
+      ->required()
+      ->check(CLI::IsMember({"xpbd", "vbd", "explicit"}));
+  cli.add_option("--integrator", o.integrator, "explicit: semi_euler, midpoint or rk4")
+      ->check(CLI::IsMember({"semi_euler", "midpoint", "rk4"}))
+      ->capture_default_str();
+  cli.add_option("--substeps", o.substeps, "Substeps per frame (0: the scene's)")->check(CLI::NonNegativeNumber);
+  cli.add_option("--shape", o.shape, "cloth (grid resolution N x N) or solid (box resolution N x N x N)")
+      ->check(CLI::IsMember({"cloth", "solid"}))
+      ->capture_default_str();
   cli.add_option("--resolution", o.resolution, "Grid vertices along x and along z")
       ->required()
       ->check(CLI::Range(2, 1 << 15));

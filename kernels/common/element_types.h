@@ -3,11 +3,15 @@
 #ifndef ATS_ELEMENT_TYPES_H
 #define ATS_ELEMENT_TYPES_H
 
-/* Distance (stretch) constraint: 16 bytes. */
+/* Distance (stretch) constraint, a spring of stiffness 1/compliance: 20
+ * bytes. damping = Rayleigh stiffness-proportional beta in seconds: the
+ * spring's damping coefficient along itself is c = beta / compliance (N s/m),
+ * force c ((v_b - v_a) . n) n on a (common/energy_spring_damping.h); 0 = undamped. */
 typedef struct {
   int a, b;
   float rest;
   float compliance;
+  float damping;
 } ats_distance_c;
 
 /* Bending stencil: edge v[0]-v[1], opposite vertices v[2], v[3] (wings of

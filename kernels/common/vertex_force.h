@@ -12,6 +12,7 @@
 
 #include "common/element_types.h"
 #include "common/energy_bend_element.h"
+#include "common/energy_spring_damping.h"
 #include "common/energy_stretch.h"
 #include "common/energy_tet_neohookean.h"
 #include "common/energy_tet_stvk.h"
@@ -25,17 +26,24 @@ ATS_FN ats_vec3 ats_spring_force(ats_vec3 xa, ats_vec3 xb, float rest, float sti
   return ats_scale(ats_stretch_gradient(xa, xb, rest, stiffness), -1.0f);
 }
 
-/* Elements' force on particle i (no gravity, no drag). */
-ATS_FN ats_vec3 gather_element_force(int i, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* adj_offsets,
-                                     ATS_GLOBAL const int* adj, ATS_GLOBAL const ats_distance_c* stretch,
-                                     ATS_GLOBAL const ats_bend_c* bend, ATS_GLOBAL const ats_tet_c* tets) {
+/* Elements' force on particle i (no gravity, no drag); springs with
+ * damping > 0 add c ((v_b - v_a) . n) n, c = damping / compliance
+ * (common/energy_spring_damping.h), at the stage velocities v. */
+ATS_FN ats_vec3 gather_element_force(int i, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const ats_float4* v,
+                                     ATS_GLOBAL const int* adj_offsets, ATS_GLOBAL const int* adj,
+                                     ATS_GLOBAL const ats_distance_c* stretch, ATS_GLOBAL const ats_bend_c* bend,
+                                     ATS_GLOBAL const ats_tet_c* tets) {
   ats_vec3 f = ats_v3(0.0f, 0.0f, 0.0f);
   for (int k = adj_offsets[i]; k < adj_offsets[i + 1]; ++k) {
     const int code = adj[k];
     const int e = code >> 4, kind = (code >> 2) & 3, slot = code & 3;
     if (kind == 0) {
       const ats_distance_c c = stretch[e];
-      const ats_vec3 g = ats_spring_force(vf_xyz(x[c.a]), vf_xyz(x[c.b]), c.rest, 1.0f / c.compliance);
+      ats_vec3 g = ats_spring_force(vf_xyz(x[c.a]), vf_xyz(x[c.b]), c.rest, 1.0f / c.compliance);
+      if (c.damping > 0.0f) {
+        g = ats_add(g, ats_spring_damping_force(vf_xyz(x[c.a]), vf_xyz(x[c.b]), vf_xyz(v[c.a]), vf_xyz(v[c.b]),
+                                                c.damping / c.compliance));
+      }
       f = slot == 0 ? ats_add(f, g) : ats_sub(f, g);
     } else if (kind == 1) {
       const ats_bend_c c = bend[e];
@@ -63,7 +71,7 @@ ATS_FN ats_vec3 particle_acceleration(int i, ATS_GLOBAL const ats_float4* x, ATS
                                       ATS_GLOBAL const ats_tet_c* tets, ats_vec3 g, float drag) {
   const float w = x[i].w;
   if (w == 0.0f) return ats_v3(0.0f, 0.0f, 0.0f);
-  const ats_vec3 f = gather_element_force(i, x, adj_offsets, adj, stretch, bend, tets);
+  const ats_vec3 f = gather_element_force(i, x, v, adj_offsets, adj, stretch, bend, tets);
   return ats_add(ats_sub(g, ats_scale(vf_xyz(v[i]), drag)), ats_scale(f, w));
 }
 

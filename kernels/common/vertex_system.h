@@ -15,6 +15,7 @@
 #include "common/element_types.h"
 #include "common/energy_bend_element.h"
 #include "common/energy_inertia.h"
+#include "common/energy_spring_damping.h"
 #include "common/energy_stretch.h"
 #include "common/energy_tet_neohookean.h"
 #include "common/energy_tet_stvk.h"
@@ -67,6 +68,30 @@ ATS_FN vertex_system gather_vertex_system(int i, ATS_GLOBAL const ats_float4* x,
       s.f = ats_sub(s.f, ats_bend_element_gradient(c.model, q, c.K, c.scale, stiffness, c.rest_angle, slot));
       s.h = ats_m3_add(s.h, ats_bend_element_hessian(c.model, q, c.K, c.scale, stiffness, slot, slot));
     }
+  }
+  return s;
+}
+
+/* Adds the springs' material damping (common/energy_spring_damping.h) to
+ * vertex i's system: for each spring with damping beta > 0, c/h = beta k / h
+ * with the direction at the substep's start x_start. inv_h = 1/h (the
+ * substep, not the inertia step of air drag); the plans pass 0 when no
+ * spring is damped and then skip this. */
+ATS_FN vertex_system add_spring_damping(vertex_system s, int i, ATS_GLOBAL const ats_float4* x,
+                                        ATS_GLOBAL const ats_float4* x_start, float inv_h,
+                                        ATS_GLOBAL const int* adj_offsets, ATS_GLOBAL const int* adj,
+                                        ATS_GLOBAL const ats_distance_c* stretch) {
+  if (!(inv_h > 0.0f)) return s;
+  for (int k = adj_offsets[i]; k < adj_offsets[i + 1]; ++k) {
+    const int code = adj[k];
+    if (((code >> 2) & 3) != 0) continue;
+    const ats_distance_c c = stretch[code >> 4];
+    if (!(c.damping > 0.0f)) continue;
+    const float c_over_h = c.damping / c.compliance * inv_h;
+    const ats_vec3 xa0 = vs_xyz(x_start[c.a]), xb0 = vs_xyz(x_start[c.b]);
+    const ats_vec3 g = ats_spring_damping_gradient(vs_xyz(x[c.a]), vs_xyz(x[c.b]), xa0, xb0, c_over_h);
+    s.f = (code & 3) == 0 ? ats_sub(s.f, g) : ats_add(s.f, g);
+    s.h = ats_m3_add(s.h, ats_spring_damping_hessian(xa0, xb0, c_over_h));
   }
   return s;
 }

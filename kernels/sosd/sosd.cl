@@ -29,9 +29,9 @@
 #define SOSD_MAX 12 /* 4 vertices x 3 */
 
 /* sys[4 i] = (f, 0), sys[4 i + 1 .. 4 i + 3] = rows of H_ii. */
-ATS_TASK void sosd_vertex_systems(int i, __global const float4* x, __global const float4* x_tilde, __global const int* adj_offsets, __global const int* adj, __global const ats_distance_c* stretch, __global const ats_bend_c* bend, __global const ats_tet_c* tets, __global float4* sys, float inv_h2, __global const ats_collider_c* colliders, int collider_count) {
+ATS_TASK void sosd_vertex_systems(int i, __global const float4* x, __global const float4* x_tilde, __global const int* adj_offsets, __global const int* adj, __global const ats_distance_c* stretch, __global const ats_bend_c* bend, __global const ats_tet_c* tets, __global float4* sys, float inv_h2, __global const ats_collider_c* colliders, int collider_count, __global const float4* x_start, float inv_h) {
   if (x[i].w == 0.0f) return; /* pinned: never read */
-  const vertex_system s = add_contact_terms(gather_vertex_system(i, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend, tets), vs_xyz(x[i]), x[i].w, inv_h2, colliders, collider_count);
+  const vertex_system s = add_contact_terms(add_spring_damping(gather_vertex_system(i, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend, tets), i, x, x_start, inv_h, adj_offsets, adj, stretch), vs_xyz(x[i]), x[i].w, inv_h2, colliders, collider_count);
   sys[4 * i] = (float4)(s.f.x, s.f.y, s.f.z, 0.0f);
   ATS_UNROLL for (int r = 0; r < 3; ++r) sys[4 * i + 1 + r] = (float4)(s.h.r[r].x, s.h.r[r].y, s.h.r[r].z, 0.0f);
 }
@@ -127,11 +127,14 @@ static void sosd_solve(const int* v, int n, ats_mat3 off[4][4], __global const f
   }
 }
 
-ATS_TASK void sosd_stretch(int e, __global const float4* x, __global const float4* sys, __global const ats_distance_c* stretch, __global float4* d) {
+ATS_TASK void sosd_stretch(int e, __global const float4* x, __global const float4* sys, __global const ats_distance_c* stretch, __global float4* d, __global const float4* x_start, float inv_h) {
   const ats_distance_c c = stretch[e];
   const int v[2] = {c.a, c.b};
   ats_mat3 off[4][4];
-  off[0][1] = ats_m3_scale(ats_stretch_hessian(vs_xyz(x[c.a]), vs_xyz(x[c.b]), c.rest, 1.0f / c.compliance, 1), -1.0f);
+  ats_mat3 h_aa = ats_stretch_hessian(vs_xyz(x[c.a]), vs_xyz(x[c.b]), c.rest, 1.0f / c.compliance, 1);
+  if (inv_h > 0.0f && c.damping > 0.0f) /* its damping term's block (common/energy_spring_damping.h) */
+    h_aa = ats_m3_add(h_aa, ats_spring_damping_hessian(vs_xyz(x_start[c.a]), vs_xyz(x_start[c.b]), c.damping / c.compliance * inv_h));
+  off[0][1] = ats_m3_scale(h_aa, -1.0f);
   sosd_solve(v, 2, off, x, sys, d, 2 * e);
 }
 

@@ -14,10 +14,10 @@
 #include "async/merge.cl"
 
 /* Vertices order[first .. first + count) of one color. */
-ATS_TASK void vbd_solve(int k, __global float4* x, __global const float4* x_tilde, __global const int* adj_offsets, __global const int* adj, __global const ats_distance_c* stretch, __global const ats_bend_c* bend, __global const ats_tet_c* tets, __global const int* order, float inv_h2, int has_ground, float ground, __global const ats_collider_c* colliders, int collider_count) {
+ATS_TASK void vbd_solve(int k, __global float4* x, __global const float4* x_tilde, __global const int* adj_offsets, __global const int* adj, __global const ats_distance_c* stretch, __global const ats_bend_c* bend, __global const ats_tet_c* tets, __global const int* order, float inv_h2, int has_ground, float ground, __global const ats_collider_c* colliders, int collider_count, __global const float4* x_start, float inv_h) {
   const int i = order[k];
   const float4 p = x[i];
-  const vertex_system s = add_contact_terms(gather_vertex_system(i, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend, tets), vs_xyz(p), p.w, inv_h2, colliders, collider_count);
+  const vertex_system s = add_contact_terms(add_spring_damping(gather_vertex_system(i, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend, tets), i, x, x_start, inv_h, adj_offsets, adj, stretch), vs_xyz(p), p.w, inv_h2, colliders, collider_count);
   const ats_solve3 d = ats_m3_solve(s.h, s.f);
   if (!d.ok) return;
   ats_vec3 step = d.x;

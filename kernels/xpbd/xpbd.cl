@@ -18,13 +18,19 @@ ATS_TASK void xpbd_predict(int i, __global float4* x, __global float4* v, __glob
   predict_particle(i, x, v, x_prev, dt, gx, gy, gz, damp);
 }
 
+/* inv_h = 1/h of the substep when some spring is damped (gamma = damping/h,
+ * common/xpbd_distance.h), else 0; x_start = the substep's start. */
 ATS_TASK void xpbd_stretch(int i, __global float4* x, __global const ats_distance_c* c, __global float* lambda,
-                           float dt, int reset) {
+                           float dt, int reset, __global const float4* x_start, float inv_h) {
   const ats_distance_c con = c[i];
   const float l = reset ? 0.0f : lambda[i];
   const float4 pa = x[con.a];
   const float4 pb = x[con.b];
-  const ats_distance_step s = ats_xpbd_distance(xyz(pa), pa.w, xyz(pb), pb.w, con.rest, con.compliance, l, dt);
+  const float gamma = con.damping * inv_h;
+  const ats_distance_step s =
+      gamma > 0.0f ? ats_xpbd_distance_damped(xyz(pa), pa.w, xyz(pb), pb.w, con.rest, con.compliance, l, dt,
+                                              xyz(x_start[con.a]), xyz(x_start[con.b]), gamma)
+                   : ats_xpbd_distance(xyz(pa), pa.w, xyz(pb), pb.w, con.rest, con.compliance, l, dt);
   lambda[i] = l + s.dlambda;
   x[con.a] = add_xyz(pa, s.dxa);
   x[con.b] = add_xyz(pb, s.dxb);

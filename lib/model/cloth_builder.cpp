@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <Eigen/Geometry>
 
+#include "model/cloth_springs.hpp"
 #include "model/object_particles.hpp"
 #include "model/tet_builder.hpp"
 #include "util/error.hpp"
@@ -146,6 +147,26 @@ void add_bending(Model& model, const scene::ObjectDesc& obj, const scene::Triang
   }
 }
 
+// `model: springs` (model/cloth_springs.hpp): structural springs take the
+// stretch stiffness, shear and bending springs their own; all are stretch
+// elements with the object's damping.
+void add_cloth_springs(Model& model, const scene::ObjectDesc& obj, const scene::TriangleMesh& mesh,
+                       const ObjectRange& range) {
+  const scene::MaterialDesc& m = obj.material;
+  const ClothSprings springs = obj.grid ? grid_springs(obj.grid->resolution[0], obj.grid->resolution[1])
+                                        : mesh_springs(range.rest_position, mesh.triangles);
+  const int offset = range.vertex_offset;
+  const auto add = [&](const std::vector<std::array<int, 2>>& pairs, double compliance) {
+    for (const auto& p : pairs) {
+      const double rest = (range.rest_position[p[0]] - range.rest_position[p[1]]).norm();
+      model.stretch.add(p[0] + offset, p[1] + offset, rest, compliance, m.damping);
+    }
+  };
+  if (m.has_stretch) add(springs.structural, m.stretch_compliance);
+  if (m.shear_stiffness > 0.0) add(springs.shear, 1.0 / m.shear_stiffness);
+  if (m.bend_spring_stiffness > 0.0) add(springs.bend, 1.0 / m.bend_spring_stiffness);
+}
+
 void add_cloth(Model& model, const scene::ObjectDesc& obj, const scene::TriangleMesh& mesh,
                const std::string& scene_file) {
   ObjectRange range = begin_object(model, obj, mesh.vertices);
@@ -181,11 +202,12 @@ void add_cloth(Model& model, const scene::ObjectDesc& obj, const scene::Triangle
 
   append_particles(model, range, mass, pinned_flags(obj, range.rest_position, scene_file));
 
-  if (obj.material.has_stretch) {
+  if (obj.material.cloth_springs) {
+    add_cloth_springs(model, obj, mesh, range);
+  } else if (obj.material.has_stretch) {
     for (const auto& e : unique_edges(mesh.triangles)) {
-      model.stretch.edges.push_back({e[0] + offset, e[1] + offset});
-      model.stretch.rest_length.push_back((range.rest_position[e[0]] - range.rest_position[e[1]]).norm());
-      model.stretch.compliance.push_back(obj.material.stretch_compliance);
+      model.stretch.add(e[0] + offset, e[1] + offset, (range.rest_position[e[0]] - range.rest_position[e[1]]).norm(),
+                        obj.material.stretch_compliance, obj.material.damping);
     }
   }
   if (obj.material.has_bending) add_bending(model, obj, mesh, range);

@@ -28,7 +28,18 @@ struct EdgeSet {
   std::vector<std::array<int, 2>> edges;
   std::vector<double> rest_length;
   std::vector<double> compliance;  // m/N
+  // Rayleigh stiffness-proportional damping beta in s (c = beta / compliance
+  // along the spring, kernels/common/energy_spring_damping.h); an edge
+  // without an entry (code that fills the vectors itself) is undamped.
+  std::vector<double> damping;
   std::size_t size() const { return edges.size(); }
+  void add(int a, int b, double rest, double spring_compliance, double beta) {
+    damping.resize(edges.size(), 0.0);
+    edges.push_back({a, b});
+    rest_length.push_back(rest);
+    compliance.push_back(spring_compliance);
+    damping.push_back(beta);
+  }
 };
 
 // How a bending stencil measures bending (scene key `bend_model`).

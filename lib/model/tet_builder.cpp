@@ -52,7 +52,8 @@ double longest_edge(const std::array<Vec3, 4>& x) {
 // A tetrahedral mass-spring body (seed 001): one spring per unique tet edge,
 // stiffness k = E · L₀ (N/m; a bar of section L₀² and length L₀), in the
 // stretch set every method simulates.
-void add_tet_springs(Model& model, const scene::TetMesh& mesh, const ObjectRange& range, double youngs_modulus) {
+void add_tet_springs(Model& model, const scene::TetMesh& mesh, const ObjectRange& range, double youngs_modulus,
+                     double damping) {
   std::vector<std::array<int, 2>> edges;
   edges.reserve(6 * mesh.tetrahedra.size());
   for (const auto& t : mesh.tetrahedra) {
@@ -65,9 +66,7 @@ void add_tet_springs(Model& model, const scene::TetMesh& mesh, const ObjectRange
   const int offset = range.vertex_offset;
   for (const auto& e : edges) {
     const double rest = (range.rest_position[e[0]] - range.rest_position[e[1]]).norm();
-    model.stretch.edges.push_back({e[0] + offset, e[1] + offset});
-    model.stretch.rest_length.push_back(rest);
-    model.stretch.compliance.push_back(1.0 / (youngs_modulus * rest));
+    model.stretch.add(e[0] + offset, e[1] + offset, rest, 1.0 / (youngs_modulus * rest), damping);
   }
 }
 
@@ -134,7 +133,7 @@ void add_solid(Model& model, const scene::ObjectDesc& obj, const std::string& sc
 
   const TetEnergy energy = energy_of(obj.material.solid_model);
   if (energy == TetEnergy::springs) {
-    add_tet_springs(model, mesh, range, obj.material.youngs_modulus);
+    add_tet_springs(model, mesh, range, obj.material.youngs_modulus, obj.material.damping);
     range.triangles = surface_triangles(mesh.tetrahedra);
     range.tetrahedra = std::move(mesh.tetrahedra);
     model.objects.push_back(std::move(range));

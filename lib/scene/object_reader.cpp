@@ -23,15 +23,18 @@ constexpr std::array<std::string_view, 8> kObjectKeys{"name", "type",      "grid
                                                       "mesh", "transform", "material", "pins"};
 constexpr std::array<std::string_view, 2> kGridKeys{"size", "resolution"};
 constexpr std::array<std::string_view, 3> kTransformKeys{"translate", "rotate", "scale"};
-constexpr std::array<std::string_view, 9> kMaterialKeys{"density",        "stretch_stiffness", "stretch_compliance",
-                                                        "bend_stiffness", "bend_compliance",   "bend_model",
-                                                        "youngs_modulus", "poisson_ratio",     "model"};
+constexpr std::array<std::string_view, 12> kMaterialKeys{
+    "density",         "stretch_stiffness", "stretch_compliance", "bend_stiffness",
+    "bend_compliance", "bend_model",        "youngs_modulus",     "poisson_ratio",
+    "model",           "damping",           "shear_stiffness",    "bend_spring_stiffness"};
 // Keys that only one object type takes; on the other type they are an error
 // that says so, rather than being silently ignored.
-constexpr std::array<std::string_view, 5> kClothOnlyMaterialKeys{"stretch_stiffness", "stretch_compliance",
-                                                                 "bend_stiffness", "bend_compliance", "bend_model"};
+constexpr std::array<std::string_view, 7> kClothOnlyMaterialKeys{
+    "stretch_stiffness", "stretch_compliance", "bend_stiffness",       "bend_compliance",
+    "bend_model",        "shear_stiffness",    "bend_spring_stiffness"};
+constexpr std::array<std::string_view, 2> kClothModels{"triangles", "springs"};
 constexpr std::array<std::string_view, 3> kBendModels{"auto", "isometric", "dihedral"};
-constexpr std::array<std::string_view, 3> kSolidOnlyMaterialKeys{"youngs_modulus", "poisson_ratio", "model"};
+constexpr std::array<std::string_view, 2> kSolidOnlyMaterialKeys{"youngs_modulus", "poisson_ratio"};
 constexpr std::array<std::string_view, 3> kSolidModels{"neo_hookean", "stvk", "springs"};
 constexpr double kSolidDefaultDensity = 1000.0;  // kg/m³, water
 constexpr long long kMaxBoxCells = 4'000'000;    // 24 M tetrahedra
@@ -153,6 +156,29 @@ void read_solid_material(const YamlReader& r, MaterialDesc& m) {
   }
 }
 
+// Cloth `model: triangles` (the default: edge springs and bending stencils)
+// or `springs` (model/cloth_springs.hpp), with the springs' stiffnesses.
+void read_cloth_springs(const YamlReader& r, MaterialDesc& m) {
+  if (r.has("model")) {
+    const YamlReader k = r.child("model");
+    const std::string name = k.string();
+    if (name == "springs") {
+      m.cloth_springs = true;
+    } else if (name != "triangles") {
+      const std::string guess = closest_match(name, kClothModels);
+      k.fail(fmt::format("unknown cloth model '{}'", name),
+             guess.empty() ? "use triangles or springs" : fmt::format("did you mean '{}'?", guess));
+    }
+  }
+  for (std::string_view key : {std::string_view("shear_stiffness"), std::string_view("bend_spring_stiffness")}) {
+    if (!r.has(key)) continue;
+    const YamlReader k = r.child(key);
+    if (!m.cloth_springs) k.fail(fmt::format("'{}' is a key of mass-spring cloth", key), "add 'model: springs'");
+    const double value = k.number_in(0.0, kHuge, false, "a stiffness in N/m ≥ 0 (0 = no such springs)");
+    (key == "shear_stiffness" ? m.shear_stiffness : m.bend_spring_stiffness) = value;
+  }
+}
+
 MaterialDesc read_material(const YamlReader& r, ObjectType type, const std::string& object) {
   MaterialDesc m;
   const bool solid = type == ObjectType::solid;
@@ -178,6 +204,15 @@ MaterialDesc read_material(const YamlReader& r, ObjectType type, const std::stri
     read_stiffness_pair(r, "bend_stiffness", "bend_compliance", m.bend_compliance, m.has_bending,
                         m.zero_compliance_where);
     if (r.has("bend_model")) m.bend_model = read_bend_model(r.child("bend_model"));
+    read_cloth_springs(r, m);
+  }
+  if (r.has("damping")) {
+    const YamlReader d = r.child("damping");
+    m.damping = d.number_in(0.0, 1e3, false, "a damping time β in s ≥ 0 (each spring gets c = β k), e.g. 0.001");
+    if (solid && m.damping > 0.0 && m.solid_model != SolidModel::springs) {
+      d.fail("'damping' damps springs, and this solid's model is not springs",
+             "set 'model: springs', or remove it and damp with simulation.air_drag");
+    }
   }
   return m;
 }

@@ -52,6 +52,10 @@ struct MaterialDesc {
   double bend_compliance = 0.0;  // cloth: 1/(N·m); used when has_bending
   bool has_bending = false;
   BendModel bend_model = BendModel::automatic;  // cloth
+  double damping = 0.0;                         // s: Rayleigh β of the springs (c = β k along each), ≥ 0
+  bool cloth_springs = false;                   // cloth `model: springs`: structural, shear, bending springs
+  double shear_stiffness = 0.0;                 // cloth springs: N/m per shear spring (0 = none)
+  double bend_spring_stiffness = 0.0;           // cloth springs: N/m per bending spring (0 = none)
   double youngs_modulus = 1.0e5;                // solids: Pa (> 0)
   double poisson_ratio = 0.3;                   // solids: 0 ≤ ν < 0.5
   SolidModel solid_model = SolidModel::neo_hookean;

@@ -79,6 +79,12 @@ void emit_object(YAML::Emitter& out, const ObjectDesc& obj) {
   if (m.has_stretch) out << YAML::Key << "stretch_compliance" << YAML::Value << m.stretch_compliance;
   if (m.has_bending) out << YAML::Key << "bend_compliance" << YAML::Value << m.bend_compliance;
   if (m.has_bending) out << YAML::Key << "bend_model" << YAML::Value << bend_model_name(m.bend_model);
+  if (m.cloth_springs) {
+    out << YAML::Key << "model" << YAML::Value << "springs";
+    out << YAML::Key << "shear_stiffness" << YAML::Value << m.shear_stiffness;
+    out << YAML::Key << "bend_spring_stiffness" << YAML::Value << m.bend_spring_stiffness;
+  }
+  if (m.damping > 0.0) out << YAML::Key << "damping" << YAML::Value << m.damping;
   out << YAML::EndMap;
   if (!obj.pins.vertices.empty() || !obj.pins.boxes.empty()) {
     out << YAML::Key << "pins" << YAML::Value << YAML::BeginMap;

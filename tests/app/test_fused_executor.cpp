@@ -130,7 +130,7 @@ TEST_CASE("an executor refuses a launch of a task function its program does not 
   }
   SECTION("a wrong argument list") {
     plan.launches[1][0].args.pop_back();
-    CHECK_THROWS_WITH(device::PlanExecutor(devices, plan), Catch::Contains("takes 5"));
+    CHECK_THROWS_WITH(device::PlanExecutor(devices, plan), Catch::Contains("takes 7"));
     plan.launches[1][0].args.push_back(plan::KernelArg::of_float(1.0f));
     CHECK_THROWS_WITH(device::PlanExecutor(devices, plan), Catch::Contains("expects an int"));
   }

@@ -22,6 +22,7 @@ namespace atssim::solver::energy::f64 {
 #include "common/energy_dihedral.h"
 #include "common/energy_inertia.h"
 #include "common/energy_membrane_stvk.h"
+#include "common/energy_spring_damping.h"
 #include "common/energy_stretch.h"
 #include "common/energy_tet_neohookean.h"
 #include "common/energy_tet_stvk.h"

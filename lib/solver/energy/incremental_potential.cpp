@@ -8,8 +8,8 @@
 
 namespace atssim::solver::energy {
 
-IncrementalPotential make_incremental_potential(const SimLayout& layout, const std::vector<Float4>& predicted,
-                                                double h) {
+IncrementalPotential make_incremental_potential(const SimLayout& layout, const std::vector<Float4>& predicted, double h,
+                                                const std::vector<Float4>* start) {
   if (predicted.size() != layout.x.size()) {
     throw input_error(fmt::format("incremental potential: {} predicted positions for {} particles", predicted.size(),
                                   layout.x.size()));
@@ -24,10 +24,23 @@ IncrementalPotential make_incremental_potential(const SimLayout& layout, const s
     const double w = layout.x[i].w;
     p.mass[i] = w > 0.0 ? 1.0 / w : 0.0;
   }
+  const std::vector<Float4>& x0 = start != nullptr ? *start : layout.x;
+  if (x0.size() != layout.x.size()) {
+    throw input_error(
+        fmt::format("incremental potential: {} start positions for {} particles", x0.size(), layout.x.size()));
+  }
   p.stretch.reserve(layout.stretch.size());
   for (std::size_t i = 0; i < layout.stretch.size(); ++i) {
     const ats_distance_c& c = layout.stretch[i];
     p.stretch.push_back({c.a, c.b, c.rest, 1.0 / static_cast<double>(c.compliance)});
+    if (c.damping > 0.0f) {
+      const Float4 &qa = x0[c.a], &qb = x0[c.b];
+      p.damping.push_back({c.a,
+                           c.b,
+                           {qa.x, qa.y, qa.z},
+                           {qb.x, qb.y, qb.z},
+                           static_cast<double>(c.damping) / static_cast<double>(c.compliance) / h});
+    }
   }
   p.bend.reserve(layout.bend.size());
   for (std::size_t i = 0; i < layout.bend.size(); ++i) {
@@ -64,8 +77,9 @@ Eigen::VectorXd positions_of(const std::vector<Float4>& x) {
   return out;
 }
 
-double incremental_potential(const SimLayout& layout, const std::vector<Float4>& predicted, double h) {
-  return total_energy(make_incremental_potential(layout, predicted, h), positions_of(layout.x));
+double incremental_potential(const SimLayout& layout, const std::vector<Float4>& predicted, double h,
+                             const std::vector<Float4>* start) {
+  return total_energy(make_incremental_potential(layout, predicted, h, start), positions_of(layout.x));
 }
 
 }  // namespace atssim::solver::energy

@@ -3,7 +3,8 @@
 //   E(x) = 1/2 h^-2 sum_i m_i |x_i - x~_i|^2 + Psi(x),
 //   Psi  = sum_stretch 1/2 alpha^-1 (|x_a - x_b| - L)^2 + sum_bend 1/2 alpha^-1 |C|^2
 //          (isometric; dihedral stencils: scale alpha^-1 (theta - theta_0)^2)
-//        + sum_tet V Psi_tet(F) + sum_i sum_colliders E_c(x_i),
+//        + sum_tet V Psi_tet(F) + sum_i sum_colliders E_c(x_i)
+//        + sum_damped springs 1/2 (c/h) (n0 . (dx_a - dx_b))^2 (DampingTerm),
 // whose constraint part XPBD with compliance alpha converges to (Macklin et
 // al. 2016, Eq. 4 and §3); the tets are the hyperelastic energies of
 // kernels/common/energy_tet_*.h (stable neo-Hookean or StVK). Built from the
@@ -36,6 +37,15 @@ struct BendTerm {
   int model = ATS_BEND_ISOMETRIC;  // common/element_types.h
 };
 
+// Material damping of a spring, taken at the end-of-substep velocity: the
+// quadratic 1/2 (c/h) (n0 . ((x_a - x0_a) - (x_b - x0_b)))^2 with n0 the
+// direction at the substep's start x0 (kernels/common/energy_spring_damping.h).
+struct DampingTerm {
+  int a = 0, b = 0;
+  std::array<double, 3> start_a{}, start_b{};  // x0 of a and b
+  double c_over_h = 0.0;                       // beta k / h, N/m
+};
+
 enum class TetModel { neo_hookean, stvk };
 
 // A linear tetrahedron: E = V Psi(F), F = Ds Dm^-1 (tet_kinematics.h).
@@ -54,6 +64,7 @@ struct IncrementalPotential {
   std::vector<StretchTerm> stretch;
   std::vector<BendTerm> bend;
   std::vector<TetTerm> tets;
+  std::vector<DampingTerm> damping;       // springs with damping > 0 only
   std::vector<ats_collider_c> colliders;  // contact energy of every free particle with each
 
   int particle_count() const { return static_cast<int>(mass.size()); }
@@ -64,13 +75,16 @@ struct IncrementalPotential {
 // infinitely stiff constraint has no finite energy, so converging needs
 // finite stiffness. Also when a tet has mu <= 0, lambda < 0 or an unknown
 // model, and when predicted and the layout differ in size.
-IncrementalPotential make_incremental_potential(const SimLayout& layout, const std::vector<Float4>& predicted,
-                                                double h);
+// `start` = the substep's start positions x_t, which the springs' damping
+// terms need; nullptr = layout.x (the state the substep starts from).
+IncrementalPotential make_incremental_potential(const SimLayout& layout, const std::vector<Float4>& predicted, double h,
+                                                const std::vector<Float4>* start = nullptr);
 
 // xyz of float4 positions as one vector of 3 n doubles.
 Eigen::VectorXd positions_of(const std::vector<Float4>& x);
 
 // E at the layout's positions (layout.x), in double; masses from layout.x[i].w.
-double incremental_potential(const SimLayout& layout, const std::vector<Float4>& predicted, double h);
+double incremental_potential(const SimLayout& layout, const std::vector<Float4>& predicted, double h,
+                             const std::vector<Float4>* start = nullptr);
 
 }  // namespace atssim::solver::energy

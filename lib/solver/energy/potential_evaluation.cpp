@@ -19,6 +19,9 @@ void add_at(Eigen::VectorXd& g, int i, ats_vec3 v) {
   g[3 * i + 2] += v.z;
 }
 
+ats_vec3 start_a(const DampingTerm& t) { return f64::ats_v3(t.start_a[0], t.start_a[1], t.start_a[2]); }
+ats_vec3 start_b(const DampingTerm& t) { return f64::ats_v3(t.start_b[0], t.start_b[1], t.start_b[2]); }
+
 void bend_positions(const BendTerm& t, const Eigen::VectorXd& x, ats_vec3 out[4]) {
   for (int k = 0; k < 4; ++k) out[k] = vec_at(x, t.v[k]);
 }
@@ -107,6 +110,9 @@ EnergyTerms energy_terms(const IncrementalPotential& p, const Eigen::VectorXd& x
     tet_positions(t, x, q);
     e.tet += tet_energy(t, q);
   }
+  for (const DampingTerm& t : p.damping) {
+    e.damping += f64::ats_spring_damping_energy(vec_at(x, t.a), vec_at(x, t.b), start_a(t), start_b(t), t.c_over_h);
+  }
   return e;
 }
 
@@ -137,6 +143,12 @@ Eigen::VectorXd gradient(const IncrementalPotential& p, const Eigen::VectorXd& x
     ats_vec3 q[4];
     tet_positions(t, x, q);
     for (int k = 0; k < 4; ++k) add_at(g, t.v[k], tet_gradient(t, q, k));
+  }
+  for (const DampingTerm& t : p.damping) {
+    const ats_vec3 ga =
+        f64::ats_spring_damping_gradient(vec_at(x, t.a), vec_at(x, t.b), start_a(t), start_b(t), t.c_over_h);
+    add_at(g, t.a, ga);
+    add_at(g, t.b, f64::ats_scale(ga, -1.0));
   }
   for (int i = 0; i < p.particle_count(); ++i) {
     if (!p.is_free(i)) g.segment<3>(3 * i).setZero();
@@ -180,6 +192,13 @@ std::vector<Eigen::Triplet<double>> hessian_triplets(const IncrementalPotential&
     for (int i = 0; i < 4; ++i) {
       for (int j = 0; j < 4; ++j) add_block(out, p, t.v[i], t.v[j], h.block<3, 3>(3 * i, 3 * j));
     }
+  }
+  for (const DampingTerm& t : p.damping) {
+    const ats_mat3 h = f64::ats_spring_damping_hessian(start_a(t), start_b(t), t.c_over_h);
+    add_block(out, p, t.a, t.a, h, 1.0);
+    add_block(out, p, t.b, t.b, h, 1.0);
+    add_block(out, p, t.a, t.b, h, -1.0);
+    add_block(out, p, t.b, t.a, h, -1.0);
   }
   return out;
 }

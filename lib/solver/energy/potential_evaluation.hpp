@@ -17,7 +17,8 @@ struct EnergyTerms {
   double bend = 0.0;
   double tet = 0.0;      // sum V Psi(F) over the tetrahedra
   double contact = 0.0;  // the colliders' contact energy
-  double total() const { return inertia + stretch + bend + tet + contact; }
+  double damping = 0.0;  // the springs' damping terms (DampingTerm)
+  double total() const { return inertia + stretch + bend + tet + contact + damping; }
 };
 
 // x: 3 per particle, pinned ones included (they enter the elastic terms).

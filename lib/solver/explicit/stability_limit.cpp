@@ -1,5 +1,7 @@
 #include "solver/explicit/stability_limit.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -77,13 +79,68 @@ double stable_step(Integrator integrator, double largest_eigenvalue) {
   return 2.0 * std::sqrt(2.0) / omega;
 }
 
+double step_spectral_radius(Integrator integrator, double w2, double g, double h) {
+  // z = (x, v), z' = A z, A = [[0, 1], [-w², -g]].
+  using M2 = std::array<double, 4>;  // row-major
+  const auto mul = [](const M2& a, const M2& b) {
+    return M2{a[0] * b[0] + a[1] * b[2], a[0] * b[1] + a[1] * b[3], a[2] * b[0] + a[3] * b[2],
+              a[2] * b[1] + a[3] * b[3]};
+  };
+  M2 step{};
+  if (integrator == Integrator::semi_euler) {
+    // v+ = (1 - h g) v - h w² x; x+ = x + h v+.
+    step = {1.0 - h * h * w2, h * (1.0 - h * g), -h * w2, 1.0 - h * g};
+  } else {
+    const M2 ha{0.0, h, -h * w2, -h * g};
+    M2 term{1.0, 0.0, 0.0, 1.0};
+    step = term;
+    const int order = integrator == Integrator::midpoint ? 2 : 4;
+    for (int k = 1; k <= order; ++k) {
+      term = mul(term, ha);
+      for (double& t : term) t /= k;
+      for (int j = 0; j < 4; ++j) step[j] += term[j];
+    }
+  }
+  const double tr = step[0] + step[3], det = step[0] * step[3] - step[1] * step[2];
+  const double disc = 0.25 * tr * tr - det;
+  if (disc < 0.0) return std::sqrt(std::max(det, 0.0));
+  const double r = std::sqrt(disc);
+  return std::max(std::abs(0.5 * tr + r), std::abs(0.5 * tr - r));
+}
+
+double stable_step(Integrator integrator, double largest_eigenvalue, double drag, double beta) {
+  if (!(drag > 0.0) && !(beta > 0.0)) return stable_step(integrator, largest_eigenvalue);
+  if (!(largest_eigenvalue > 0.0)) return std::numeric_limits<double>::infinity();
+  const double w2 = largest_eigenvalue, g = drag + beta * w2;
+  const double tolerance = integrator == Integrator::midpoint ? 1e-4 : 1e-12;
+  const auto stable = [&](double h) { return step_spectral_radius(integrator, w2, g, h) <= 1.0 + tolerance; };
+  // Every limit lies below 4/w (the undamped boundaries, 2.83/w at most; the
+  // fast eigenvalue of a damped mode is at least w in size) and above 0.
+  const double top = 4.0 / std::sqrt(w2);
+  constexpr int kScan = 4000;
+  double lo = 0.0, hi = top;
+  for (int k = 1; k <= kScan; ++k) {
+    const double h = top * k / kScan;
+    if (!stable(h)) {
+      hi = h;
+      break;
+    }
+    lo = h;
+  }
+  for (int k = 0; k < 60; ++k) (stable(0.5 * (lo + hi)) ? lo : hi) = 0.5 * (lo + hi);
+  return lo;
+}
+
 void require_stable_step(const SimLayout& layout, Integrator integrator, double h, int substeps) {
-  const double limit = stable_step(integrator, largest_eigenvalue_bound(layout));
+  double beta = 0.0;
+  for (const ats_distance_c& c : layout.stretch) beta = std::max(beta, double(c.damping));
+  const double limit = stable_step(integrator, largest_eigenvalue_bound(layout), double(layout.air_drag), beta);
   if (h <= limit) return;
   const double needed = std::ceil(substeps * h / limit);
   throw input_error(fmt::format(
       "solver.method explicit ({}): the substep {:.3g} s exceeds the estimated stable step {:.3g} s (Gershgorin bound "
-      "on M⁻¹K); use simulation.substeps ≥ {:.0f}, or --set solver.allow_unstable=true",
+      "on M⁻¹K, with the air drag and spring damping); use simulation.substeps ≥ {:.0f}, or --set "
+      "solver.allow_unstable=true",
       kIntegratorNames[static_cast<int>(integrator)], h, limit, needed));
 }
 

@@ -22,6 +22,17 @@ double largest_eigenvalue_bound(const SimLayout& layout);
 // elements.
 double stable_step(Integrator integrator, double largest_eigenvalue);
 
+// With damping: the worst mode z'' = -w² z - g z' with w² = largest_eigenvalue
+// and g = drag + beta w² (air drag c in 1/s plus the largest spring damping
+// beta in s, Rayleigh C = c M + beta K bounds every mode's rate by that g):
+// the largest h for which the integrator's 2x2 step matrix has spectral
+// radius ≤ 1 (midpoint: ≤ 1 + 1e-4, as undamped), found by a scan and
+// bisection. Equals stable_step(integrator, w²) when drag = beta = 0.
+double stable_step(Integrator integrator, double largest_eigenvalue, double drag, double beta);
+
+// The spectral radius of one step of the integrator on that mode (tests).
+double step_spectral_radius(Integrator integrator, double w2, double g, double h);
+
 // Throws atssim::Error (input) when h exceeds the stable step, naming the
 // limit and the substeps per frame that would meet it.
 void require_stable_step(const SimLayout& layout, Integrator integrator, double h, int substeps);

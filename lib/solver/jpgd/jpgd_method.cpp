@@ -1,6 +1,7 @@
 #include "solver/jpgd/jpgd_method.hpp"
 
 #include "solver/jpgd/jpgd_plan.hpp"
+#include "solver/vertex/float_resolution.hpp"
 
 namespace atssim::solver::jpgd {
 
@@ -17,6 +18,7 @@ constexpr MethodOption kOptions[] = {
 };
 
 plan::SubstepPlan build(const SimLayout& layout, const MethodSettings& s) {
+  vertex::require_resolvable_inertia(layout, s.substep_dt, s.substeps, "jpgd");
   return make_jpgd_plan(
       layout, {s.substep_dt, s.iterations, s.option("chebyshev_rho"), s.option("jacobi_step"), s.option("momentum")});
 }

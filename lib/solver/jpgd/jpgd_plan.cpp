@@ -57,6 +57,7 @@ plan::SubstepPlan make_jpgd_plan(const SimLayout& layout, const JpgdSettings& se
                           Arg::of_int(layout.has_ground ? 1 : 0),
                           Arg::of_float(layout.ground_y)};
     for (const Arg& a : vertex::collider_args(layout, b)) args.push_back(a);
+    for (const Arg& a : vertex::damping_args(layout, b, settings.substep_dt)) args.push_back(a);
     const sched::TaskId t =
         plan.add_task_after(last, plan::make_task(fmt::format("it{}/jacobi", it + 1), plan::TaskKind::jacobi, it, 0),
                             {"jpgd_step", {0, n}, std::move(args), {particle_write(next)}});

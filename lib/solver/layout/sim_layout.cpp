@@ -71,7 +71,10 @@ SimLayout make_sim_layout(const model::Model& model) {
     out.stretch_blocks = blocks.offsets;
     for (int e : blocks.order) {
       const auto& ed = model.stretch.edges[e];
-      out.stretch.push_back({ed[0], ed[1], float(model.stretch.rest_length[e]), float(model.stretch.compliance[e])});
+      const double damping =
+          static_cast<std::size_t>(e) < model.stretch.damping.size() ? model.stretch.damping[e] : 0.0;
+      out.stretch.push_back(
+          {ed[0], ed[1], float(model.stretch.rest_length[e]), float(model.stretch.compliance[e]), float(damping)});
     }
   }
   if (model.bend.size() > 0) {
@@ -113,6 +116,13 @@ SimLayout make_sim_layout(const model::Model& model) {
     }
   }
   return out;
+}
+
+bool has_spring_damping(const SimLayout& layout) {
+  for (const ats_distance_c& c : layout.stretch) {
+    if (c.damping > 0.0f) return true;
+  }
+  return false;
 }
 
 float velocity_damping(const SimLayout& layout, double h) {

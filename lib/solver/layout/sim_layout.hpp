@@ -41,6 +41,8 @@ SimLayout make_sim_layout(const model::Model& model);
 // weighs the inertia as for a step h/√(1 + c h); the velocity update keeps h.
 float velocity_damping(const SimLayout& layout, double h);  // 1/(1 + c h), 1 without drag
 double inertia_dt(const SimLayout& layout, double h);       // h/√(1 + c h), h without drag
+// Whether some spring has material damping (ats_distance_c::damping > 0).
+bool has_spring_damping(const SimLayout& layout);
 // The device records of the model's colliders (common/collider_types.h).
 std::vector<ats_collider_c> collider_records(const std::vector<model::Collider>& colliders);
 

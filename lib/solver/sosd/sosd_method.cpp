@@ -1,6 +1,7 @@
 #include "solver/sosd/sosd_method.hpp"
 
 #include "solver/sosd/sosd_plan.hpp"
+#include "solver/vertex/float_resolution.hpp"
 
 namespace atssim::solver::sosd {
 
@@ -15,6 +16,7 @@ constexpr MethodOption kOptions[] = {
 };
 
 plan::SubstepPlan build(const SimLayout& layout, const MethodSettings& s) {
+  vertex::require_resolvable_inertia(layout, s.substep_dt, s.substeps, "sosd");
   return make_sosd_plan(layout, s.substep_dt, s.iterations, s.option("stencil_step"));
 }
 

@@ -53,27 +53,30 @@ plan::SubstepPlan make_sosd_plan(const SimLayout& layout, double substep_dt, int
   const double hi = inertia_dt(layout, substep_dt);  // air drag weighs the inertia (sim_layout.hpp)
   const float inv_h2 = static_cast<float>(1.0 / (hi * hi));
   using Arg = plan::KernelArg;
+  const std::vector<Arg> damping = vertex::damping_args(layout, b, substep_dt);
   for (int it = 0; it < iterations; ++it) {
-    const sched::TaskId systems_task =
-        plan.add_task_after(last, plan::make_task(fmt::format("it{}/systems", it + 1), plan::TaskKind::systems, it),
-                            {"sosd_vertex_systems",
-                             {0, n},
-                             {Arg::of_buffer(b.x), Arg::of_buffer(b.x_tilde), Arg::of_buffer(b.adjacency_offsets),
-                              Arg::of_buffer(b.adjacency), Arg::of_buffer(b.stretch), Arg::of_buffer(b.bend),
-                              Arg::of_buffer(b.tets), Arg::of_buffer(systems), Arg::of_float(inv_h2),
-                              Arg::of_buffer(b.colliders), Arg::of_int(static_cast<int>(layout.colliders.size()))},
-                             {plan::WriteSpan::per_element(systems, 4 * kFloat4)}});
+    const sched::TaskId systems_task = plan.add_task_after(
+        last, plan::make_task(fmt::format("it{}/systems", it + 1), plan::TaskKind::systems, it),
+        {"sosd_vertex_systems",
+         {0, n},
+         {Arg::of_buffer(b.x), Arg::of_buffer(b.x_tilde), Arg::of_buffer(b.adjacency_offsets),
+          Arg::of_buffer(b.adjacency), Arg::of_buffer(b.stretch), Arg::of_buffer(b.bend), Arg::of_buffer(b.tets),
+          Arg::of_buffer(systems), Arg::of_float(inv_h2), Arg::of_buffer(b.colliders),
+          Arg::of_int(static_cast<int>(layout.colliders.size())), damping[0], damping[1]},
+         {plan::WriteSpan::per_element(systems, 4 * kFloat4)}});
     // All stencils read the same x^k and vertex systems, so a block matters
     // only as the main one: one task for it, and per kind one task for the
     // rest (the Jacobi blocks: up to two element ranges around the main).
     const StencilBlock main = blocks.empty() ? StencilBlock{-1, 0, 0} : blocks[it % blocks.size()];
     std::vector<sched::TaskId> stencil_tasks;
     const auto launch = [&](int kind, int first, int end) {
-      return plan::KernelLaunch{
-          fmt::format("sosd_{}", kKinds[kind]),
-          {first, end - first},
-          {Arg::of_buffer(b.x), Arg::of_buffer(systems), Arg::of_buffer(elements[kind]), Arg::of_buffer(d[kind])},
-          {plan::WriteSpan::per_element(d[kind], (kind == 0 ? 2 : 4) * kFloat4)}};
+      std::vector<Arg> args{Arg::of_buffer(b.x), Arg::of_buffer(systems), Arg::of_buffer(elements[kind]),
+                            Arg::of_buffer(d[kind])};
+      if (kind == 0) args.insert(args.end(), damping.begin(), damping.end());
+      return plan::KernelLaunch{fmt::format("sosd_{}", kKinds[kind]),
+                                {first, end - first},
+                                std::move(args),
+                                {plan::WriteSpan::per_element(d[kind], (kind == 0 ? 2 : 4) * kFloat4)}};
     };
     if (main.kind >= 0) {
       const int color = static_cast<int>(it % blocks.size()) - first_block[main.kind];

@@ -36,6 +36,7 @@ plan::SubstepPlan make_vbd_plan(const SimLayout& layout, double substep_dt, int 
                             Arg::of_int(layout.has_ground ? 1 : 0),
                             Arg::of_float(layout.ground_y)};
       for (const Arg& a : vertex::collider_args(layout, b)) args.push_back(a);
+      for (const Arg& a : vertex::damping_args(layout, b, substep_dt)) args.push_back(a);
       last = plan.add_task_after(
           last, plan::make_task(fmt::format("it{}/vertex/c{}", it + 1, c), plan::TaskKind::vertex, it, c),
           {"vbd_solve", {first, count}, std::move(args), {plan::WriteSpan::per_index(b.x, kParticleBytes, 1, order)}});

@@ -91,13 +91,17 @@ void VbdReference::predict() {
 void VbdReference::solve_color(int color) {
   const double hi = inertia_dt(layout_, substep_dt_);
   const float inv_h2 = static_cast<float>(1.0 / (hi * hi));
+  const float inv_h = has_spring_damping(layout_) ? static_cast<float>(1.0 / substep_dt_) : 0.0f;  // as damping_args
   const Float4* x = layout_.x.data();
   const int* order = vertices_.colors.order.data();
   sweep(vertices_.colors.offsets[color], vertices_.colors.offsets[color + 1], [&](int k) {
     const int i = order[k];
-    const vertex_system s = gather_vertex_system(i, x, x_tilde_.data(), inv_h2, vertices_.adjacency_offsets.data(),
-                                                 vertices_.adjacency.data(), layout_.stretch.data(),
-                                                 layout_.bend.data(), layout_.tets.data());
+    const vertex_system s =
+        add_spring_damping(gather_vertex_system(i, x, x_tilde_.data(), inv_h2, vertices_.adjacency_offsets.data(),
+                                                vertices_.adjacency.data(), layout_.stretch.data(), layout_.bend.data(),
+                                                layout_.tets.data()),
+                           i, x, x_prev_.data(), inv_h, vertices_.adjacency_offsets.data(), vertices_.adjacency.data(),
+                           layout_.stretch.data());
     const ats_solve3 d = ats_m3_solve(s.h, s.f);
     if (!d.ok) return;
     Float4& p = layout_.x[i];

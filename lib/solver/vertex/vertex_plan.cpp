@@ -41,6 +41,11 @@ std::vector<plan::KernelArg> collider_args(const SimLayout& layout, const Vertex
   return {Arg::of_buffer(b.colliders), Arg::of_int(static_cast<int>(layout.colliders.size()))};
 }
 
+std::vector<plan::KernelArg> damping_args(const SimLayout& layout, const VertexBuffers& b, double substep_dt) {
+  return {Arg::of_buffer(b.x_prev),
+          Arg::of_float(has_spring_damping(layout) ? static_cast<float>(1.0 / substep_dt) : 0.0f)};
+}
+
 void end_vertex_plan(plan::SubstepPlan& plan, const SimLayout& layout, sched::TaskId last, const VertexBuffers& b,
                      double substep_dt) {
   const int n = plan.particle_count;

@@ -27,4 +27,9 @@ void end_vertex_plan(plan::SubstepPlan& plan, const SimLayout& layout, sched::Ta
 // The collider arguments of a vertex kernel: the buffer and the count.
 std::vector<plan::KernelArg> collider_args(const SimLayout& layout, const VertexBuffers& ids);
 
+// The spring-damping arguments of a vertex kernel (common/vertex_system.h,
+// add_spring_damping): the start positions and 1/h, or 0 when no spring of
+// the layout is damped (the kernels then skip the term).
+std::vector<plan::KernelArg> damping_args(const SimLayout& layout, const VertexBuffers& ids, double substep_dt);
+
 }  // namespace atssim::solver::vertex

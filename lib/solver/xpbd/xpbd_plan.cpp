@@ -23,14 +23,16 @@ sched::TaskId add_blocks(plan::SubstepPlan& plan, sched::TaskId last, const std:
                          plan::TaskKind kind, const std::string& function, plan::BufferId x, plan::BufferId elements,
                          plan::BufferId lambda, float dt, int iteration,
                          const std::shared_ptr<const std::vector<std::int32_t>>& particles, int arity,
-                         std::uint32_t lambda_bytes) {
+                         std::uint32_t lambda_bytes, const std::vector<Arg>& extra = {}) {
   for (int b = 0; b + 1 < static_cast<int>(blocks.size()); ++b) {
     const std::string name = fmt::format("it{}/{}/c{}", iteration + 1, plan::to_string(kind), b);
+    std::vector<Arg> args{Arg::of_buffer(x), Arg::of_buffer(elements), Arg::of_buffer(lambda), Arg::of_float(dt),
+                          Arg::of_int(iteration == 0 ? 1 : 0)};
+    args.insert(args.end(), extra.begin(), extra.end());
     last = plan.add_task_after(last, plan::make_task(name, kind, iteration, b),
                                {function,
                                 {blocks[b], blocks[b + 1] - blocks[b]},
-                                {Arg::of_buffer(x), Arg::of_buffer(elements), Arg::of_buffer(lambda), Arg::of_float(dt),
-                                 Arg::of_int(iteration == 0 ? 1 : 0)},
+                                std::move(args),
                                 {plan::WriteSpan::per_index(x, kParticleBytes, arity, particles),
                                  plan::WriteSpan::per_element(lambda, lambda_bytes)}});
   }
@@ -92,13 +94,16 @@ plan::SubstepPlan make_xpbd_plan(const SimLayout& layout, const XpbdSettings& se
                        Arg::of_float(layout.gravity.x), Arg::of_float(layout.gravity.y),
                        Arg::of_float(layout.gravity.z), Arg::of_float(velocity_damping(layout, settings.substep_dt))},
                       {particle_write(b.x), particle_write(b.v), particle_write(b.x_prev)}}});
+  // Material damping along the springs (common/xpbd_distance.h): the start positions and 1/h, 0 = none.
+  const std::vector<Arg> spring_damping{Arg::of_buffer(b.x_prev),
+                                        Arg::of_float(has_spring_damping(layout) ? 1.0f / h : 0.0f)};
   const auto stretch_particles = particles_of(layout.stretch);
   const auto bend_particles = particles_of(layout.bend);
   const auto tet_particles = particles_of(layout.tets);
   for (int it = 0; it < settings.iterations; ++it) {
     if (b.stretch >= 0) {
       last = add_blocks(plan, last, layout.stretch_blocks, plan::TaskKind::stretch, "xpbd_stretch", b.x, b.stretch,
-                        b.stretch_lambda, dt, it, stretch_particles, 2, sizeof(float));
+                        b.stretch_lambda, dt, it, stretch_particles, 2, sizeof(float), spring_damping);
     }
     if (b.bend >= 0) {
       last = add_blocks(plan, last, layout.bend_blocks, plan::TaskKind::bend, "xpbd_bend", b.x, b.bend, b.bend_lambda,

@@ -105,13 +105,19 @@ void XpbdReference::predict() {
 // particle, so any order (or thread) inside a block gives the same result.
 void XpbdReference::solve_stretch(bool reset) {
   const float dt = static_cast<float>(inertia_dt(layout_, settings_.substep_dt));
+  // As xpbd_stretch with its plan's 1/h (0 without damped springs).
+  const float inv_h = has_spring_damping(layout_) ? 1.0f / static_cast<float>(settings_.substep_dt) : 0.0f;
   for (std::size_t b = 0; b + 1 < layout_.stretch_blocks.size(); ++b) {
     sweep(layout_.stretch_blocks[b], layout_.stretch_blocks[b + 1], [&](int i) {
       const ats_distance_c& c = layout_.stretch[i];
       Float4& pa = layout_.x[c.a];
       Float4& pb = layout_.x[c.b];
       const float l = reset ? 0.0f : stretch_lambda_[i];
-      const ats_distance_step s = ats_xpbd_distance(xyz(pa), pa.w, xyz(pb), pb.w, c.rest, c.compliance, l, dt);
+      const float gamma = c.damping * inv_h;
+      const ats_distance_step s = gamma > 0.0f
+                                      ? ats_xpbd_distance_damped(xyz(pa), pa.w, xyz(pb), pb.w, c.rest, c.compliance, l,
+                                                                 dt, xyz(x_prev_[c.a]), xyz(x_prev_[c.b]), gamma)
+                                      : ats_xpbd_distance(xyz(pa), pa.w, xyz(pb), pb.w, c.rest, c.compliance, l, dt);
       stretch_lambda_[i] = l + s.dlambda;
       add_xyz(pa, s.dxa);
       add_xyz(pb, s.dxb);

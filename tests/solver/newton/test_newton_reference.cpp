@@ -26,7 +26,7 @@ TEST_CASE("Newton finds the closed-form minimum of a particle on a spring", "[ne
   const float w = 100.0f;  // inverse mass
   layout.x = {{0, 0, 0, 0}, {0.3f, -0.4f, 0.1f, w}};
   layout.v = {{}, {}};
-  layout.stretch = {{0, 1, 0.25f, 1e-3f}};
+  layout.stretch = {{0, 1, 0.25f, 1e-3f, 0.0f}};
   const std::vector<Float4> predicted = layout.x;
   const double h = 0.01;
   const auto r = newton::newton_reference(layout, predicted, h);
@@ -48,7 +48,7 @@ TEST_CASE("with a ground plane Newton finds the bound-constrained minimum of a p
   const float w = 100.0f;
   layout.x = {{0, 0, 0, 0}, {0.3f, -0.4f, 0.1f, w}};
   layout.v = {{}, {}};
-  layout.stretch = {{0, 1, 0.25f, 1e-3f}};
+  layout.stretch = {{0, 1, 0.25f, 1e-3f, 0.0f}};
   layout.has_ground = true;
   layout.ground_y = -0.2f;
   const double h = 0.01;
