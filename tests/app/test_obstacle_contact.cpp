@@ -1,0 +1,196 @@
+// Kinematic colliders and triangle-mesh obstacles, end to end (issue #12):
+// every method, single and heft on the two CPU sub-devices.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <Eigen/Core>
+
+#include "app/simulation.hpp"
+#include "io/result_reader.hpp"
+#include "support/obstacle_meshes.hpp"
+#include "support/temp_dir.hpp"
+
+using namespace atssim;
+using Eigen::Vector3d;
+
+namespace {
+
+std::vector<Vector3d> frame(const std::string& file, std::size_t f) {
+  const std::vector<float> xyz = io::read_frame_positions(file, f);
+  std::vector<Vector3d> out;
+  for (std::size_t i = 0; i + 2 < xyz.size(); i += 3) out.emplace_back(xyz[i], xyz[i + 1], xyz[i + 2]);
+  return out;
+}
+
+app::RunOptions options(const test::TempDir& dir, const std::string& yaml, const std::string& method,
+                        const std::string& schedule) {
+  app::RunOptions o;
+  o.scene_path = dir.write("scene.yaml", yaml);
+  o.overrides = {"output.path=" + dir.file("out.h5"), "devices=cpu/2", "solver.method=" + method,
+                 "solver.schedule=" + schedule};
+  return o;
+}
+
+// A cloth pinned at its four corners, and a sphere coming up from below at
+// 0.3 m/s that lifts its middle (centre from y = -0.12 to 0.08 in 40 frames).
+constexpr double kPushThickness = 0.01, kPushRadius = 0.08, kPushSpeed = 0.3, kPushStart = -0.12;
+const char* kPush =
+    "simulation: {fps: 60, substeps: 8, iterations: 6, frames: 40}\n"
+    "objects:\n"
+    "  - grid: {size: [0.5, 0.5], resolution: [8, 8]}\n"
+    "    material: {density: 0.2, stretch_stiffness: 200, bend_stiffness: 0.0001}\n"
+    "    pins:\n"
+    "      boxes:\n"
+    "        - {min: [-0.26, -0.01, -0.26], max: [-0.24, 0.01, -0.24]}\n"
+    "        - {min: [0.24, -0.01, -0.26], max: [0.26, 0.01, -0.24]}\n"
+    "        - {min: [-0.26, -0.01, 0.24], max: [-0.24, 0.01, 0.26]}\n"
+    "        - {min: [0.24, -0.01, 0.24], max: [0.26, 0.01, 0.26]}\n"
+    "colliders:\n"
+    "  - {type: sphere, center: [0, -0.12, 0], radius: 0.08, thickness: 0.01, velocity: [0, 0.3, 0]}\n";
+
+// A 0.1 m patch resting on the top of a wide flat box (top at y = 0) that
+// moves along +x at 0.5 m/s.
+constexpr double kBoxSpeed = 0.5;
+std::string carried_patch(double mu) {
+  return fmt::format(
+      "simulation: {{fps: 60, substeps: 8, iterations: 4, frames: 60}}\n"
+      "objects:\n"
+      "  - grid: {{size: [0.1, 0.1], resolution: [4, 4]}}\n"
+      "    transform: {{translate: [0, 0.005, 0]}}\n"
+      "    material: {{density: 0.2, stretch_stiffness: 1000, bend_stiffness: 0.0001}}\n"
+      "colliders:\n"
+      "  - {{type: box, center: [0, -0.05, 0], size: [4, 0.1, 1], thickness: 0.005, friction: {},\n"
+      "     velocity: [{}, 0, 0]}}\n",
+      mu, kBoxSpeed);
+}
+
+double mean_x(const std::vector<Vector3d>& x) {
+  double s = 0.0;
+  for (const Vector3d& p : x) s += p.x();
+  return s / x.size();
+}
+
+}  // namespace
+
+TEST_CASE("a sphere moving into a pinned cloth keeps every vertex outside it (every method, single and heft)",
+          "[contact][kinematic]") {
+  const std::string method = GENERATE("xpbd", "vbd", "sosd", "jpgd");
+  const std::string schedule = GENERATE("single", "heft");
+  INFO(method << "/" << schedule);
+  test::TempDir dir;
+  app::run_simulation(options(dir, kPush, method, schedule));
+  const std::string out = dir.file("out.h5");
+  double deepest = -1.0, highest = -1.0;
+  for (std::size_t f = 0; f <= 40; ++f) {
+    const Vector3d centre(0.0, kPushStart + kPushSpeed * f / 60.0, 0.0);  // the pose at the frame's time
+    for (const Vector3d& p : frame(out, f)) {
+      REQUIRE(p.allFinite());
+      deepest = std::max(deepest, kPushThickness - ((p - centre).norm() - kPushRadius));
+      if (f == 40) highest = std::max(highest, p.y());
+    }
+  }
+  INFO("deepest " << deepest << " m, highest vertex " << highest << " m");
+  CHECK(deepest <= 0.01 * kPushThickness);
+  // The sphere's top (0.16 m) lifted the cloth: the middle rides on it.
+  CHECK(highest > 0.16 + kPushThickness - 0.005);
+}
+
+TEST_CASE("a patch on a box moving sideways is carried at its speed with friction, and stays behind without",
+          "[contact][kinematic][friction]") {
+  const std::string method = GENERATE("xpbd", "vbd", "sosd", "jpgd");
+  const std::string schedule = GENERATE("single", "heft");
+  INFO(method << "/" << schedule);
+  {
+    // mu = 2: the patch catches up at mu g = 19.6 m/s^2 within 0.03 s, then
+    // sticks; from 0.5 s to 1 s it moves with the box.
+    test::TempDir dir;
+    app::run_simulation(options(dir, carried_patch(2.0), method, schedule));
+    const std::string out = dir.file("out.h5");
+    const double speed = (mean_x(frame(out, 60)) - mean_x(frame(out, 30))) / 0.5;
+    INFO("speed " << speed << " m/s, box " << kBoxSpeed << " m/s");
+    CHECK(speed == Approx(kBoxSpeed).epsilon(0.03));
+    for (const Vector3d& p : frame(out, 60)) CHECK(p.y() > 0.0);  // still on the box's top
+  }
+  {
+    // Frictionless: no tangential force, the patch does not move along x.
+    test::TempDir dir;
+    app::run_simulation(options(dir, carried_patch(0.0), method, schedule));
+    const std::string out = dir.file("out.h5");
+    const double moved = mean_x(frame(out, 60)) - mean_x(frame(out, 0));
+    INFO("moved " << moved << " m along x");
+    CHECK(std::abs(moved) < 1e-3);
+  }
+}
+
+TEST_CASE("with a moving collider the events and fused executors give the same positions",
+          "[contact][kinematic]") {
+  const std::string schedule = GENERATE("single", "heft");
+  test::TempDir dir;
+  std::vector<std::vector<float>> last;
+  for (const char* executor : {"events", "fused"}) {
+    app::RunOptions o = options(dir, kPush, "xpbd", schedule);
+    o.overrides.push_back(std::string("solver.executor=") + executor);
+    o.overrides.push_back("simulation.frames=10");
+    app::run_simulation(o);
+    last.push_back(io::read_frame_positions(dir.file("out.h5"), 10));
+  }
+  CHECK(last[0] == last[1]);
+}
+
+namespace {
+
+// Two cloths, one dropped on an icosphere mesh (closed), one on a flat
+// sheet mesh (open), with friction.
+constexpr double kMeshThickness = 0.01;
+const Vector3d kSphereAt(-0.6, 0.0, 0.0), kSheetAt(0.6, 0.0, 0.0);
+std::string mesh_drape(const test::TempDir& dir) {
+  test::write_obj(dir.file("ball.obj"), test::icosphere(0.15, 2));
+  test::write_obj(dir.file("sheet.obj"), test::sheet(0.6, 4));
+  return "simulation: {fps: 60, substeps: 8, iterations: 6, frames: 60}\n"
+         "objects:\n"
+         "  - {name: over_ball, grid: {size: [0.4, 0.4], resolution: [8, 8]}, transform: {translate: [-0.6, 0.2, 0]},\n"
+         "     material: {density: 0.2, stretch_stiffness: 1000, bend_stiffness: 0.0001}}\n"
+         "  - {name: over_sheet, grid: {size: [0.3, 0.3], resolution: [6, 6]}, transform: {translate: [0.6, 0.1, 0]},\n"
+         "     material: {density: 0.2, stretch_stiffness: 1000, bend_stiffness: 0.0001}}\n"
+         "colliders:\n"
+         "  - {type: mesh, file: ball.obj, position: [-0.6, 0, 0], thickness: 0.01, friction: 0.3}\n"
+         "  - {type: mesh, file: sheet.obj, position: [0.6, 0, 0], thickness: 0.01, friction: 0.5}\n";
+}
+
+}  // namespace
+
+TEST_CASE("cloth dropped on a closed and an open mesh obstacle stays out of both (every method, single and heft)",
+          "[contact][mesh]") {
+  const std::string method = GENERATE("xpbd", "vbd", "sosd", "jpgd");
+  const std::string schedule = GENERATE("single", "heft");
+  INFO(method << "/" << schedule);
+  test::TempDir dir;
+  app::run_simulation(options(dir, mesh_drape(dir), method, schedule));
+  const std::string out = dir.file("out.h5");
+  const test::SimpleMesh ball = test::icosphere(0.15, 2), sheet = test::sheet(0.6, 4);
+  double deepest = -1.0, closest_ball = 1e9, closest_sheet = 1e9;
+  for (std::size_t f : {30u, 45u, 60u}) {
+    for (const Vector3d& p : frame(out, f)) {
+      REQUIRE(p.allFinite());
+      const double to_ball = test::mesh_distance(ball, kSphereAt, p);
+      const double to_sheet = test::mesh_distance(sheet, kSheetAt, p);
+      // The ball's inside counts as deep: no vertex got there.
+      CHECK((p - kSphereAt).norm() > 0.15 * 0.9);
+      deepest = std::max({deepest, kMeshThickness - to_ball, kMeshThickness - to_sheet});
+      closest_ball = std::min(closest_ball, to_ball);
+      closest_sheet = std::min(closest_sheet, to_sheet);
+    }
+  }
+  INFO("deepest " << deepest << " m; closest to the ball " << closest_ball << ", to the sheet " << closest_sheet);
+  CHECK(deepest <= 0.01 * kMeshThickness);
+  CHECK(closest_ball < 1.5 * kMeshThickness);  // each cloth lies on its obstacle
+  CHECK(closest_sheet < 1.5 * kMeshThickness);
+  const std::vector<double> penetration = io::read_series(out, "/contact/max_penetration");
+  REQUIRE(penetration.size() == 61);
+  CHECK(*std::max_element(penetration.begin(), penetration.end()) <= 0.01 * kMeshThickness);
+}
