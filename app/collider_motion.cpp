@@ -1,6 +1,7 @@
 #include "app/collider_motion.hpp"
 
 #include <cstring>
+#include <span>
 
 namespace atssim::app {
 

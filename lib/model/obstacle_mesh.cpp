@@ -5,6 +5,8 @@
 #include <map>
 #include <utility>
 
+#include "util/error.hpp"
+
 namespace atssim::model {
 
 namespace {
@@ -70,8 +72,10 @@ ObstacleMesh make_obstacle_mesh(const std::vector<std::array<double, 3>>& vertic
   for (const auto& p : vertices) m.vertices.emplace_back(p[0] * scale[0], p[1] * scale[1], p[2] * scale[2]);
   for (const auto& t : triangles) {
     const Eigen::Vector3d a = m.vertices[t[0]], b = m.vertices[t[1]], c = m.vertices[t[2]];
-    if ((b - a).cross(c - a).norm() > 1e-14 * std::max(1.0, (b - a).squaredNorm())) m.triangles.push_back(t);
+    if ((b - a).cross(c - a).squaredNorm() > 0.0) m.triangles.push_back(t);
   }
+  // The scene reader refuses such a file with its line; this guards other callers.
+  if (m.triangles.empty()) throw input_error("a mesh obstacle needs at least one triangle of non-zero area");
   m.closed = is_closed(m.triangles);
   if (m.closed && signed_volume(m.vertices, m.triangles) < 0.0) {
     for (auto& t : m.triangles) std::swap(t[1], t[2]);

@@ -1,5 +1,6 @@
 #include "scene/obstacle_reader.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -26,6 +27,18 @@ void read_mesh_obstacle(const YamlReader& r, ColliderDesc& c, const fs::path& ba
     }
   }
   const TriangleMesh mesh = load_triangle_mesh(c.file, f.where());
+  // Zero-area triangles have no normal; the obstacle drops them, and needs others.
+  const auto area2 = [&](const std::array<int, 3>& t) {
+    const auto& a = mesh.vertices[t[0]];
+    const auto& b = mesh.vertices[t[1]];
+    const auto& d = mesh.vertices[t[2]];
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+    const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    return n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+  };
+  if (std::none_of(mesh.triangles.begin(), mesh.triangles.end(), [&](const auto& t) { return area2(t) > 0.0; })) {
+    f.fail(fmt::format("'{}' has no triangle of non-zero area", f.string()), "give a mesh with a surface");
+  }
   c.mesh_vertices = mesh.vertices;
   c.mesh_triangles = mesh.triangles;
 }

@@ -18,6 +18,7 @@ void put(float* out, const Eigen::Vector3d& v) {
 KinematicColliders::KinematicColliders(std::vector<model::Collider> colliders)
     : colliders_(std::move(colliders)), buffer_(collider_buffer(colliders_)) {
   for (const model::Collider& c : colliders_) moving_ = moving_ || model::is_kinematic(c);
+  if (moving_) records(0.0, 0.0);  // keyframes may place a collider elsewhere at time 0
 }
 
 const std::vector<ats_collider_c>& KinematicColliders::records(double t0, double t1) {
