@@ -37,11 +37,11 @@ struct Mesh {
 Mesh icosphere(int levels) {
   const double g = (1.0 + std::sqrt(5.0)) / 2.0;
   Mesh m;
-  m.v = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
-         {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
-  m.t = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-         {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
-         {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+  m.v = {{-1, g, 0},  {1, g, 0},  {-1, -g, 0}, {1, -g, 0}, {0, -1, g},  {0, 1, g},
+         {0, -1, -g}, {0, 1, -g}, {g, 0, -1},  {g, 0, 1},  {-g, 0, -1}, {-g, 0, 1}};
+  m.t = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+         {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+         {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
   const auto unit = [](std::array<double, 3> p) {
     const double n = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
     return std::array<double, 3>{p[0] / n, p[1] / n, p[2] / n};
@@ -87,7 +87,9 @@ int main(int argc, char** argv) {
   app.add_option("--repeats", repeats, "runs per measurement (the median is printed)");
   CLI11_PARSE(app, argc, argv);
 
-  std::printf("| triangles | rebuild ms | refit ms | refit / rebuild | BVH query µs/point | brute force µs/point | brute / BVH |\n");
+  std::printf(
+      "| triangles | rebuild ms | refit ms | refit / rebuild | BVH query µs/point | brute force µs/point | brute / BVH "
+      "|\n");
   std::printf("|---:|---:|---:|---:|---:|---:|---:|\n");
   std::mt19937 rng(5);
   for (int level : levels) {

@@ -47,8 +47,7 @@ void pseudo_normals(ObstacleMesh& m) {
       const double angle = std::acos(std::clamp(e1.dot(e2), -1.0, 1.0));
       m.vertex_normal[t[k]] += angle * n;
       const Edge e = std::minmax(t[k], t[(k + 1) % 3]);
-      auto [it, fresh] = edge_sum.try_emplace(e, Eigen::Vector3d::Zero());
-      it->second += n;
+      edge_sum.try_emplace(e, Eigen::Vector3d::Zero()).first->second += n;
     }
   }
   for (auto& n : m.vertex_normal) n = n.squaredNorm() > 0.0 ? n.normalized() : Eigen::Vector3d::UnitY();

@@ -16,9 +16,9 @@ struct ObstacleMesh {
   std::vector<Eigen::Vector3d> vertices;      // local frame, scaled
   std::vector<std::array<int, 3>> triangles;  // non-degenerate ones; outward for a closed mesh
   bool closed = false;  // every edge shared by exactly two triangles that run it in opposite directions
-  std::vector<Eigen::Vector3d> face_normal;                  // per triangle, unit
-  std::vector<std::array<Eigen::Vector3d, 3>> edge_normal;   // per triangle: ab, bc, ca (unit)
-  std::vector<Eigen::Vector3d> vertex_normal;                // per vertex, angle-weighted (unit)
+  std::vector<Eigen::Vector3d> face_normal;                 // per triangle, unit
+  std::vector<std::array<Eigen::Vector3d, 3>> edge_normal;  // per triangle: ab, bc, ca (unit)
+  std::vector<Eigen::Vector3d> vertex_normal;               // per vertex, angle-weighted (unit)
   ObstacleBvh bvh;
 };
 

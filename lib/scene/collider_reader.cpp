@@ -49,8 +49,9 @@ ColliderShape read_shape(const YamlReader& r) {
     if (name == kShapes[k]) return static_cast<ColliderShape>(k);
   }
   const std::string guess = closest_match(name, kShapes);
-  t.fail(fmt::format("unknown collider type '{}'", name),
-         guess.empty() ? std::string("use plane, sphere, capsule, box or mesh") : fmt::format("did you mean '{}'?", guess));
+  t.fail(fmt::format("unknown collider type '{}'", name), guess.empty()
+                                                              ? std::string("use plane, sphere, capsule, box or mesh")
+                                                              : fmt::format("did you mean '{}'?", guess));
 }
 
 double positive(const YamlReader& r, std::string_view what) {

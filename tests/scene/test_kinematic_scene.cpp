@@ -91,6 +91,7 @@ TEST_CASE("bad motion keys stop with the line and exit code 2") {
              Catch::Contains("scene.yaml:5") && Catch::Contains("'position'"));
   CHECK_THAT(error_of("  - {type: sphere, center: [0, 0, 0], radius: 0.1, keyframes: []}\n"),
              Catch::Contains("scene.yaml:5") && Catch::Contains("empty"));
-  CHECK_THAT(error_of("  - {type: sphere, center: [0, 0, 0], radius: 0.1, keyframes: [{time: -1, position: [0, 0, 0]}]}\n"),
-             Catch::Contains("scene.yaml:5"));
+  CHECK_THAT(
+      error_of("  - {type: sphere, center: [0, 0, 0], radius: 0.1, keyframes: [{time: -1, position: [0, 0, 0]}]}\n"),
+      Catch::Contains("scene.yaml:5"));
 }

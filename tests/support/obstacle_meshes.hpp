@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <string>
 #include <utility>
@@ -26,11 +26,11 @@ struct SimpleMesh {
 inline SimpleMesh icosphere(double radius, int levels) {
   const double t = (1.0 + std::sqrt(5.0)) / 2.0;
   SimpleMesh m;
-  m.vertices = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-  m.triangles = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                 {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
-                 {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+  m.vertices = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
+  m.triangles = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                 {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                 {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
   const auto unit = [](std::array<double, 3> v) {
     const double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     return std::array<double, 3>{v[0] / n, v[1] / n, v[2] / n};
@@ -64,7 +64,8 @@ inline SimpleMesh icosphere(double radius, int levels) {
 inline SimpleMesh sheet(double size, int n) {
   SimpleMesh m;
   for (int i = 0; i <= n; ++i) {
-    for (int j = 0; j <= n; ++j) m.vertices.push_back({size * (double(i) / n - 0.5), 0.0, size * (double(j) / n - 0.5)});
+    for (int j = 0; j <= n; ++j)
+      m.vertices.push_back({size * (double(i) / n - 0.5), 0.0, size * (double(j) / n - 0.5)});
   }
   for (int i = 0; i < n; ++i) {
     for (int j = 0; j < n; ++j) {

@@ -18,8 +18,7 @@ float gap_of(const ats_collider_c& c, ats_vec3 x) {
 
 }  // namespace
 
-ContactSummary summarize_contacts(const std::vector<ats_collider_c>& colliders, std::span<const float> xyz,
-                                  int count) {
+ContactSummary summarize_contacts(const std::vector<ats_collider_c>& colliders, std::span<const float> xyz, int count) {
   ContactSummary s;
   s.min_distance = std::numeric_limits<double>::quiet_NaN();
   if (count < 0) count = static_cast<int>(colliders.size());

@@ -28,10 +28,10 @@ struct WorldMesh {
 // Placed as the scene would: scaled, rotated about x, then y, then z, moved.
 WorldMesh place(const test::SimpleMesh& m, const Vector3d& scale, const Vector3d& deg, const Vector3d& position) {
   const double k = std::numbers::pi / 180.0;
-  const Eigen::Matrix3d r = (Eigen::AngleAxisd(deg.z() * k, Vector3d::UnitZ()) *
-                             Eigen::AngleAxisd(deg.y() * k, Vector3d::UnitY()) *
-                             Eigen::AngleAxisd(deg.x() * k, Vector3d::UnitX()))
-                                .toRotationMatrix();
+  const Eigen::Matrix3d r =
+      (Eigen::AngleAxisd(deg.z() * k, Vector3d::UnitZ()) * Eigen::AngleAxisd(deg.y() * k, Vector3d::UnitY()) *
+       Eigen::AngleAxisd(deg.x() * k, Vector3d::UnitX()))
+          .toRotationMatrix();
   WorldMesh w;
   for (const auto& p : m.vertices) w.v.push_back(r * Vector3d(p[0], p[1], p[2]).cwiseProduct(scale) + position);
   w.t = m.triangles;
