@@ -5,6 +5,8 @@
 #include <map>
 #include <utility>
 
+#include <Eigen/Geometry>
+
 #include "util/error.hpp"
 
 namespace atssim::model {

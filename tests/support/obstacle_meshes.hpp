@@ -98,7 +98,9 @@ inline double triangle_distance(const Eigen::Vector3d& p, const Eigen::Vector3d&
 // Brute force over every triangle of `m` moved by `offset`.
 inline double mesh_distance(const SimpleMesh& m, const Eigen::Vector3d& offset, const Eigen::Vector3d& p) {
   double d = std::numeric_limits<double>::infinity();
-  const auto at = [&](int i) { return Eigen::Vector3d(m.vertices[i][0], m.vertices[i][1], m.vertices[i][2]) + offset; };
+  const auto at = [&](int i) -> Eigen::Vector3d {
+    return Eigen::Vector3d(m.vertices[i][0], m.vertices[i][1], m.vertices[i][2]) + offset;
+  };
   for (const auto& t : m.triangles) d = std::min(d, triangle_distance(p, at(t[0]), at(t[1]), at(t[2])));
   return d;
 }
