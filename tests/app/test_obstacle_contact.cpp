@@ -164,7 +164,7 @@ namespace {
 constexpr double kMeshThickness = 0.01;
 const Vector3d kSphereAt(-0.6, 0.0, 0.0), kSheetAt(0.6, 0.0, 0.0);
 std::string mesh_drape(const test::TempDir& dir) {
-  test::write_obj(dir.file("ball.obj"), test::icosphere(0.15, 2));
+  test::write_obj(dir.file("ball.obj"), test::obstacle_icosphere(0.15, 2));
   test::write_obj(dir.file("sheet.obj"), test::sheet(0.6, 4));
   return "simulation: {fps: 60, substeps: 8, iterations: 6, frames: 60}\n"
          "objects:\n"
@@ -187,7 +187,7 @@ TEST_CASE("cloth dropped on a closed and an open mesh obstacle stays out of both
   test::TempDir dir;
   app::run_simulation(options(dir, mesh_drape(dir), method, schedule));
   const std::string out = dir.file("out.h5");
-  const test::SimpleMesh ball = test::icosphere(0.15, 2), sheet = test::sheet(0.6, 4);
+  const test::SimpleMesh ball = test::obstacle_icosphere(0.15, 2), sheet = test::sheet(0.6, 4);
   double deepest = -1.0, closest_ball = 1e9, closest_sheet = 1e9;
   for (std::size_t f : {30u, 45u, 60u}) {
     for (const Vector3d& p : frame(out, f)) {

@@ -21,9 +21,10 @@ struct SimpleMesh {
   std::vector<std::array<int, 3>> triangles;
 };
 
+// (Not curved_meshes.hpp's icosphere: one name, two inline functions, would break the ODR.)
 // The icosahedron subdivided `levels` times, vertices on the sphere of
 // `radius` about the origin; triangles counter-clockwise seen from outside.
-inline SimpleMesh icosphere(double radius, int levels) {
+inline SimpleMesh obstacle_icosphere(double radius, int levels) {
   const double t = (1.0 + std::sqrt(5.0)) / 2.0;
   SimpleMesh m;
   m.vertices = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},

@@ -78,7 +78,7 @@ Vector3d vec(ats_vec3 v) { return {v.x, v.y, v.z}; }
 
 TEST_CASE("the distance to a placed closed mesh is signed, matches brute force, and its normal leads to the surface") {
   const Vector3d scale(1.0, 0.6, 1.2), deg(30, 45, 10), position(0.2, 1.0, -0.3);
-  const test::SimpleMesh sphere = test::icosphere(0.3, 2);
+  const test::SimpleMesh sphere = test::obstacle_icosphere(0.3, 2);
   const WorldMesh world = place(sphere, scale, deg, position);
   const std::vector<ats_collider_c> records = mesh_records(sphere, scale, deg, position, 0.01);
   const double reach = records[0].mesh[3];
@@ -129,7 +129,7 @@ TEST_CASE("the distance to an open mesh is unsigned on both sides and matches br
 }
 
 TEST_CASE("the contact record measures a mesh however far it is; the kernels see contact only within reach") {
-  const test::SimpleMesh sphere = test::icosphere(0.3, 1);
+  const test::SimpleMesh sphere = test::obstacle_icosphere(0.3, 1);
   const std::vector<ats_collider_c> records = mesh_records(sphere, {1, 1, 1}, {0, 0, 0}, {0, 0, 0}, 0.01);
   const std::vector<float> far{0.0f, 2.0f, 0.0f};
   const solver::ContactSummary s = solver::summarize_contacts(records, far, 1);

@@ -15,7 +15,7 @@ using namespace atssim;
 using Eigen::Vector3d;
 
 TEST_CASE("the incremental potential holds a mesh obstacle's contact energy, with its gradient", "[contact][mesh]") {
-  const test::SimpleMesh ball = test::icosphere(0.2, 2);
+  const test::SimpleMesh ball = test::obstacle_icosphere(0.2, 2);
   const Vector3d at(0.1, 0.5, -0.2);
   scene::ColliderDesc d;
   d.shape = scene::ColliderShape::mesh;
