@@ -214,7 +214,8 @@ namespace {
 
 // scenes/funnel.yaml made small: one cloth over the funnel mesh (open,
 // scenes/meshes/funnel.obj) and the kinematic sphere pushing it down into
-// the spout along keyframes.
+// the spout along keyframes. Contact stiffness 1000 m/h^2: at the default
+// 100 SOSD let the squeezed cloth 1.04 % of the thickness into the sphere.
 constexpr double kFunnelThickness = 0.005;
 std::string small_funnel() {
   return fmt::format(
@@ -225,8 +226,8 @@ std::string small_funnel() {
       "    material: {{density: 0.2, stretch_stiffness: 1000, bend_stiffness: 0.0001}}\n"
       "colliders:\n"
       "  - {{type: mesh, file: {}/scenes/meshes/funnel.obj, position: [0, 0.5, 0], thickness: 0.005,\n"
-      "     friction: 0.2}}\n"
-      "  - {{type: sphere, center: [0, 1.3, 0], radius: 0.09, thickness: 0.005,\n"
+      "     friction: 0.2, stiffness: 1000}}\n"
+      "  - {{type: sphere, center: [0, 1.3, 0], radius: 0.09, thickness: 0.005, stiffness: 1000,\n"
       "     keyframes: [{{time: 0, position: [0, 1.3, 0]}}, {{time: 1, position: [0, 0.6, 0]}}]}}\n",
       ATSSIM_SOURCE_DIR);
 }
