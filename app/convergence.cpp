@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "app/collider_motion.hpp"
 #include "app/execution.hpp"
 #include "app/simulation.hpp"
 #include "device/device_set.hpp"
@@ -88,7 +89,18 @@ io::ConvergenceResult run_convergence(const ConvergeOptions& o) {
   {
     const solver::MethodDescription& own = solver::method(scene.solver.method);
     device::PlanExecutor executor(devices, own.build(state, solver::method_settings(scene, own)));
-    executor.run_substeps(o.frames_before * sim.substeps);
+    solver::KinematicColliders colliders(model.colliders);
+    if (colliders.moving()) {
+      for (int s = 0; s < o.frames_before * sim.substeps; ++s) {
+        pose_colliders(executor, colliders, s * h, (s + 1) * h);
+        executor.run_substeps(1);
+      }
+      // The measured substep sees the colliders where they are during it.
+      const double t = o.frames_before * sim.frame_dt;
+      state.colliders = colliders.records(t, t + h);
+    } else {
+      executor.run_substeps(o.frames_before * sim.substeps);
+    }
     const plan::PlanState reached = executor.read_state();
     state.x = plan::values_of<Float4>(reached.positions);
     state.v = plan::values_of<Float4>(reached.velocities);

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "app/blow_up.hpp"
+#include "app/collider_motion.hpp"
 #include "app/execution.hpp"
 #include "app/scene_checks.hpp"
 #include "device/device_set.hpp"
@@ -40,10 +41,15 @@ std::vector<float> xyz_of(const std::vector<std::byte>& raw) {
 }
 
 // Runs one frame's substeps one at a time, so that a stop request (Ctrl-C)
-// is honoured within a substep; the last substep is timed task by task.
-void run_frame(device::PlanExecutor& executor, int substeps, int frame) {
+// is honoured within a substep and moving colliders are posed for each;
+// the last substep is timed task by task.
+void run_frame(device::PlanExecutor& executor, solver::KinematicColliders& colliders, int substeps, int frame,
+               double frame_dt) {
+  const double h = frame_dt / substeps;
   for (int s = 0; s < substeps; ++s) {
     if (g_stop) throw runtime_error(fmt::format("interrupted in frame {} (substep {} of {})", frame, s, substeps));
+    const double t0 = (frame - 1) * frame_dt + s * h;
+    pose_colliders(executor, colliders, t0, t0 + h);
     executor.run_substeps(1, s + 1 == substeps);
     executor.finish();
   }
@@ -103,8 +109,8 @@ io::RunInfo run_info(const RunOptions& options, const scene::SceneDesc& scene, c
   return info;
 }
 
-io::ContactFrame contact_frame(const std::vector<ats_collider_c>& colliders, const std::vector<float>& xyz) {
-  const solver::ContactSummary s = solver::summarize_contacts(colliders, xyz);
+io::ContactFrame contact_frame(const solver::KinematicColliders& colliders, const std::vector<float>& xyz) {
+  const solver::ContactSummary s = solver::summarize_contacts(colliders.current(), xyz, colliders.count());
   return {s.active, s.min_distance, s.max_penetration};
 }
 
@@ -158,9 +164,9 @@ void run_simulation(const RunOptions& options, RunResult& result,
   model::Model model = model::build_model(scene);
   const std::size_t particles = model.particles.size();
   solver::SimLayout layout = solver::make_sim_layout(model);
+  solver::KinematicColliders colliders(model.colliders);  // posed per substep; the per-frame contact record
   release_simulation_state(model);
   plan::SubstepPlan plan = with_stiffness_line(scene, [&] { return method.build(layout, settings); });
-  const std::vector<ats_collider_c> colliders = layout.colliders;  // for the per-frame contact record
   layout = {};
   ExecutionOptions exec_options = execution_options(scene);
   exec_options.svm = svm_mode(options.svm_mode);
@@ -217,7 +223,7 @@ void run_simulation(const RunOptions& options, RunResult& result,
     for (int frame = first_frame; frame <= sim.frames; ++frame) {
       if (g_stop) throw runtime_error(fmt::format("interrupted before frame {}", frame));
       const auto start = std::chrono::steady_clock::now();
-      run_frame(executor, sim.substeps, frame);
+      run_frame(executor, colliders, sim.substeps, frame, sim.frame_dt);
       before.swap(xyz);
       executor.read_positions(xyz);
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

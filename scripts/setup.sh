@@ -21,7 +21,7 @@ packages=(
   libhdf5-dev hdf5-tools
   libcli11-dev catch2 libfmt-dev libspdlog-dev libbenchmark-dev
   python3 python3-h5py python3-matplotlib python3-numpy
-  python3-meshio python3-jsonschema
+  python3-meshio python3-jsonschema python3-yaml
   parallel time
 )
 

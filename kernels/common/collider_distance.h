@@ -15,11 +15,8 @@
 #include "common/ats_math.h"
 #include "common/collider_types.h"
 #include "common/energy_mat3.h"
-
-typedef struct {
-  ats_real phi; /* signed distance to the surface (negative inside) */
-  ats_vec3 n;   /* unit outward normal: the gradient of phi */
-} ats_surface_distance;
+#include "common/mesh_contact.h"
+#include "common/surface_distance.h"
 
 ATS_FN ats_vec3 ats_collider_vec(ATS_GLOBAL const float* v) { return ats_v3(v[0], v[1], v[2]); }
 
@@ -77,6 +74,7 @@ ATS_FN ats_surface_distance ats_collider_distance(ATS_GLOBAL const ats_collider_
     t = fmin(fmax(t, (ats_real)0), (ats_real)1);
     return ats_radial_distance(ats_sub(x, ats_add(a, ats_scale(ab, t))), c->radius);
   }
+  if (shape == ATS_COLLIDER_MESH) return ats_mesh_distance(c, x, c->mesh[3]);
   return ats_box_distance(c, x);
 }
 

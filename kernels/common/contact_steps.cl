@@ -38,11 +38,22 @@ static inline int touching_collider(float4 p, __global const ats_collider_c* col
   return best;
 }
 
-/* Coulomb friction on the substep's displacement from q (x_t) to p, given
- * the normal displacement dn the contact caused (see above). */
+/* How far the collider's surface at p moved this substep (kinematic
+ * colliders; zero for static ones): friction acts on the motion relative
+ * to it. */
+static inline ats_vec3 surface_motion(__global const ats_collider_c* c, float4 p) {
+  const ats_vec3 r = ats_v3(p.x - c->pivot[0], p.y - c->pivot[1], p.z - c->pivot[2]);
+  const ats_vec3 w = ats_v3(c->turn[0], c->turn[1], c->turn[2]);
+  const ats_vec3 wxr = ats_v3(w.y * r.z - w.z * r.y, w.z * r.x - w.x * r.z, w.x * r.y - w.y * r.x);
+  return ats_add(ats_v3(c->move[0], c->move[1], c->move[2]), wxr);
+}
+
+/* Coulomb friction on the substep's displacement from q (x_t) to p relative
+ * to the collider's surface, given the normal displacement dn the contact
+ * caused (see above). */
 static inline float4 coulomb_friction(float4 p, float4 q, ats_vec3 n, float dn, __global const ats_collider_c* c) {
   if (!(dn > 0.0f)) return p;
-  const ats_vec3 u = ats_v3(p.x - q.x, p.y - q.y, p.z - q.z);
+  const ats_vec3 u = ats_sub(ats_v3(p.x - q.x, p.y - q.y, p.z - q.z), surface_motion(c, p));
   const ats_vec3 ut = ats_sub(u, ats_scale(n, ats_dot(u, n)));
   const float len = ats_length(ut);
   if (!(len > 0.0f)) return p;

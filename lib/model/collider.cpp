@@ -1,8 +1,6 @@
 #include "model/collider.hpp"
 
-#include <numbers>
-
-#include <Eigen/Geometry>
+#include "model/collider_pose.hpp"
 
 namespace atssim::model {
 
@@ -10,13 +8,8 @@ namespace {
 
 Eigen::Vector3d vec(const std::array<double, 3>& v) { return {v[0], v[1], v[2]}; }
 
-// About x, then y, then z (as an object's transform.rotate).
-Eigen::Matrix3d rotation_xyz_deg(const std::array<double, 3>& deg) {
-  const double k = std::numbers::pi / 180.0;
-  return (Eigen::AngleAxisd(deg[2] * k, Eigen::Vector3d::UnitZ()) *
-          Eigen::AngleAxisd(deg[1] * k, Eigen::Vector3d::UnitY()) *
-          Eigen::AngleAxisd(deg[0] * k, Eigen::Vector3d::UnitX()))
-      .toRotationMatrix();
+Eigen::Vector3d pivot_of(const Collider& c) {
+  return c.shape == scene::ColliderShape::capsule ? Eigen::Vector3d(0.5 * (c.point + c.end)) : c.point;
 }
 
 }  // namespace
@@ -38,6 +31,11 @@ std::vector<Collider> make_colliders(const std::vector<scene::ColliderDesc>& col
     c.static_friction = d.static_friction;
     c.kinetic_friction = d.kinetic_friction;
     c.stiffness = d.stiffness;
+    c.motion = d.motion;
+    c.pivot = pivot_of(c);
+    if (d.shape == scene::ColliderShape::mesh) {
+      c.mesh = std::make_shared<const ObstacleMesh>(make_obstacle_mesh(d.mesh_vertices, d.mesh_triangles, d.scale));
+    }
     out.push_back(c);
   }
   return out;

@@ -24,6 +24,8 @@ enum class BufferRole {
   replica,          // async: another device's copy of the positions
   snapshot,         // async: a published copy of some device's positions
   results,          // what a plan computes for the host to read (energy terms)
+  colliders,        // collider records and mesh data; never written by a task, rewritten by the host
+                    // between substeps when colliders move (solver/contact/kinematic_colliders)
 };
 
 std::string_view to_string(BufferRole role);

@@ -68,6 +68,8 @@ std::string_view to_string(BufferRole role) {
       return "snapshot";
     case BufferRole::results:
       return "results";
+    case BufferRole::colliders:
+      return "colliders";
   }
   return "?";
 }

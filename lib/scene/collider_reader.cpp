@@ -4,18 +4,21 @@
 
 #include <fmt/format.h>
 
+#include "scene/kinematic_reader.hpp"
+#include "scene/obstacle_reader.hpp"
 #include "util/did_you_mean.hpp"
 
 namespace atssim::scene {
 
 namespace {
 
-constexpr std::array<std::string_view, 4> kShapes{"plane", "sphere", "capsule", "box"};
+constexpr std::array<std::string_view, 5> kShapes{"plane", "sphere", "capsule", "box", "mesh"};
 constexpr std::array<std::string_view, 5> kCommonKeys{"name", "type", "thickness", "friction", "stiffness"};
 constexpr std::array<std::string_view, 2> kFrictionKeys{"static", "kinetic"};
 
 std::vector<std::string_view> keys_of(ColliderShape shape) {
   std::vector<std::string_view> keys(kCommonKeys.begin(), kCommonKeys.end());
+  keys.insert(keys.end(), kMotionKeys.begin(), kMotionKeys.end());
   switch (shape) {
     case ColliderShape::plane:
       keys.insert(keys.end(), {"point", "normal"});
@@ -29,6 +32,9 @@ std::vector<std::string_view> keys_of(ColliderShape shape) {
     case ColliderShape::box:
       keys.insert(keys.end(), {"center", "size", "rotate"});
       break;
+    case ColliderShape::mesh:
+      keys.insert(keys.end(), {"file", "scale", "position", "rotation"});
+      break;
   }
   return keys;
 }
@@ -36,15 +42,16 @@ std::vector<std::string_view> keys_of(ColliderShape shape) {
 const char* shape_name(ColliderShape shape) { return kShapes[static_cast<int>(shape)].data(); }
 
 ColliderShape read_shape(const YamlReader& r) {
-  if (!r.has("type")) r.fail("a collider without 'type'", "add type: plane, sphere, capsule or box");
+  if (!r.has("type")) r.fail("a collider without 'type'", "add type: plane, sphere, capsule, box or mesh");
   const YamlReader t = r.child("type");
   const std::string name = t.string();
   for (std::size_t k = 0; k < kShapes.size(); ++k) {
     if (name == kShapes[k]) return static_cast<ColliderShape>(k);
   }
   const std::string guess = closest_match(name, kShapes);
-  t.fail(fmt::format("unknown collider type '{}'", name),
-         guess.empty() ? std::string("use plane, sphere, capsule or box") : fmt::format("did you mean '{}'?", guess));
+  t.fail(fmt::format("unknown collider type '{}'", name), guess.empty()
+                                                              ? std::string("use plane, sphere, capsule, box or mesh")
+                                                              : fmt::format("did you mean '{}'?", guess));
 }
 
 double positive(const YamlReader& r, std::string_view what) {
@@ -78,7 +85,7 @@ void read_friction(const YamlReader& r, ColliderDesc& c) {
 
 }  // namespace
 
-ColliderDesc read_collider(const YamlReader& r, int index) {
+ColliderDesc read_collider(const YamlReader& r, int index, const std::filesystem::path& base_dir) {
   ColliderDesc c;
   c.source_line = r.line();
   if (!r.node().IsMap())
@@ -127,7 +134,11 @@ ColliderDesc read_collider(const YamlReader& r, int index) {
       if (r.has("rotate")) c.rotate_deg = r.child("rotate").vec3();
       break;
     }
+    case ColliderShape::mesh:
+      read_mesh_obstacle(r, c, base_dir);
+      break;
   }
+  c.motion = read_motion(r);
   return c;
 }
 
@@ -156,7 +167,11 @@ void emit_collider(YAML::Emitter& out, const ColliderDesc& c) {
       vec("size", c.size);
       vec("rotate", c.rotate_deg);
       break;
+    case ColliderShape::mesh:
+      emit_mesh_obstacle(out, c);
+      break;
   }
+  emit_motion(out, c.motion);
   out << YAML::Key << "thickness" << YAML::Value << c.thickness;
   out << YAML::Key << "friction" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "static" << YAML::Value
       << c.static_friction << YAML::Key << "kinetic" << YAML::Value << c.kinetic_friction << YAML::EndMap;

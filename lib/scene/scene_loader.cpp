@@ -200,7 +200,7 @@ SceneDesc parse_scene(const std::string& yaml_text, const std::string& source_na
   if (top.has("colliders")) {
     const auto colliders = top.child("colliders").sequence();
     for (std::size_t i = 0; i < colliders.size(); ++i) {
-      scene.colliders.push_back(read_collider(colliders[i], static_cast<int>(i)));
+      scene.colliders.push_back(read_collider(colliders[i], static_cast<int>(i), fs::path(base_dir)));
     }
   }
 

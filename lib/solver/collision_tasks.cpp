@@ -22,7 +22,7 @@ sched::TaskId add_ground_task(plan::SubstepPlan& plan, sched::TaskId last, const
 }
 
 plan::BufferId add_collider_buffer(plan::SubstepPlan& plan, const SimLayout& layout) {
-  return plan.add_buffer("colliders", plan::BufferRole::elements, plan::bytes_of(layout.colliders));
+  return plan.add_buffer("colliders", plan::BufferRole::colliders, plan::bytes_of(layout.colliders));
 }
 
 sched::TaskId add_contact_task(plan::SubstepPlan& plan, sched::TaskId last, const SimLayout& layout,
@@ -34,7 +34,7 @@ sched::TaskId add_contact_task(plan::SubstepPlan& plan, sched::TaskId last, cons
       plan::make_task(fmt::format("it{}/collision/colliders", iteration + 1), plan::TaskKind::collision, iteration, 1),
       {"particles_contact",
        {0, n},
-       {Arg::of_buffer(positions), Arg::of_buffer(colliders), Arg::of_int(static_cast<int>(layout.colliders.size()))},
+       {Arg::of_buffer(positions), Arg::of_buffer(colliders), Arg::of_int(layout.collider_count)},
        {particle_write(positions)}});
 }
 
@@ -43,13 +43,13 @@ sched::TaskId add_friction_task(plan::SubstepPlan& plan, sched::TaskId last, con
                                 plan::BufferId velocities, double substep_dt) {
   if (layout.colliders.empty()) return last;
   const int n = static_cast<int>(layout.x.size());
-  return plan.add_task_after(last, plan::make_task("friction", plan::TaskKind::friction),
-                             {"particles_friction",
-                              {0, n},
-                              {Arg::of_buffer(positions), Arg::of_buffer(start_positions), Arg::of_buffer(velocities),
-                               Arg::of_buffer(colliders), Arg::of_int(static_cast<int>(layout.colliders.size())),
-                               Arg::of_float(static_cast<float>(substep_dt))},
-                              {particle_write(positions)}});
+  return plan.add_task_after(
+      last, plan::make_task("friction", plan::TaskKind::friction),
+      {"particles_friction",
+       {0, n},
+       {Arg::of_buffer(positions), Arg::of_buffer(start_positions), Arg::of_buffer(velocities),
+        Arg::of_buffer(colliders), Arg::of_int(layout.collider_count), Arg::of_float(static_cast<float>(substep_dt))},
+       {particle_write(positions)}});
 }
 
 }  // namespace atssim::solver

@@ -15,8 +15,9 @@ namespace atssim::solver {
 sched::TaskId add_ground_task(plan::SubstepPlan& plan, sched::TaskId last, const SimLayout& layout,
                               plan::BufferId positions, int iteration);
 
-// The layout's colliders as a buffer (role elements); an empty one when the
-// layout has none (the vertex kernels take it with a count of 0).
+// The layout's colliders as a buffer (role colliders: the host rewrites it
+// between substeps when colliders move); an empty one when the layout has
+// none (the vertex kernels take it with a count of 0).
 plan::BufferId add_collider_buffer(plan::SubstepPlan& plan, const SimLayout& layout);
 
 // After `last`, the contact task of iteration `iteration`: every particle of

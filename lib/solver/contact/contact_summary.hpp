@@ -15,7 +15,9 @@ struct ContactSummary {
   double max_penetration = 0;  // largest depth inside a thickened surface (0: none)
 };
 
-// xyz: 3 floats per particle.
-ContactSummary summarize_contacts(const std::vector<ats_collider_c>& colliders, std::span<const float> xyz);
+// xyz: 3 floats per particle; `colliders` a colliders buffer whose first
+// `count` records are colliders (-1: all of them, no mesh data).
+ContactSummary summarize_contacts(const std::vector<ats_collider_c>& colliders, std::span<const float> xyz,
+                                  int count = -1);
 
 }  // namespace atssim::solver

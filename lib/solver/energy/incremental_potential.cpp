@@ -68,6 +68,7 @@ IncrementalPotential make_incremental_potential(const SimLayout& layout, const s
     p.tets.push_back(t);
   }
   p.colliders = layout.colliders;
+  p.collider_count = layout.collider_count;
   return p;
 }
 

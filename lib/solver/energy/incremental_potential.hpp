@@ -65,7 +65,8 @@ struct IncrementalPotential {
   std::vector<BendTerm> bend;
   std::vector<TetTerm> tets;
   std::vector<DampingTerm> damping;       // springs with damping > 0 only
-  std::vector<ats_collider_c> colliders;  // contact energy of every free particle with each
+  std::vector<ats_collider_c> colliders;  // contact energy of every free particle with each of the first
+  int collider_count = 0;                 // `collider_count` (mesh data follows them)
 
   int particle_count() const { return static_cast<int>(mass.size()); }
   bool is_free(int i) const { return mass[i] > 0.0; }

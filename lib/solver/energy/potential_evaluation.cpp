@@ -94,8 +94,8 @@ EnergyTerms energy_terms(const IncrementalPotential& p, const Eigen::VectorXd& x
   for (int i = 0; i < p.particle_count(); ++i) {
     if (!p.is_free(i)) continue;
     e.inertia += f64::ats_inertia_energy(vec_at(x, i), vec_at(p.predicted, i), p.mass[i], inv_h2);
-    for (const ats_collider_c& c : p.colliders)
-      e.contact += f64::ats_contact_energy(&c, vec_at(x, i), p.mass[i], inv_h2);
+    for (int c = 0; c < p.collider_count; ++c)
+      e.contact += f64::ats_contact_energy(&p.colliders[c], vec_at(x, i), p.mass[i], inv_h2);
   }
   for (const StretchTerm& t : p.stretch) {
     e.stretch += f64::ats_stretch_energy(vec_at(x, t.a), vec_at(x, t.b), t.rest, t.stiffness);
@@ -124,8 +124,8 @@ Eigen::VectorXd gradient(const IncrementalPotential& p, const Eigen::VectorXd& x
   for (int i = 0; i < p.particle_count(); ++i) {
     if (!p.is_free(i)) continue;
     add_at(g, i, f64::ats_inertia_gradient(vec_at(x, i), vec_at(p.predicted, i), p.mass[i], inv_h2));
-    for (const ats_collider_c& c : p.colliders)
-      add_at(g, i, f64::ats_contact_gradient(&c, vec_at(x, i), p.mass[i], inv_h2));
+    for (int c = 0; c < p.collider_count; ++c)
+      add_at(g, i, f64::ats_contact_gradient(&p.colliders[c], vec_at(x, i), p.mass[i], inv_h2));
   }
   for (const StretchTerm& t : p.stretch) {
     const ats_vec3 ga = f64::ats_stretch_gradient(vec_at(x, t.a), vec_at(x, t.b), t.rest, t.stiffness);
@@ -164,8 +164,8 @@ std::vector<Eigen::Triplet<double>> hessian_triplets(const IncrementalPotential&
   for (int i = 0; i < p.particle_count(); ++i) {
     if (!p.is_free(i)) continue;
     add_block(out, p, i, i, f64::ats_inertia_hessian(p.mass[i], inv_h2), 1.0);
-    for (const ats_collider_c& c : p.colliders) {
-      add_block(out, p, i, i, f64::ats_contact_hessian(&c, vec_at(x, i), p.mass[i], inv_h2), 1.0);
+    for (int c = 0; c < p.collider_count; ++c) {
+      add_block(out, p, i, i, f64::ats_contact_hessian(&p.colliders[c], vec_at(x, i), p.mass[i], inv_h2), 1.0);
     }
   }
   for (const StretchTerm& t : p.stretch) {

@@ -2,16 +2,10 @@
 
 #include <cmath>
 
+#include "solver/contact/collider_buffer.hpp"
 #include "util/error.hpp"
 
 namespace atssim::solver {
-
-static_assert(sizeof(ats_collider_c) == 128, "the collider record is 32 floats in kernels and host");
-static_assert(static_cast<int>(scene::ColliderShape::plane) == ATS_COLLIDER_PLANE &&
-                  static_cast<int>(scene::ColliderShape::sphere) == ATS_COLLIDER_SPHERE &&
-                  static_cast<int>(scene::ColliderShape::capsule) == ATS_COLLIDER_CAPSULE &&
-                  static_cast<int>(scene::ColliderShape::box) == ATS_COLLIDER_BOX,
-              "ColliderShape is in ATS_COLLIDER_* order");
 
 namespace {
 
@@ -23,30 +17,10 @@ graph::ColorBlocks color(const std::vector<Element>& elements, const std::vector
   return graph::color_elements(flat, Arity, movable);
 }
 
-void put(float* out, const Eigen::Vector3d& v) {
-  for (int k = 0; k < 3; ++k) out[k] = float(v[k]);
-  out[3] = 0.0f;
-}
-
 }  // namespace
 
 std::vector<ats_collider_c> collider_records(const std::vector<model::Collider>& colliders) {
-  std::vector<ats_collider_c> out;
-  for (const model::Collider& c : colliders) {
-    ats_collider_c r{};
-    r.shape = float(static_cast<int>(c.shape));  // scene::ColliderShape follows ATS_COLLIDER_* order
-    r.thickness = float(c.thickness);
-    r.mu_s = float(c.static_friction);
-    r.mu_k = float(c.kinetic_friction);
-    put(r.c, c.point);
-    put(r.n, c.shape == scene::ColliderShape::capsule ? c.end : c.normal);
-    for (int k = 0; k < 3; ++k) put(r.axes + 4 * k, c.axes.row(k).transpose());
-    put(r.extent, c.half);
-    r.radius = float(c.radius);
-    r.stiffness = float(c.stiffness);
-    out.push_back(r);
-  }
-  return out;
+  return collider_buffer(colliders).records;
 }
 
 SimLayout make_sim_layout(const model::Model& model) {
@@ -64,7 +38,9 @@ SimLayout make_sim_layout(const model::Model& model) {
   out.has_ground = model.ground.has_value();
   out.ground_y = out.has_ground ? float(*model.ground) : 0.0f;
   out.air_drag = float(model.air_drag);
-  out.colliders = collider_records(model.colliders);
+  ColliderBuffer colliders = collider_buffer(model.colliders);
+  out.colliders = std::move(colliders.records);
+  out.collider_count = colliders.count;
 
   if (model.stretch.size() > 0) {
     const graph::ColorBlocks blocks = color<2>(model.stretch.edges, movable);

@@ -29,7 +29,8 @@ struct SimLayout {
   bool has_ground = false;  // a ground plane y = ground_y (collision task after each iteration)
   float ground_y = 0.0f;
   float air_drag = 0.0f;                  // c in 1/s: force −m·c·v on every free particle
-  std::vector<ats_collider_c> colliders;  // analytic colliders (contact tasks only when not empty)
+  std::vector<ats_collider_c> colliders;  // collider records, then mesh data (solver/contact/collider_buffer)
+  int collider_count = 0;                 // records that are colliders (contact tasks only when > 0)
 };
 
 SimLayout make_sim_layout(const model::Model& model);
@@ -43,7 +44,8 @@ float velocity_damping(const SimLayout& layout, double h);  // 1/(1 + c h), 1 wi
 double inertia_dt(const SimLayout& layout, double h);       // h/√(1 + c h), h without drag
 // Whether some spring has material damping (ats_distance_c::damping > 0).
 bool has_spring_damping(const SimLayout& layout);
-// The device records of the model's colliders (common/collider_types.h).
+// The device records of the model's colliders (common/collider_types.h),
+// followed by their meshes' data.
 std::vector<ats_collider_c> collider_records(const std::vector<model::Collider>& colliders);
 
 }  // namespace atssim::solver

@@ -62,7 +62,7 @@ plan::SubstepPlan make_sosd_plan(const SimLayout& layout, double substep_dt, int
          {Arg::of_buffer(b.x), Arg::of_buffer(b.x_tilde), Arg::of_buffer(b.adjacency_offsets),
           Arg::of_buffer(b.adjacency), Arg::of_buffer(b.stretch), Arg::of_buffer(b.bend), Arg::of_buffer(b.tets),
           Arg::of_buffer(systems), Arg::of_float(inv_h2), Arg::of_buffer(b.colliders),
-          Arg::of_int(static_cast<int>(layout.colliders.size())), damping[0], damping[1]},
+          Arg::of_int(layout.collider_count), damping[0], damping[1]},
          {plan::WriteSpan::per_element(systems, 4 * kFloat4)}});
     // All stencils read the same x^k and vertex systems, so a block matters
     // only as the main one: one task for it, and per kind one task for the

@@ -38,7 +38,7 @@ sched::TaskId begin_vertex_plan(plan::SubstepPlan& plan, const SimLayout& layout
 }
 
 std::vector<plan::KernelArg> collider_args(const SimLayout& layout, const VertexBuffers& b) {
-  return {Arg::of_buffer(b.colliders), Arg::of_int(static_cast<int>(layout.colliders.size()))};
+  return {Arg::of_buffer(b.colliders), Arg::of_int(layout.collider_count)};
 }
 
 std::vector<plan::KernelArg> damping_args(const SimLayout& layout, const VertexBuffers& b, double substep_dt) {
@@ -61,8 +61,7 @@ void end_vertex_plan(plan::SubstepPlan& plan, const SimLayout& layout, sched::Ta
          {Arg::of_buffer(b.x), Arg::of_buffer(out), Arg::of_buffer(b.x_prev), Arg::of_buffer(b.x_tilde),
           Arg::of_buffer(b.adjacency_offsets), Arg::of_buffer(b.adjacency), Arg::of_buffer(b.stretch),
           Arg::of_buffer(b.bend), Arg::of_buffer(b.tets), Arg::of_buffer(b.colliders),
-          Arg::of_int(static_cast<int>(layout.colliders.size())),
-          Arg::of_float(static_cast<float>(1.0 / (substep_dt * substep_dt)))},
+          Arg::of_int(layout.collider_count), Arg::of_float(static_cast<float>(1.0 / (substep_dt * substep_dt)))},
          {particle_write(out)}});
     last = plan.add_task_after(
         last, plan::make_task("friction_copy", plan::TaskKind::copy),
