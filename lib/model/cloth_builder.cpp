@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <Eigen/Geometry>
 
+#include "model/contact_surface.hpp"
 #include "model/object_particles.hpp"
 #include "model/tet_builder.hpp"
 #include "util/error.hpp"
@@ -208,6 +209,7 @@ Model build_model(const scene::SceneDesc& scene) {
     const scene::TriangleMesh mesh = obj.grid ? make_grid_mesh(*obj.grid) : obj.mesh;
     add_cloth(model, obj, mesh, scene.source_path);
   }
+  model.contact_surface = make_contact_surface(scene.contact, model);
   return model;
 }
 

@@ -47,6 +47,16 @@ struct TetTerm {
   TetModel model = TetModel::neo_hookean;
 };
 
+// Contact between simulated surfaces (common/self_contact.h): every
+// vertex-triangle and edge-edge pair closer than r, incident ones excluded,
+// adds 1/2 k (r - d)^2 (solver/energy/self_contact_energy.hpp).
+struct SurfaceContactTerm {
+  std::vector<std::array<int, 3>> tris;  // empty: no such contact
+  std::vector<std::array<int, 2>> edges;
+  double k = 0.0;  // stiffness · m / h² for this potential's h
+  double r = 0.0;  // thickness
+};
+
 struct IncrementalPotential {
   double h = 0.0;
   Eigen::VectorXd predicted;  // x~, 3 per particle (pinned: their fixed position)
@@ -55,6 +65,7 @@ struct IncrementalPotential {
   std::vector<BendTerm> bend;
   std::vector<TetTerm> tets;
   std::vector<ats_collider_c> colliders;  // contact energy of every free particle with each
+  SurfaceContactTerm surface_contact;
 
   int particle_count() const { return static_cast<int>(mass.size()); }
   bool is_free(int i) const { return mass[i] > 0.0; }

@@ -1,6 +1,7 @@
 #include "solver/energy/element_math.hpp"  // first: the double instance of the shared math
 
 #include "solver/energy/potential_evaluation.hpp"
+#include "solver/energy/self_contact_energy.hpp"
 
 #include <Eigen/Eigenvalues>
 
@@ -107,6 +108,7 @@ EnergyTerms energy_terms(const IncrementalPotential& p, const Eigen::VectorXd& x
     tet_positions(t, x, q);
     e.tet += tet_energy(t, q);
   }
+  e.surface_contact = surface_contact_energy(p.surface_contact, x);
   return e;
 }
 
@@ -138,6 +140,7 @@ Eigen::VectorXd gradient(const IncrementalPotential& p, const Eigen::VectorXd& x
     tet_positions(t, x, q);
     for (int k = 0; k < 4; ++k) add_at(g, t.v[k], tet_gradient(t, q, k));
   }
+  add_surface_contact_gradient(p.surface_contact, x, g);
   for (int i = 0; i < p.particle_count(); ++i) {
     if (!p.is_free(i)) g.segment<3>(3 * i).setZero();
   }
@@ -181,6 +184,7 @@ std::vector<Eigen::Triplet<double>> hessian_triplets(const IncrementalPotential&
       for (int j = 0; j < 4; ++j) add_block(out, p, t.v[i], t.v[j], h.block<3, 3>(3 * i, 3 * j));
     }
   }
+  add_surface_contact_hessian(p, x, out);
   return out;
 }
 

@@ -65,6 +65,7 @@ SimLayout make_sim_layout(const model::Model& model) {
   out.ground_y = out.has_ground ? float(*model.ground) : 0.0f;
   out.air_drag = float(model.air_drag);
   out.colliders = collider_records(model.colliders);
+  out.self_contact = make_self_contact_layout(model);
 
   if (model.stretch.size() > 0) {
     const graph::ColorBlocks blocks = color<2>(model.stretch.edges, movable);
