@@ -13,6 +13,7 @@ usage: scripts/bench_self_contact.py [--sizes 128,256] [--frames 4] [--methods v
 Build first (cmake --build --preset release). Prints one Markdown table.
 """
 import argparse
+import json
 import math
 import os
 import subprocess
@@ -24,6 +25,7 @@ import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 BIN = os.path.join(ROOT, "build", "release", "atssim")
+NATIVE = os.path.join(ROOT, "build", "release", "bench", "bench_native")
 
 SCENE = """simulation: {{fps: 60, substeps: {substeps}, iterations: {iterations}, frames: {frames}}}
 objects:
@@ -64,6 +66,19 @@ def run(tmp, n, method, self_on, args):
     return frame_ms, contact, substep
 
 
+def native_ms(tmp, n, method, args):
+    """The native host loop (bench/bench_native: the host XPBD/VBD reference,
+    2 threads) on the same cloth: it has no contact of any kind, so it is the
+    reference for the elastic part only."""
+    scene = os.path.join(tmp, f"native{n}.yaml")
+    with open(scene, "w") as f:
+        f.write(SCENE.format(substeps=args.substeps, iterations=args.iterations, frames=args.frames, n=n,
+                             self="false").replace("colliders:", "unused_colliders:").split("unused_colliders:")[0])
+    out = subprocess.run([NATIVE, "--scene", scene, "--method", method, "--resolution", str(n), "--threads", "2",
+                          "--frames", str(args.frames), "--warmup", "1"], check=True, capture_output=True, text=True)
+    return json.loads(out.stdout)["median_ms"]
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--sizes", default="128,256", help="vertices per side, comma separated")
@@ -90,6 +105,9 @@ def main() -> int:
                 points.append((n * n, contact))
                 print(f"| {method} | {n * n} | {off:.1f} | {on:.1f} | {on / off:.2f} | {contact * args.substeps:.2f} | "
                       f"{100 * contact / substep:.0f} % |", flush=True)
+                if method in ("xpbd", "vbd") and os.path.exists(NATIVE):
+                    print(f"| native {method} (host reference, 2 threads, no contact) | {n * n} | "
+                          f"{native_ms(tmp, n, method, args):.1f} | – | – | – | – |", flush=True)
             if len(points) >= 2 and all(c > 0 for _, c in points):
                 (v0, c0), (v1, c1) = points[0], points[-1]
                 print(f"| {method} | log-log slope of the contact time, {v0} → {v1} vertices: "

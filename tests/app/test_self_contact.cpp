@@ -41,7 +41,7 @@ const char* kLayers =
     "     transform: {rotate: [0, 30, 0], translate: [0.02, 0.26, 0.01]},\n"
     "     material: {density: 0.2, stretch_stiffness: 1000, bend_stiffness: 0.0001}}\n"
     "colliders:\n"
-    "  - {type: sphere, center: [0, 0, 0], radius: 0.12, thickness: 0.01}\n"
+    "  - {type: sphere, center: [0, 0, 0], radius: 0.12, thickness: 0.01, friction: 0.5}\n"
     "contact: {self: true, thickness: 0.01}\n";
 
 // A sheet dropped on its edge onto a plane: it buckles and folds onto itself.
