@@ -24,5 +24,5 @@ ATS_TASK void vbd_solve(int k, __global float4* x, __global const float4* x_tild
   if (!d.ok) return;
   ats_vec3 step = d.x;
   if (has_ground && p.y + step.y < ground) step = ats_vertex_step_above_ground(s.h, s.f, step, p.y, ground);
-  x[i] = sc_bounded_step((float4)(p.x + step.x, p.y + step.y, p.z + step.z, p.w), i, x_start, sc_bound, sc_on);
+  x[i] = sc_out_of_colliders(sc_bounded_step((float4)(p.x + step.x, p.y + step.y, p.z + step.z, p.w), i, x_start, sc_bound, sc_on), colliders, collider_count, sc_on);
 }

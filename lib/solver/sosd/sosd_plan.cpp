@@ -115,6 +115,7 @@ plan::SubstepPlan make_sosd_plan(const SimLayout& layout, double substep_dt, int
     for (sched::TaskId t : stencil_tasks) plan.graph.add_edge(t, combine);
     if (stencil_tasks.empty()) plan.graph.add_edge(systems_task, combine);
     last = add_ground_task(plan, add_self_contact_clamp(plan, combine, layout, sc, b.x_prev, b.x, it), layout, b.x, it);
+    if (layout.self_contact.enabled) last = add_contact_task(plan, last, layout, b.colliders, b.x, it);  // obstacles win
   }
   vertex::end_vertex_plan(plan, layout, last, b, substep_dt);
   if (ids != nullptr) *ids = b;
