@@ -31,10 +31,11 @@ std::optional<ContactSurface> make_contact_surface(const scene::SelfContactDesc&
     }
   }
   if (!(s.thickness < 0.5 * shortest)) {
-    throw input_error(fmt::format("{}: the contact thickness {} m is not below half the shortest surface edge ({:.4g} m, "
-                                  "object '{}'): triangles two rings apart would push each other away at rest; use a "
-                                  "thickness below {:.4g} or a coarser mesh",
-                                  desc.where, s.thickness, shortest, shortest_object, 0.5 * shortest));
+    throw input_error(
+        fmt::format("{}: the contact thickness {} m is not below half the shortest surface edge ({:.4g} m, "
+                    "object '{}'): triangles two rings apart would push each other away at rest; use a "
+                    "thickness below {:.4g} or a coarser mesh",
+                    desc.where, s.thickness, shortest, shortest_object, 0.5 * shortest));
   }
   return s;
 }

@@ -14,7 +14,8 @@ constexpr std::array<std::string_view, 4> kContactKeys{"self", "thickness", "sti
 
 SelfContactDesc read_self_contact(const YamlReader& r) {
   SelfContactDesc c;
-  if (!r.node().IsMap()) r.fail("'contact' should be a map of keys", "write e.g. contact: {self: true, thickness: 0.005}");
+  if (!r.node().IsMap())
+    r.fail("'contact' should be a map of keys", "write e.g. contact: {self: true, thickness: 0.005}");
   r.expect_map(kContactKeys);
   c.where = r.where();
   if (r.has("self")) {
@@ -24,7 +25,8 @@ SelfContactDesc read_self_contact(const YamlReader& r) {
     c.enabled = v == "true";
   }
   if (r.has("thickness")) {
-    c.thickness = r.child("thickness").number_in(0.0, 1.0, true, "a thickness in metres, 0 < thickness ≤ 1, e.g. 0.005");
+    c.thickness =
+        r.child("thickness").number_in(0.0, 1.0, true, "a thickness in metres, 0 < thickness ≤ 1, e.g. 0.005");
   }
   if (r.has("stiffness")) {
     c.stiffness = r.child("stiffness").number_in(0.0, 1e6, true, "a contact stiffness relative to m/h², e.g. 100");

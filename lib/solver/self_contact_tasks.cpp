@@ -11,8 +11,8 @@ namespace {
 using Arg = plan::KernelArg;
 using plan::WriteSpan;
 
-constexpr int kListInts = 10;      // ATS_SC_STRIDE of kernels/contact/self_contact.cl
-constexpr int kNodeBytes = 32;     // two float4 per node
+constexpr int kListInts = 10;        // ATS_SC_STRIDE of kernels/contact/self_contact.cl
+constexpr int kNodeBytes = 32;       // two float4 per node
 constexpr int kTopLevelNodes = 256;  // levels this small are refitted by one work-item
 
 std::vector<std::byte> zeros(std::size_t bytes) { return std::vector<std::byte>(bytes); }
@@ -55,20 +55,20 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
   int level = 1;
   for (; level <= root && s.levels[level + 1] - s.levels[level] > kTopLevelNodes; ++level) {
     const int count = s.levels[level + 1] - s.levels[level];
-    last = plan.add_task_after(
-        last, detect(fmt::format("detect/level{}", level)),
-        {"sc_refit_level",
-         {0, count},
-         {Arg::of_buffer(b.nodes), Arg::of_int(s.levels[level]), Arg::of_int(s.levels[level - 1]),
-          Arg::of_int(s.levels[level] - s.levels[level - 1])},
-         {WriteSpan::per_element(b.nodes, kNodeBytes, s.levels[level])}});
+    last = plan.add_task_after(last, detect(fmt::format("detect/level{}", level)),
+                               {"sc_refit_level",
+                                {0, count},
+                                {Arg::of_buffer(b.nodes), Arg::of_int(s.levels[level]),
+                                 Arg::of_int(s.levels[level - 1]), Arg::of_int(s.levels[level] - s.levels[level - 1])},
+                                {WriteSpan::per_element(b.nodes, kNodeBytes, s.levels[level])}});
   }
   if (level <= root) {
-    last = plan.add_task_after(last, detect("detect/top"),
-                               {"sc_refit_top",
-                                {0, 1},
-                                {Arg::of_buffer(b.nodes), Arg::of_buffer(b.levels), Arg::of_int(level), Arg::of_int(root)},
-                                {WriteSpan::whole_buffer(b.nodes)}});
+    last =
+        plan.add_task_after(last, detect("detect/top"),
+                            {"sc_refit_top",
+                             {0, 1},
+                             {Arg::of_buffer(b.nodes), Arg::of_buffer(b.levels), Arg::of_int(level), Arg::of_int(root)},
+                             {WriteSpan::whole_buffer(b.nodes)}});
   }
   const float radius = s.query_radius;
   const sched::TaskId refit = last;
@@ -93,13 +93,13 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
        {Arg::of_buffer(start), Arg::of_buffer(b.edges), Arg::of_buffer(b.leaves), Arg::of_buffer(b.nodes),
         Arg::of_buffer(b.levels), Arg::of_int(root), Arg::of_float(radius), Arg::of_buffer(b.ee)},
        {WriteSpan::per_element(b.ee, kListInts * 4)}});
-  const sched::TaskId bound = plan.add_task(
-      detect("detect/bound"),
-      {{"sc_bound",
-        {0, n},
-        {Arg::of_buffer(b.incidence), Arg::of_int(n), Arg::of_buffer(b.vt), Arg::of_buffer(b.tv), Arg::of_buffer(b.ee),
-         Arg::of_float(s.gamma), Arg::of_buffer(b.bound)},
-        {WriteSpan::per_element(b.bound, 4)}}});
+  const sched::TaskId bound =
+      plan.add_task(detect("detect/bound"),
+                    {{"sc_bound",
+                      {0, n},
+                      {Arg::of_buffer(b.incidence), Arg::of_int(n), Arg::of_buffer(b.vt), Arg::of_buffer(b.tv),
+                       Arg::of_buffer(b.ee), Arg::of_float(s.gamma), Arg::of_buffer(b.bound)},
+                      {WriteSpan::per_element(b.bound, 4)}}});
   for (sched::TaskId t : {vertices, triangles, edge_pairs}) plan.graph.add_edge(t, bound);
   return plan.add_task_after(bound, plan::make_task("contact/first_guess", plan::TaskKind::collision),
                              {"sc_clamp",
@@ -140,8 +140,8 @@ sched::TaskId add_self_contact_clamp(plan::SubstepPlan& plan, sched::TaskId last
 }
 
 sched::TaskId add_self_contact_projection(plan::SubstepPlan& plan, sched::TaskId last, const SimLayout& layout,
-                                          const SelfContactBuffers& b, plan::BufferId start,
-                                          plan::BufferId positions, int iteration) {
+                                          const SelfContactBuffers& b, plan::BufferId start, plan::BufferId positions,
+                                          int iteration) {
   const SelfContactLayout& s = layout.self_contact;
   if (!s.enabled) return last;
   const int n = static_cast<int>(layout.x.size());

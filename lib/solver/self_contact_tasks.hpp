@@ -16,8 +16,8 @@
 namespace atssim::solver {
 
 struct SelfContactBuffers {
-  plan::BufferId tris = -1, edges = -1, leaves = -1, nodes = -1, levels = -1, incidence = -1, vt = -1, tv = -1,
-                 ee = -1, bound = -1, x_out = -1;  // x_out: XPBD's projection
+  plan::BufferId tris = -1, edges = -1, leaves = -1, nodes = -1, levels = -1, incidence = -1, vt = -1, tv = -1, ee = -1,
+                 bound = -1, x_out = -1;  // x_out: XPBD's projection
 };
 
 SelfContactBuffers add_self_contact_buffers(plan::SubstepPlan& plan, const SimLayout& layout);
@@ -42,7 +42,7 @@ sched::TaskId add_self_contact_clamp(plan::SubstepPlan& plan, sched::TaskId last
 // XPBD, after `last`: every pair's inequality constraint into a scratch
 // copy, then back within the bound. Returns the new last task, or `last`.
 sched::TaskId add_self_contact_projection(plan::SubstepPlan& plan, sched::TaskId last, const SimLayout& layout,
-                                          const SelfContactBuffers& b, plan::BufferId start,
-                                          plan::BufferId positions, int iteration);
+                                          const SelfContactBuffers& b, plan::BufferId start, plan::BufferId positions,
+                                          int iteration);
 
 }  // namespace atssim::solver

@@ -53,7 +53,8 @@ SelfContactLayout make_self_contact_layout(const model::Model& model) {
 
   const int t_count = static_cast<int>(s.triangles.size());
   std::vector<Eigen::Vector3d> centroid(t_count);
-  for (int t = 0; t < t_count; ++t) centroid[t] = (x[s.triangles[t][0]] + x[s.triangles[t][1]] + x[s.triangles[t][2]]) / 3.0;
+  for (int t = 0; t < t_count; ++t)
+    centroid[t] = (x[s.triangles[t][0]] + x[s.triangles[t][1]] + x[s.triangles[t][2]]) / 3.0;
   std::vector<int> ids(t_count);
   std::iota(ids.begin(), ids.end(), 0);
   order_leaves(ids, centroid, 0, t_count);

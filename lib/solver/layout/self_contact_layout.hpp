@@ -19,13 +19,13 @@ namespace atssim::solver {
 
 struct SelfContactLayout {
   bool enabled = false;
-  float thickness = 0.0f;     // r of the contact energy (common/self_contact.h)
-  float query_radius = 0.0f;  // detection radius at the start of a substep
-  float stiffness = 0.0f;     // relative to m/h²
-  float contact_mass = 0.0f;  // m: the mean mass of the free surface particles; k = stiffness m / h²
-  float gamma = 0.4f;         // VBD's displacement bound: gamma times the distance to the nearest primitive
-  std::vector<std::array<int, 4>> tris;    // leaf order; [3] = -1
-  std::vector<std::array<int, 2>> edges;   // unique surface edges
+  float thickness = 0.0f;                 // r of the contact energy (common/self_contact.h)
+  float query_radius = 0.0f;              // detection radius at the start of a substep
+  float stiffness = 0.0f;                 // relative to m/h²
+  float contact_mass = 0.0f;              // m: the mean mass of the free surface particles; k = stiffness m / h²
+  float gamma = 0.4f;                     // VBD's displacement bound: gamma times the distance to the nearest primitive
+  std::vector<std::array<int, 4>> tris;   // leaf order; [3] = -1
+  std::vector<std::array<int, 2>> edges;  // unique surface edges
   std::vector<std::array<int, 8>> leaves;  // per leaf: owned vertices [0..2], owned edges [4..6] (-1 = none)
   std::vector<int> levels;                 // node offset of each level, then the node count (level 0 = leaves)
   std::vector<int> incidence;  // [0, n]: offsets of incident triangles, [n+1, 2n+1]: of incident edges; lists

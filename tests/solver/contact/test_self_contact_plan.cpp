@@ -81,16 +81,16 @@ TEST_CASE("the surface layout: every triangle a leaf, every vertex and edge owne
 
 TEST_CASE("a contact thickness too large for the mesh names the contact line", "[self]") {
   // 6 x 6 vertices on 1 m: edges of 0.2 m, so a thickness of 0.15 is refused.
-  const scene::SceneDesc s = scene::parse_scene(
-      test::hanging_cloth_yaml(6) + "contact: {self: true, thickness: 0.15}\n", "scene.yaml", ".");
+  const scene::SceneDesc s =
+      scene::parse_scene(test::hanging_cloth_yaml(6) + "contact: {self: true, thickness: 0.15}\n", "scene.yaml", ".");
   CHECK_THROWS_WITH(model::build_model(s), Catch::Contains("scene.yaml:") && Catch::Contains("shortest surface edge"));
 }
 
 TEST_CASE("a query radius below the thickness is refused at its line", "[self]") {
-  CHECK_THROWS_WITH(scene::parse_scene(test::hanging_cloth_yaml(6) +
-                                           "contact: {self: true, thickness: 0.01, query_radius: 0.005}\n",
-                                       "scene.yaml", "."),
-                    Catch::Contains("scene.yaml:") && Catch::Contains("query_radius"));
+  CHECK_THROWS_WITH(
+      scene::parse_scene(test::hanging_cloth_yaml(6) + "contact: {self: true, thickness: 0.01, query_radius: 0.005}\n",
+                         "scene.yaml", "."),
+      Catch::Contains("scene.yaml:") && Catch::Contains("query_radius"));
 }
 
 TEST_CASE("a method without contact refuses a scene with contact between objects, at the contact line", "[self]") {
