@@ -10,6 +10,7 @@
 #include <random>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "device/device_set.hpp"
 #include "device/plan_executor.hpp"
