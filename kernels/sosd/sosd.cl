@@ -20,6 +20,8 @@
 #include "common/ats_math.h"
 #include "common/vertex_solve.h"
 #include "common/vertex_system.cl"
+#include "contact/self_contact.cl"
+#include "contact/self_contact_terms.h"
 #include "common/vertex_contact.h"
 #include "common/contact_steps.cl"
 #include "common/vertex_friction.cl"
@@ -29,9 +31,9 @@
 #define SOSD_MAX 12 /* 4 vertices x 3 */
 
 /* sys[4 i] = (f, 0), sys[4 i + 1 .. 4 i + 3] = rows of H_ii. */
-ATS_TASK void sosd_vertex_systems(int i, __global const float4* x, __global const float4* x_tilde, __global const int* adj_offsets, __global const int* adj, __global const ats_distance_c* stretch, __global const ats_bend_c* bend, __global const ats_tet_c* tets, __global float4* sys, float inv_h2, __global const ats_collider_c* colliders, int collider_count, __global const float4* x_start, float inv_h) {
+ATS_TASK void sosd_vertex_systems(int i, __global const float4* x, __global const float4* x_tilde, __global const int* adj_offsets, __global const int* adj, __global const ats_distance_c* stretch, __global const ats_bend_c* bend, __global const ats_tet_c* tets, __global float4* sys, float inv_h2, __global const ats_collider_c* colliders, int collider_count, __global const float4* x_start, float inv_h, __global const int4* sc_tris, __global const int2* sc_edges, __global const int* sc_inc, __global const int* sc_vt, __global const int* sc_tv, __global const int* sc_ee, __global const float* sc_bound, int sc_n, float sc_k, float sc_r, int sc_on) {
   if (x[i].w == 0.0f) return; /* pinned: never read */
-  const vertex_system s = add_contact_terms(add_spring_damping(gather_vertex_system(i, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend, tets), i, x, x_start, inv_h, adj_offsets, adj, stretch), vs_xyz(x[i]), x[i].w, inv_h2, colliders, collider_count);
+  const vertex_system s = add_self_contact_terms(add_contact_terms(add_spring_damping(gather_vertex_system(i, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend, tets), i, x, x_start, inv_h, adj_offsets, adj, stretch), vs_xyz(x[i]), x[i].w, inv_h2, colliders, collider_count), i, x, sc_tris, sc_edges, sc_inc, sc_n, sc_vt, sc_tv, sc_ee, sc_k, sc_r, sc_on);
   sys[4 * i] = (float4)(s.f.x, s.f.y, s.f.z, 0.0f);
   ATS_UNROLL for (int r = 0; r < 3; ++r) sys[4 * i + 1 + r] = (float4)(s.h.r[r].x, s.h.r[r].y, s.h.r[r].z, 0.0f);
 }

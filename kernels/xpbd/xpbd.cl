@@ -9,6 +9,7 @@
 #include "common/xpbd_tet.h"
 #include "common/particle_steps.cl"
 #include "common/contact_steps.cl"
+#include "contact/self_contact.cl"
 #include "async/merge.cl"
 
 static inline ats_vec3 xyz(float4 p) { return ats_v3(p.x, p.y, p.z); }

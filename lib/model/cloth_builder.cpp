@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 
 #include "model/cloth_springs.hpp"
+#include "model/contact_surface.hpp"
 #include "model/object_particles.hpp"
 #include "model/tet_builder.hpp"
 #include "util/error.hpp"
@@ -230,6 +231,7 @@ Model build_model(const scene::SceneDesc& scene) {
     const scene::TriangleMesh mesh = obj.grid ? make_grid_mesh(*obj.grid) : obj.mesh;
     add_cloth(model, obj, mesh, scene.source_path);
   }
+  model.contact_surface = make_contact_surface(scene.contact, model);
   return model;
 }
 

@@ -89,6 +89,15 @@ struct ObjectRange {
   std::vector<std::array<int, 4>> tetrahedra;
 };
 
+// Contact between the simulated surfaces (scene `contact:`,
+// model/contact_surface.hpp): every object's triangles, global indices.
+struct ContactSurface {
+  std::vector<std::array<int, 3>> triangles;
+  double thickness = 0.0;     // m
+  double stiffness = 0.0;     // relative to m/h², m the mean free surface particle mass
+  double query_radius = 0.0;  // m, detection radius at the start of a substep
+};
+
 struct Model {
   Particles particles;
   EdgeSet stretch;  // empty when the scene models no stretch
@@ -101,6 +110,7 @@ struct Model {
   std::optional<double> ground{};     // ground plane height (y), if the scene has one
   double air_drag = 0.0;              // 1/s: force −m·c·v on every particle
   std::vector<Collider> colliders{};  // analytic obstacles (model/collider.hpp)
+  std::optional<ContactSurface> contact_surface{};  // self/cloth-cloth/cloth-solid contact, when the scene asks
 };
 
 }  // namespace atssim::model

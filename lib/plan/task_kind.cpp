@@ -11,7 +11,7 @@ namespace atssim::plan {
 namespace {
 
 constexpr int kFirst = static_cast<int>(TaskKind::predict);
-constexpr int kLast = static_cast<int>(TaskKind::friction);
+constexpr int kLast = static_cast<int>(TaskKind::detection);
 
 // In enum order.
 constexpr std::array<KindTraits, kLast - kFirst + 1> kTraits{{
@@ -32,6 +32,7 @@ constexpr std::array<KindTraits, kLast - kFirst + 1> kTraits{{
     {"merge", false, false, true},
     {"energy", false, false, false},
     {"friction", false, false, true},
+    {"detection", false, false, false},
 }};
 
 }  // namespace

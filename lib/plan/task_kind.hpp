@@ -27,6 +27,7 @@ enum class TaskKind : int {
   merge,            // async: another device's snapshot merged into this one's copy
   energy,           // per-element terms of the incremental potential
   friction,         // Coulomb friction of the colliders: after the iterations
+  detection,        // contact detection between simulated surfaces: before the iterations
 };
 
 struct KindTraits {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "scene/collider_desc.hpp"
+#include "scene/contact_desc.hpp"
 
 namespace atssim::scene {
 
@@ -148,6 +149,7 @@ struct SceneDesc {
   SimulationDesc simulation;
   std::vector<ObjectDesc> objects;
   std::vector<ColliderDesc> colliders;  // analytic obstacles (empty = none: no contact tasks)
+  SelfContactDesc contact;              // contact between the simulated surfaces (off = no such tasks)
   SolverDesc solver;
   OutputDesc output;
   std::string devices = "default";  // device spec, see `atssim devices`

@@ -11,6 +11,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "scene/collider_reader.hpp"
+#include "scene/contact_reader.hpp"
 #include "scene/input_file.hpp"
 #include "scene/object_reader.hpp"
 #include "scene/scene_yaml.hpp"
@@ -24,8 +25,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr std::array<std::string_view, 7> kRootKeys{"simulation", "objects", "solver",   "output",
-                                                    "devices",    "memory",  "colliders"};
+constexpr std::array<std::string_view, 8> kRootKeys{"simulation", "objects", "solver",    "output",
+                                                    "devices",    "memory",  "colliders", "contact"};
 constexpr std::array<std::string_view, 8> kSimulationKeys{"fps",    "dt",      "substeps", "iterations",
                                                           "frames", "gravity", "ground",   "air_drag"};
 // Keys under solver: that configure how the devices run a substep; every
@@ -203,6 +204,8 @@ SceneDesc parse_scene(const std::string& yaml_text, const std::string& source_na
       scene.colliders.push_back(read_collider(colliders[i], static_cast<int>(i), fs::path(base_dir)));
     }
   }
+
+  if (top.has("contact")) scene.contact = read_self_contact(top.child("contact"));
 
   const YamlReader solver = top.child("solver");
   if (!solver.is_null()) {

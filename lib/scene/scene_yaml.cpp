@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "scene/collider_reader.hpp"
+#include "scene/contact_reader.hpp"
 
 namespace atssim::scene {
 
@@ -133,6 +134,7 @@ std::string to_resolved_yaml(const SceneDesc& scene) {
     for (const ColliderDesc& c : scene.colliders) emit_collider(out, c);
     out << YAML::EndSeq;
   }
+  emit_self_contact(out, scene.contact);
   const SolverDesc& solver = scene.solver;
   out << YAML::Key << "solver" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "method" << YAML::Value << solver.method;

@@ -145,17 +145,18 @@ void check_scene(const scene::SceneDesc& scene, const MethodDescription& method)
     if (const MethodOption* o = find_option(method, given.key)) option_value(given, *o);
   }
   check_solids(scene, method);
-  if (!method.colliders && !scene.colliders.empty()) {
-    const std::string where = !scene.solver.method_where.empty()
-                                  ? scene.solver.method_where
-                                  : fmt::format("{}:{}", scene.source_path, scene.colliders.front().source_line);
+  if (!method.colliders && (!scene.colliders.empty() || scene.contact.enabled)) {
+    const std::string where =
+        !scene.solver.method_where.empty() ? scene.solver.method_where
+        : scene.colliders.empty()          ? scene.contact.where
+                                           : fmt::format("{}:{}", scene.source_path, scene.colliders.front().source_line);
     std::string others;
     for (const MethodDescription* m : kMethods) {
       if (m->colliders) others += fmt::format("{}{}", others.empty() ? "" : ", ", m->name);
     }
     throw input_error(
-        fmt::format("{}: solver.method {} has no contact with colliders yet; remove the scene's "
-                    "colliders or use solver.method {}",
+        fmt::format("{}: solver.method {} has no contact with colliders or between objects yet; remove the "
+                    "scene's colliders and contact, or use solver.method {}",
                     where, method.name, others));
   }
 }

@@ -27,5 +27,6 @@ namespace atssim::solver::energy::f64 {
 #include "common/energy_tet_neohookean.h"
 #include "common/energy_tet_stvk.h"
 #include "common/energy_bend_element.h"
+#include "common/self_contact.h"
 #undef ats_real
 }  // namespace atssim::solver::energy::f64

@@ -69,6 +69,12 @@ IncrementalPotential make_incremental_potential(const SimLayout& layout, const s
   }
   p.colliders = layout.colliders;
   p.collider_count = layout.collider_count;
+  if (layout.self_contact.enabled) {
+    for (const auto& t : layout.self_contact.tris) p.surface_contact.tris.push_back({t[0], t[1], t[2]});
+    p.surface_contact.edges = layout.self_contact.edges;
+    p.surface_contact.k = self_contact_k(layout.self_contact, p.h);
+    p.surface_contact.r = layout.self_contact.thickness;
+  }
   return p;
 }
 

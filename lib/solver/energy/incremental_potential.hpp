@@ -57,6 +57,16 @@ struct TetTerm {
   TetModel model = TetModel::neo_hookean;
 };
 
+// Contact between simulated surfaces (common/self_contact.h): every
+// vertex-triangle and edge-edge pair closer than r, incident ones excluded,
+// adds 1/2 k (r - d)^2 (solver/energy/self_contact_energy.hpp).
+struct SurfaceContactTerm {
+  std::vector<std::array<int, 3>> tris;  // empty: no such contact
+  std::vector<std::array<int, 2>> edges;
+  double k = 0.0;  // stiffness · m / h² for this potential's h
+  double r = 0.0;  // thickness
+};
+
 struct IncrementalPotential {
   double h = 0.0;
   Eigen::VectorXd predicted;  // x~, 3 per particle (pinned: their fixed position)
@@ -67,6 +77,7 @@ struct IncrementalPotential {
   std::vector<DampingTerm> damping;       // springs with damping > 0 only
   std::vector<ats_collider_c> colliders;  // contact energy of every free particle with each of the first
   int collider_count = 0;                 // `collider_count` (mesh data follows them)
+  SurfaceContactTerm surface_contact;
 
   int particle_count() const { return static_cast<int>(mass.size()); }
   bool is_free(int i) const { return mass[i] > 0.0; }

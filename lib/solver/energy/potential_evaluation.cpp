@@ -1,6 +1,7 @@
 #include "solver/energy/element_math.hpp"  // first: the double instance of the shared math
 
 #include "solver/energy/potential_evaluation.hpp"
+#include "solver/energy/self_contact_energy.hpp"
 
 #include <Eigen/Eigenvalues>
 
@@ -113,6 +114,7 @@ EnergyTerms energy_terms(const IncrementalPotential& p, const Eigen::VectorXd& x
   for (const DampingTerm& t : p.damping) {
     e.damping += f64::ats_spring_damping_energy(vec_at(x, t.a), vec_at(x, t.b), start_a(t), start_b(t), t.c_over_h);
   }
+  e.surface_contact = surface_contact_energy(p.surface_contact, x);
   return e;
 }
 
@@ -150,6 +152,7 @@ Eigen::VectorXd gradient(const IncrementalPotential& p, const Eigen::VectorXd& x
     add_at(g, t.a, ga);
     add_at(g, t.b, f64::ats_scale(ga, -1.0));
   }
+  add_surface_contact_gradient(p.surface_contact, x, g);
   for (int i = 0; i < p.particle_count(); ++i) {
     if (!p.is_free(i)) g.segment<3>(3 * i).setZero();
   }
@@ -200,6 +203,7 @@ std::vector<Eigen::Triplet<double>> hessian_triplets(const IncrementalPotential&
     add_block(out, p, t.a, t.b, h, -1.0);
     add_block(out, p, t.b, t.a, h, -1.0);
   }
+  add_surface_contact_hessian(p, x, out);
   return out;
 }
 

@@ -17,8 +17,9 @@ struct EnergyTerms {
   double bend = 0.0;
   double tet = 0.0;      // sum V Psi(F) over the tetrahedra
   double contact = 0.0;  // the colliders' contact energy
-  double damping = 0.0;  // the springs' damping terms (DampingTerm)
-  double total() const { return inertia + stretch + bend + tet + contact + damping; }
+  double damping = 0.0;          // the springs' damping terms (DampingTerm)
+  double surface_contact = 0.0;  // contact between simulated surfaces
+  double total() const { return inertia + stretch + bend + tet + contact + damping + surface_contact; }
 };
 
 // x: 3 per particle, pinned ones included (they enter the elastic terms).

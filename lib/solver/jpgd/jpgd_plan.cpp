@@ -4,6 +4,7 @@
 
 #include "solver/collision_tasks.hpp"
 #include "solver/layout/particle_tables.hpp"
+#include "solver/self_contact_tasks.hpp"
 
 namespace atssim::solver::jpgd {
 
@@ -34,6 +35,8 @@ plan::SubstepPlan make_jpgd_plan(const SimLayout& layout, const JpgdSettings& se
   const double hi = inertia_dt(layout, settings.substep_dt);  // air drag weighs the inertia (sim_layout.hpp)
   const float inv_h2 = static_cast<float>(1.0 / (hi * hi));
   const bool heavy_ball = settings.momentum > 0.0;
+  const SelfContactBuffers sc = add_self_contact_buffers(plan, layout);
+  last = add_self_contact_detection(plan, last, layout, sc, b.x_prev, b.x);
   const std::vector<double> omega = chebyshev_weights(settings.iterations, heavy_ball ? 0.0 : settings.chebyshev_rho);
   const float beta = heavy_ball ? static_cast<float>(settings.momentum) : 0.0f;
   using Arg = plan::KernelArg;
@@ -58,10 +61,11 @@ plan::SubstepPlan make_jpgd_plan(const SimLayout& layout, const JpgdSettings& se
                           Arg::of_float(layout.ground_y)};
     for (const Arg& a : vertex::collider_args(layout, b)) args.push_back(a);
     for (const Arg& a : vertex::damping_args(layout, b, settings.substep_dt)) args.push_back(a);
+    for (const Arg& a : self_contact_args(layout, sc, hi)) args.push_back(a);
     const sched::TaskId t =
         plan.add_task_after(last, plan::make_task(fmt::format("it{}/jacobi", it + 1), plan::TaskKind::jacobi, it, 0),
                             {"jpgd_step", {0, n}, std::move(args), {particle_write(next)}});
-    last = add_ground_task(plan, t, layout, next, it);
+    last = add_ground_task(plan, add_self_contact_clamp(plan, t, layout, sc, b.x_prev, next, it), layout, next, it);
     last = add_contact_task(plan, last, layout, b.colliders, next, it);
   }
   const plan::BufferId result = rotation[settings.iterations % 3];

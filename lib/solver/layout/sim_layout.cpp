@@ -41,6 +41,7 @@ SimLayout make_sim_layout(const model::Model& model) {
   ColliderBuffer colliders = collider_buffer(model.colliders);
   out.colliders = std::move(colliders.records);
   out.collider_count = colliders.count;
+  out.self_contact = make_self_contact_layout(model);
 
   if (model.stretch.size() > 0) {
     const graph::ColorBlocks blocks = color<2>(model.stretch.edges, movable);

@@ -9,6 +9,7 @@
 #include "common/element_types.h"
 #include "graph/color_blocks.hpp"
 #include "model/model.hpp"
+#include "solver/layout/self_contact_layout.hpp"
 
 namespace atssim::solver {
 
@@ -31,6 +32,7 @@ struct SimLayout {
   float air_drag = 0.0f;                  // c in 1/s: force −m·c·v on every free particle
   std::vector<ats_collider_c> colliders;  // collider records, then mesh data (solver/contact/collider_buffer)
   int collider_count = 0;                 // records that are colliders (contact tasks only when > 0)
+  SelfContactLayout self_contact;         // contact between simulated surfaces (tasks only when enabled)
 };
 
 SimLayout make_sim_layout(const model::Model& model);

@@ -4,6 +4,7 @@
 
 #include "solver/collision_tasks.hpp"
 #include "solver/layout/particle_tables.hpp"
+#include "solver/self_contact_tasks.hpp"
 
 namespace atssim::solver::vbd {
 
@@ -15,6 +16,8 @@ plan::SubstepPlan make_vbd_plan(const SimLayout& layout, double substep_dt, int 
   vertex::VertexBuffers b;
   sched::TaskId last = vertex::begin_vertex_plan(plan, layout, vertices, substep_dt, b);
   const double hi = inertia_dt(layout, substep_dt);  // air drag weighs the inertia (sim_layout.hpp)
+  const SelfContactBuffers sc = add_self_contact_buffers(plan, layout);
+  last = add_self_contact_detection(plan, last, layout, sc, b.x_prev, b.x);
   const float inv_h2 = static_cast<float>(1.0 / (hi * hi));
   // Element k of a color writes particle order[k].
   const auto order =
@@ -37,6 +40,7 @@ plan::SubstepPlan make_vbd_plan(const SimLayout& layout, double substep_dt, int 
                             Arg::of_float(layout.ground_y)};
       for (const Arg& a : vertex::collider_args(layout, b)) args.push_back(a);
       for (const Arg& a : vertex::damping_args(layout, b, substep_dt)) args.push_back(a);
+      for (const Arg& a : self_contact_args(layout, sc, hi)) args.push_back(a);
       last = plan.add_task_after(
           last, plan::make_task(fmt::format("it{}/vertex/c{}", it + 1, c), plan::TaskKind::vertex, it, c),
           {"vbd_solve", {first, count}, std::move(args), {plan::WriteSpan::per_index(b.x, kParticleBytes, 1, order)}});

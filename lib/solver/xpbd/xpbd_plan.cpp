@@ -6,6 +6,7 @@
 
 #include "common/xpbd_tet.h"
 #include "solver/collision_tasks.hpp"
+#include "solver/self_contact_tasks.hpp"
 #include "solver/layout/particle_tables.hpp"
 
 #include "util/error.hpp"
@@ -97,6 +98,8 @@ plan::SubstepPlan make_xpbd_plan(const SimLayout& layout, const XpbdSettings& se
   // Material damping along the springs (common/xpbd_distance.h): the start positions and 1/h, 0 = none.
   const std::vector<Arg> spring_damping{Arg::of_buffer(b.x_prev),
                                         Arg::of_float(has_spring_damping(layout) ? 1.0f / h : 0.0f)};
+  const SelfContactBuffers sc = add_self_contact_buffers(plan, layout);
+  last = add_self_contact_detection(plan, last, layout, sc, b.x_prev, b.x);
   const auto stretch_particles = particles_of(layout.stretch);
   const auto bend_particles = particles_of(layout.bend);
   const auto tet_particles = particles_of(layout.tets);
@@ -113,6 +116,7 @@ plan::SubstepPlan make_xpbd_plan(const SimLayout& layout, const XpbdSettings& se
       last = add_blocks(plan, last, layout.tet_blocks, plan::TaskKind::tet, "xpbd_tet", b.x, b.tet, b.tet_lambda, dt,
                         it, tet_particles, 4, ATS_TET_LAMBDA_STRIDE * sizeof(float));
     }
+    last = add_self_contact_projection(plan, last, layout, sc, b.x_prev, b.x, it);
     last = add_ground_task(plan, last, layout, b.x, it);
     last = add_contact_task(plan, last, layout, colliders, b.x, it);
   }

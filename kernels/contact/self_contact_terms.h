@@ -1,0 +1,40 @@
+/* The surface contact energy (common/self_contact.h) in a vertex's force and
+ * Hessian block, for the vertex-block methods (VBD, JPGD, SOSD): every pair
+ * the detection found for vertex i (contact/self_contact.cl), evaluated at
+ * the current positions x, as in VBD (Chen et al. 2024 §3.7). Include after
+ * common/vertex_system.cl and contact/self_contact.cl. */
+#ifndef ATS_SELF_CONTACT_TERMS_H
+#define ATS_SELF_CONTACT_TERMS_H
+
+#include "common/collider_distance.h"
+
+static inline vertex_system add_self_contact_terms(vertex_system s, int i, __global const float4* x, __global const int4* tris, __global const int2* edges, __global const int* inc, int n, __global const int* vt, __global const int* tv, __global const int* ee, float k, float r, int on) {
+  if (!on || x[i].w == 0.0f || !sc_is_surface(inc, i)) return s;
+  SC_FOR_EACH_PAIR({
+    if (g.d < r) {
+      s.f = ats_sub(s.f, ats_pair_gradient(g, k, r, slot));
+      s.h = ats_m3_add(s.h, ats_pair_hessian(g, k, r, slot, slot));
+    }
+  })
+  return s;
+}
+
+/* The new position of vertex i held within its bound of x_t. */
+static inline float4 sc_bounded_step(float4 next, int i, __global const float4* x_start, __global const float* bound, int on) {
+  return on ? sc_bounded(next, x_start[i], bound[i]) : next;
+}
+
+/* With surface contact on, a vertex step that ends inside a collider's
+ * thickened surface is put back onto it: the surfaces' penalty pushing a
+ * layer into an obstacle must not win over the obstacle (the collider
+ * penalty alone shares the overlap with it). */
+static inline float4 sc_out_of_colliders(float4 p, __global const ats_collider_c* colliders, int count, int on) {
+  if (!on) return p;
+  for (int c = 0; c < count; ++c) {
+    const ats_surface_distance s = ats_collider_gap(colliders + c, ats_v3(p.x, p.y, p.z));
+    if (s.phi < 0.0f) p = (float4)(p.x - s.phi * s.n.x, p.y - s.phi * s.n.y, p.z - s.phi * s.n.z, p.w);
+  }
+  return p;
+}
+
+#endif

@@ -1,0 +1,55 @@
+#include "scene/contact_reader.hpp"
+
+#include <array>
+
+#include <fmt/format.h>
+
+namespace atssim::scene {
+
+namespace {
+
+constexpr std::array<std::string_view, 4> kContactKeys{"self", "thickness", "stiffness", "query_radius"};
+
+}  // namespace
+
+SelfContactDesc read_self_contact(const YamlReader& r) {
+  SelfContactDesc c;
+  if (!r.node().IsMap())
+    r.fail("'contact' should be a map of keys", "write e.g. contact: {self: true, thickness: 0.005}");
+  r.expect_map(kContactKeys);
+  c.where = r.where();
+  if (r.has("self")) {
+    const YamlReader s = r.child("self");
+    const std::string v = s.string();
+    if (v != "true" && v != "false") s.fail(fmt::format("'contact.self' is '{}'", v), "use true or false");
+    c.enabled = v == "true";
+  }
+  if (r.has("thickness")) {
+    c.thickness =
+        r.child("thickness").number_in(0.0, 1.0, true, "a thickness in metres, 0 < thickness ≤ 1, e.g. 0.005");
+  }
+  if (r.has("stiffness")) {
+    c.stiffness = r.child("stiffness").number_in(0.0, 1e6, true, "a contact stiffness relative to m/h², e.g. 100");
+  }
+  if (r.has("query_radius")) {
+    const YamlReader q = r.child("query_radius");
+    c.query_radius = q.number_in(0.0, 10.0, true, "a detection radius in metres, e.g. 3 × the thickness");
+    if (c.query_radius < c.thickness) {
+      q.fail(fmt::format("'contact.query_radius' {} is below the thickness {}", c.query_radius, c.thickness),
+             "give a query radius of at least the thickness (default 3 × thickness)");
+    }
+  }
+  return c;
+}
+
+void emit_self_contact(YAML::Emitter& out, const SelfContactDesc& c) {
+  if (!c.enabled) return;
+  out << YAML::Key << "contact" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "self" << YAML::Value << true;
+  out << YAML::Key << "thickness" << YAML::Value << c.thickness;
+  out << YAML::Key << "stiffness" << YAML::Value << c.stiffness;
+  out << YAML::Key << "query_radius" << YAML::Value << (c.query_radius > 0.0 ? c.query_radius : 3.0 * c.thickness);
+  out << YAML::EndMap;
+}
+
+}  // namespace atssim::scene

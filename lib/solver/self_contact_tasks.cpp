@@ -1,0 +1,167 @@
+#include "solver/self_contact_tasks.hpp"
+
+#include <fmt/format.h>
+
+#include "solver/layout/particle_tables.hpp"
+
+namespace atssim::solver {
+
+namespace {
+
+using Arg = plan::KernelArg;
+using plan::WriteSpan;
+
+constexpr int kListInts = 10;        // ATS_SC_STRIDE of kernels/contact/self_contact.cl
+constexpr int kNodeBytes = 32;       // two float4 per node
+constexpr int kTopLevelNodes = 256;  // levels this small are refitted by one work-item
+
+std::vector<std::byte> zeros(std::size_t bytes) { return std::vector<std::byte>(bytes); }
+
+}  // namespace
+
+SelfContactBuffers add_self_contact_buffers(plan::SubstepPlan& plan, const SimLayout& layout) {
+  const SelfContactLayout& s = layout.self_contact;
+  using plan::BufferRole;
+  SelfContactBuffers b;
+  const std::size_t n = s.enabled ? layout.x.size() : 0;
+  b.tris = plan.add_buffer("sc_tris", BufferRole::topology, plan::bytes_of(s.tris));
+  b.edges = plan.add_buffer("sc_edges", BufferRole::topology, plan::bytes_of(s.edges));
+  b.leaves = plan.add_buffer("sc_leaves", BufferRole::topology, plan::bytes_of(s.leaves));
+  b.levels = plan.add_buffer("sc_levels", BufferRole::topology, plan::bytes_of(s.levels));
+  b.incidence = plan.add_buffer("sc_incidence", BufferRole::topology, plan::bytes_of(s.incidence));
+  b.nodes = plan.add_buffer("sc_nodes", BufferRole::scratch, zeros(std::size_t(s.node_count()) * kNodeBytes));
+  b.vt = plan.add_buffer("sc_vt", BufferRole::scratch, zeros(n * kListInts * 4));
+  b.tv = plan.add_buffer("sc_tv", BufferRole::scratch, zeros(s.tris.size() * kListInts * 4));
+  b.ee = plan.add_buffer("sc_ee", BufferRole::scratch, zeros(s.edges.size() * kListInts * 4));
+  b.bound = plan.add_buffer("sc_bound", BufferRole::scratch, zeros(n * 4));
+  b.x_out = plan.add_buffer("sc_x_out", BufferRole::scratch, zeros(n * kParticleBytes));
+  return b;
+}
+
+sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId last, const SimLayout& layout,
+                                         const SelfContactBuffers& b, plan::BufferId start, plan::BufferId positions) {
+  const SelfContactLayout& s = layout.self_contact;
+  if (!s.enabled) return last;
+  const int n = static_cast<int>(layout.x.size());
+  const int tris = static_cast<int>(s.tris.size()), edges = static_cast<int>(s.edges.size());
+  const auto detect = [](const std::string& name) { return plan::make_task(name, plan::TaskKind::detection); };
+  // BVH refit, bottom up (He et al. 2025 Fig. 2: "BVH updates").
+  last = plan.add_task_after(last, detect("detect/leaves"),
+                             {"sc_leaf_boxes",
+                              {0, tris},
+                              {Arg::of_buffer(start), Arg::of_buffer(b.tris), Arg::of_buffer(b.nodes)},
+                              {WriteSpan::per_element(b.nodes, kNodeBytes)}});
+  const int root = s.root();
+  int level = 1;
+  for (; level <= root && s.levels[level + 1] - s.levels[level] > kTopLevelNodes; ++level) {
+    const int count = s.levels[level + 1] - s.levels[level];
+    last = plan.add_task_after(last, detect(fmt::format("detect/level{}", level)),
+                               {"sc_refit_level",
+                                {0, count},
+                                {Arg::of_buffer(b.nodes), Arg::of_int(s.levels[level]),
+                                 Arg::of_int(s.levels[level - 1]), Arg::of_int(s.levels[level] - s.levels[level - 1])},
+                                {WriteSpan::per_element(b.nodes, kNodeBytes, s.levels[level])}});
+  }
+  if (level <= root) {
+    last =
+        plan.add_task_after(last, detect("detect/top"),
+                            {"sc_refit_top",
+                             {0, 1},
+                             {Arg::of_buffer(b.nodes), Arg::of_buffer(b.levels), Arg::of_int(level), Arg::of_int(root)},
+                             {WriteSpan::whole_buffer(b.nodes)}});
+  }
+  const float radius = s.query_radius;
+  const sched::TaskId refit = last;
+  const sched::TaskId vertices = plan.add_task_after(
+      refit, detect("detect/vertices"),
+      {"sc_query_vertices",
+       {0, n},
+       {Arg::of_buffer(start), Arg::of_buffer(b.incidence), Arg::of_buffer(b.tris), Arg::of_buffer(b.nodes),
+        Arg::of_buffer(b.levels), Arg::of_int(root), Arg::of_float(radius), Arg::of_buffer(b.vt)},
+       {WriteSpan::per_element(b.vt, kListInts * 4)}});
+  const sched::TaskId triangles = plan.add_task_after(
+      refit, detect("detect/triangles"),
+      {"sc_query_triangles",
+       {0, tris},
+       {Arg::of_buffer(start), Arg::of_buffer(b.tris), Arg::of_buffer(b.leaves), Arg::of_buffer(b.nodes),
+        Arg::of_buffer(b.levels), Arg::of_int(root), Arg::of_float(radius), Arg::of_buffer(b.tv)},
+       {WriteSpan::per_element(b.tv, kListInts * 4)}});
+  const sched::TaskId edge_pairs = plan.add_task_after(
+      refit, detect("detect/edges"),
+      {"sc_query_edges",
+       {0, edges},
+       {Arg::of_buffer(start), Arg::of_buffer(b.edges), Arg::of_buffer(b.leaves), Arg::of_buffer(b.nodes),
+        Arg::of_buffer(b.levels), Arg::of_int(root), Arg::of_float(radius), Arg::of_buffer(b.ee)},
+       {WriteSpan::per_element(b.ee, kListInts * 4)}});
+  const sched::TaskId bound =
+      plan.add_task(detect("detect/bound"),
+                    {{"sc_bound",
+                      {0, n},
+                      {Arg::of_buffer(b.incidence), Arg::of_int(n), Arg::of_buffer(b.vt), Arg::of_buffer(b.tv),
+                       Arg::of_buffer(b.ee), Arg::of_float(s.gamma), Arg::of_buffer(b.bound)},
+                      {WriteSpan::per_element(b.bound, 4)}}});
+  for (sched::TaskId t : {vertices, triangles, edge_pairs}) plan.graph.add_edge(t, bound);
+  return plan.add_task_after(bound, plan::make_task("contact/first_guess", plan::TaskKind::collision),
+                             {"sc_clamp",
+                              {0, n},
+                              {Arg::of_buffer(positions), Arg::of_buffer(start), Arg::of_buffer(b.bound)},
+                              {particle_write(positions)}});
+}
+
+std::vector<plan::KernelArg> self_contact_args(const SimLayout& layout, const SelfContactBuffers& b,
+                                               double inertia_h) {
+  const SelfContactLayout& s = layout.self_contact;
+  return {Arg::of_buffer(b.tris),
+          Arg::of_buffer(b.edges),
+          Arg::of_buffer(b.incidence),
+          Arg::of_buffer(b.vt),
+          Arg::of_buffer(b.tv),
+          Arg::of_buffer(b.ee),
+          Arg::of_buffer(b.bound),
+          Arg::of_int(static_cast<int>(layout.x.size())),
+          Arg::of_float(static_cast<float>(self_contact_k(s, inertia_h))),
+          Arg::of_float(s.thickness),
+          Arg::of_int(s.enabled ? 1 : 0)};
+}
+
+sched::TaskId add_self_contact_clamp(plan::SubstepPlan& plan, sched::TaskId last, const SimLayout& layout,
+                                     const SelfContactBuffers& b, plan::BufferId start, plan::BufferId positions,
+                                     int iteration) {
+  if (!layout.self_contact.enabled) return last;
+  const int n = static_cast<int>(layout.x.size());
+  return plan.add_task_after(
+      last,
+      plan::make_task(fmt::format("it{}/collision/bound", iteration + 1), plan::TaskKind::collision, iteration, 2),
+      {"sc_clamp",
+       {0, n},
+       {Arg::of_buffer(positions), Arg::of_buffer(start), Arg::of_buffer(b.bound)},
+       {particle_write(positions)}});
+}
+
+sched::TaskId add_self_contact_projection(plan::SubstepPlan& plan, sched::TaskId last, const SimLayout& layout,
+                                          const SelfContactBuffers& b, plan::BufferId start, plan::BufferId positions,
+                                          int iteration) {
+  const SelfContactLayout& s = layout.self_contact;
+  if (!s.enabled) return last;
+  const int n = static_cast<int>(layout.x.size());
+  const plan::BufferId scratch = b.x_out;
+  last = plan.add_task_after(
+      last,
+      plan::make_task(fmt::format("it{}/collision/surfaces", iteration + 1), plan::TaskKind::collision, iteration, 2),
+      {"sc_project",
+       {0, n},
+       {Arg::of_buffer(positions), Arg::of_buffer(scratch), Arg::of_buffer(b.tris), Arg::of_buffer(b.edges),
+        Arg::of_buffer(b.incidence), Arg::of_int(n), Arg::of_buffer(b.vt), Arg::of_buffer(b.tv), Arg::of_buffer(b.ee),
+        Arg::of_float(s.thickness)},
+       {particle_write(scratch)}});
+  return plan.add_task_after(
+      last,
+      plan::make_task(fmt::format("it{}/collision/surfaces_apply", iteration + 1), plan::TaskKind::collision, iteration,
+                      3),
+      {"sc_apply",
+       {0, n},
+       {Arg::of_buffer(positions), Arg::of_buffer(scratch), Arg::of_buffer(start), Arg::of_buffer(b.bound)},
+       {particle_write(positions)}});
+}
+
+}  // namespace atssim::solver

@@ -1,0 +1,50 @@
+#pragma once
+// The tasks of contact between simulated surfaces (scene `contact: {self:
+// true}`; kernels/contact/self_contact.cl), which every method's plan
+// builder adds with a call or two: detection at the start of the substep
+// on x_t (BVH refit, the three pair queries, the per-vertex displacement
+// bound), the bound on the first guess, and per method either the contact
+// energy inside its vertex solves (VBD, JPGD, SOSD: the kernel arguments
+// below) or XPBD's inequality constraints after each iteration. A layout
+// without self contact gets no tasks and empty buffers (the vertex kernels
+// then take sc_on = 0).
+#include <vector>
+
+#include "plan/substep_plan.hpp"
+#include "solver/layout/sim_layout.hpp"
+
+namespace atssim::solver {
+
+struct SelfContactBuffers {
+  plan::BufferId tris = -1, edges = -1, leaves = -1, nodes = -1, levels = -1, incidence = -1, vt = -1, tv = -1, ee = -1,
+                 bound = -1, x_out = -1;  // x_out: XPBD's projection
+};
+
+SelfContactBuffers add_self_contact_buffers(plan::SubstepPlan& plan, const SimLayout& layout);
+
+// After `last` (predict): detection on `start` (x_t), then `positions` (the
+// first guess) held within each vertex's bound of x_t. Returns the new last
+// task, or `last` when the layout has no self contact.
+sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId last, const SimLayout& layout,
+                                         const SelfContactBuffers& b, plan::BufferId start, plan::BufferId positions);
+
+// A vertex kernel's self-contact parameters: tris, edges, incidence, vt,
+// tv, ee, bound, n, k (for the inertia step `inertia_h`), r, on. They follow
+// the kernel's x_start and inv_h (vertex::damping_args), which the bound and
+// the damping share.
+std::vector<plan::KernelArg> self_contact_args(const SimLayout& layout, const SelfContactBuffers& b,
+                                               double inertia_h);
+
+// After `last`: `positions` held within each vertex's bound of `start`
+// (JPGD and SOSD after each iteration). Returns the new last task, or `last`.
+sched::TaskId add_self_contact_clamp(plan::SubstepPlan& plan, sched::TaskId last, const SimLayout& layout,
+                                     const SelfContactBuffers& b, plan::BufferId start, plan::BufferId positions,
+                                     int iteration);
+
+// XPBD, after `last`: every pair's inequality constraint into a scratch
+// copy, then back within the bound. Returns the new last task, or `last`.
+sched::TaskId add_self_contact_projection(plan::SubstepPlan& plan, sched::TaskId last, const SimLayout& layout,
+                                          const SelfContactBuffers& b, plan::BufferId start, plan::BufferId positions,
+                                          int iteration);
+
+}  // namespace atssim::solver

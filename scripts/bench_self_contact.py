@@ -1,0 +1,119 @@
+#!/usr/bin/python3
+"""Cost of contact between simulated surfaces (scene `contact: {self: true}`):
+a square cloth of N x N vertices lying on a sphere, run with self-contact
+on and off side by side. Per size: frame time on and off and their ratio,
+and the contact tasks' time in the last recorded substep (detection:
+BVH refit, the three queries, the bound; the bound and projection tasks
+of the iterations) with its share of that substep; then the log-log slope
+of the contact time over the sizes. The contact tasks' time per frame is
+the last recorded substep's, times the substeps. VBD's and JPGD's contact energy inside
+their vertex solves is no task of its own: it shows in the on/off ratio.
+
+usage: scripts/bench_self_contact.py [--sizes 128,256] [--frames 4] [--methods vbd,xpbd]
+Build first (cmake --build --preset release). Prints one Markdown table.
+"""
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+
+import h5py
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+BIN = os.path.join(ROOT, "build", "release", "atssim")
+NATIVE = os.path.join(ROOT, "build", "release", "bench", "bench_native")
+
+SCENE = """simulation: {{fps: 60, substeps: {substeps}, iterations: {iterations}, frames: {frames}}}
+objects:
+  - {{name: cloth, grid: {{size: [2, 2], resolution: [{n}, {n}]}}, transform: {{translate: [0, 0.505, 0]}},
+     material: {{density: 0.2, stretch_stiffness: 1000, bend_stiffness: 0.0001}}}}
+colliders:
+  - {{type: sphere, center: [0, 0, 0], radius: 0.5, thickness: 0.004}}
+contact: {{self: {self}, thickness: 0.003}}
+"""
+
+CONTACT_KINDS = {"detection"}
+CONTACT_NAMES = ("collision/bound", "collision/surfaces", "contact/first_guess")
+
+
+def run(tmp, n, method, self_on, args):
+    scene = os.path.join(tmp, f"s{n}{method}{int(self_on)}.yaml")
+    out = os.path.join(tmp, f"o{n}{method}{int(self_on)}.h5")
+    with open(scene, "w") as f:
+        f.write(SCENE.format(substeps=args.substeps, iterations=args.iterations, frames=args.frames, n=n,
+                             self="true" if self_on else "false"))
+    subprocess.run([BIN, "run", scene, "-o", out, "--devices", args.devices, "--set", f"solver.method={method}",
+                    "--quiet"], check=True)
+    with h5py.File(out, "r") as f:
+        frame_ms = float(np.median(f["timing/frame_ms"][2:]))
+        names = [s.decode() if isinstance(s, bytes) else s for s in f["schedule/tasks/name"][:]]
+        kinds = [s.decode() if isinstance(s, bytes) else s for s in f["schedule/tasks/kind"][:]]
+        s = f["schedule"]
+        frames = s["frame"][:]
+        last = frames == frames.max()
+        task = s["task"][:][last]
+        start = s["measured_start_ms"][:][last]
+        finish = s["measured_finish_ms"][:][last]
+        contact = 0.0
+        for t, a, b in zip(task, start, finish):
+            if kinds[t] in CONTACT_KINDS or any(k in names[t] for k in CONTACT_NAMES):
+                contact += b - a
+        substep = float(np.nanmax(finish) - np.nanmin(start))
+    return frame_ms, contact, substep
+
+
+def native_ms(tmp, n, method, args):
+    """The native host loop (bench/bench_native: the host XPBD/VBD reference,
+    2 threads) on the same cloth: it has no contact of any kind, so it is the
+    reference for the elastic part only."""
+    scene = os.path.join(tmp, f"native{n}.yaml")
+    with open(scene, "w") as f:
+        f.write(SCENE.format(substeps=args.substeps, iterations=args.iterations, frames=args.frames, n=n,
+                             self="false").replace("colliders:", "unused_colliders:").split("unused_colliders:")[0])
+    out = subprocess.run([NATIVE, "--scene", scene, "--method", method, "--resolution", str(n), "--threads", "2",
+                          "--frames", str(args.frames), "--warmup", "1"], check=True, capture_output=True, text=True)
+    return json.loads(out.stdout)["median_ms"]
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--sizes", default="128,256", help="vertices per side, comma separated")
+    ap.add_argument("--frames", type=int, default=4)
+    ap.add_argument("--substeps", type=int, default=4)
+    ap.add_argument("--iterations", type=int, default=4)
+    ap.add_argument("--methods", default="vbd,xpbd")
+    ap.add_argument("--devices", default="cpu")
+    args = ap.parse_args()
+    if not os.path.exists(BIN):
+        print(f"{BIN} is missing: build first", file=sys.stderr)
+        return 2
+    os.environ.setdefault("POCL_CACHE_DIR", os.path.expanduser("~/.cache/atssim/pocl"))
+    sizes = [int(s) for s in args.sizes.split(",")]
+    print("| method | vertices | frame ms, self off | frame ms, self on | on/off | contact tasks ms/frame | "
+          "share of substep |")
+    print("|---|---|---|---|---|---|---|")
+    with tempfile.TemporaryDirectory() as tmp:
+        for method in args.methods.split(","):
+            points = []
+            for n in sizes:
+                off, _, _ = run(tmp, n, method, False, args)
+                on, contact, substep = run(tmp, n, method, True, args)
+                points.append((n * n, contact))
+                print(f"| {method} | {n * n} | {off:.1f} | {on:.1f} | {on / off:.2f} | {contact * args.substeps:.2f} | "
+                      f"{100 * contact / substep:.0f} % |", flush=True)
+                if method in ("xpbd", "vbd") and os.path.exists(NATIVE):
+                    print(f"| native {method} (host reference, 2 threads, no contact) | {n * n} | "
+                          f"{native_ms(tmp, n, method, args):.1f} | – | – | – | – |", flush=True)
+            if len(points) >= 2 and all(c > 0 for _, c in points):
+                (v0, c0), (v1, c1) = points[0], points[-1]
+                print(f"| {method} | log-log slope of the contact time, {v0} → {v1} vertices: "
+                      f"{math.log(c1 / c0) / math.log(v1 / v0):.2f} | | | | | |", flush=True)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

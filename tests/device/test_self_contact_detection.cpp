@@ -1,0 +1,166 @@
+// The device's self-contact detection (kernels/contact/self_contact.cl: BVH
+// refit and the three queries) against a brute force over the same surface
+// on the host: the same nearest pairs, the same nearest distance, the same
+// displacement bound.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <random>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "device/device_set.hpp"
+#include "device/plan_executor.hpp"
+#include "model/cloth_builder.hpp"
+#include "scene/scene_loader.hpp"
+#include "solver/vbd/vbd_plan.hpp"
+
+using namespace atssim;
+
+namespace {
+
+constexpr int kCapacity = 8, kStride = kCapacity + 2;
+
+// Two layers 1.2 cm apart (within the 3 cm query radius) and a third far away.
+const char* kScene =
+    "simulation: {fps: 60, substeps: 1, iterations: 1, frames: 1, gravity: [0, 0, 0]}\n"
+    "objects:\n"
+    "  - {name: a, grid: {size: [0.3, 0.3], resolution: [7, 7]}, material: {density: 0.2, stretch_stiffness: 100}}\n"
+    "  - {name: b, grid: {size: [0.3, 0.3], resolution: [6, 6]}, transform: {rotate: [0, 17, 0], translate: [0.01, "
+    "0.012, 0.02]},\n"
+    "     material: {density: 0.2, stretch_stiffness: 100}}\n"
+    "  - {name: c, grid: {size: [0.3, 0.3], resolution: [5, 5]}, transform: {translate: [2, 0, 0]},\n"
+    "     material: {density: 0.2, stretch_stiffness: 100}}\n"
+    "contact: {self: true, thickness: 0.01}\n";
+
+Eigen::Vector3d at(const std::vector<solver::Float4>& x, int i) { return {x[i].x, x[i].y, x[i].z}; }
+
+double seg_dist(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  const Eigen::Vector3d ab = b - a;
+  const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+  return (p - a - t * ab).norm();
+}
+
+// Point-triangle by dense sampling plus the edges (independent of the kernels' closed form).
+double pt_dist(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  double best = std::min({seg_dist(p, a, b), seg_dist(p, b, c), seg_dist(p, c, a)});
+  const Eigen::Vector3d n = (b - a).cross(c - a).normalized();
+  const Eigen::Vector3d q = p - (p - a).dot(n) * n;
+  const Eigen::Vector3d m = (b - a).cross(c - a);
+  if ((b - a).cross(q - a).dot(m) >= 0 && (c - b).cross(q - b).dot(m) >= 0 && (a - c).cross(q - c).dot(m) >= 0)
+    best = std::min(best, std::abs((p - a).dot(n)));
+  return best;
+}
+
+double ee_dist(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& q0,
+               const Eigen::Vector3d& q1) {
+  // The distance from p(s) to segment q is convex in s: ternary search.
+  double lo = 0.0, hi = 1.0;
+  const auto f = [&](double t) { return seg_dist(p0 + t * (p1 - p0), q0, q1); };
+  for (int k = 0; k < 200; ++k) {
+    const double m1 = lo + (hi - lo) / 3, m2 = hi - (hi - lo) / 3;
+    if (f(m1) < f(m2)) {
+      hi = m2;
+    } else {
+      lo = m1;
+    }
+  }
+  return std::min({f(lo), f(0.0), f(1.0)});
+}
+
+std::vector<int> ints_of(const std::vector<std::byte>& raw) {
+  std::vector<int> out(raw.size() / 4);
+  std::memcpy(out.data(), raw.data(), raw.size());
+  return out;
+}
+
+plan::BufferId buffer_named(const plan::SubstepPlan& p, const std::string& name) {
+  for (std::size_t b = 0; b < p.buffers.size(); ++b) {
+    if (p.buffers[b].name == name) return static_cast<plan::BufferId>(b);
+  }
+  FAIL("no buffer " << name);
+  return -1;
+}
+
+// The device list of element e against the brute force distances of its
+// candidates (id, distance), nearest first.
+void check_list(const std::vector<int>& list, int e, std::vector<std::pair<double, int>> expected, float radius) {
+  std::sort(expected.begin(), expected.end());
+  const int* l = list.data() + e * kStride;
+  INFO("element " << e << ": " << expected.size() << " within the radius");
+  REQUIRE(l[0] == std::min<int>(kCapacity, int(expected.size())));
+  float nearest;
+  std::memcpy(&nearest, &l[1], 4);
+  CHECK(nearest == Approx(expected.empty() ? radius : expected.front().first).margin(2e-5));
+  for (int k = 0; k < l[0]; ++k) {
+    // The k-th device entry is one of the brute force's entries at (nearly) the k-th distance.
+    const auto it = std::find_if(expected.begin(), expected.end(), [&](const auto& p) { return p.second == l[2 + k]; });
+    REQUIRE(it != expected.end());
+    CHECK(it->first == Approx(expected[k].first).margin(2e-5));
+  }
+}
+
+}  // namespace
+
+TEST_CASE("self-contact detection on the device finds the brute force's nearest pairs and bound", "[self]") {
+  const model::Model m = model::build_model(scene::parse_scene(kScene, "s.yaml", "."));
+  solver::SimLayout layout = solver::make_sim_layout(m);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(-0.002f, 0.002f);
+  for (auto& p : layout.x) {
+    p.x += u(rng);
+    p.y += u(rng);
+    p.z += u(rng);
+  }
+  const solver::SelfContactLayout& s = layout.self_contact;
+  REQUIRE(s.enabled);
+  const plan::SubstepPlan plan = solver::vbd::make_vbd_plan(layout, 1.0 / 60.0, 1);
+  const auto devices = device::DeviceSet::open("cpu");
+  device::PlanExecutor exec(devices, plan, {});
+  exec.run_substeps(1);
+  const std::vector<int> vt = ints_of(exec.read(buffer_named(plan, "sc_vt")));
+  const std::vector<int> tv = ints_of(exec.read(buffer_named(plan, "sc_tv")));
+  const std::vector<int> ee = ints_of(exec.read(buffer_named(plan, "sc_ee")));
+  const float radius = s.query_radius;
+  const auto& x = layout.x;  // detection runs on x_t, the substep's start
+  const int n = int(x.size());
+  std::vector<char> surface(n, 0);
+  for (const auto& t : s.tris) surface[t[0]] = surface[t[1]] = surface[t[2]] = 1;
+  int pairs = 0;
+  for (int v = 0; v < n; ++v) {
+    std::vector<std::pair<double, int>> expected;
+    for (int t = 0; surface[v] && t < int(s.tris.size()); ++t) {
+      const auto& f = s.tris[t];
+      if (f[0] == v || f[1] == v || f[2] == v) continue;
+      const double d = pt_dist(at(x, v), at(x, f[0]), at(x, f[1]), at(x, f[2]));
+      if (d < radius) expected.emplace_back(d, t);
+    }
+    pairs += int(expected.size());
+    check_list(vt, v, expected, radius);
+  }
+  for (int t = 0; t < int(s.tris.size()); ++t) {
+    const auto& f = s.tris[t];
+    std::vector<std::pair<double, int>> expected;
+    for (int v = 0; v < n; ++v) {
+      if (!surface[v] || f[0] == v || f[1] == v || f[2] == v) continue;
+      const double d = pt_dist(at(x, v), at(x, f[0]), at(x, f[1]), at(x, f[2]));
+      if (d < radius) expected.emplace_back(d, v);
+    }
+    check_list(tv, t, expected, radius);
+  }
+  for (int e = 0; e < int(s.edges.size()); ++e) {
+    const auto& a = s.edges[e];
+    std::vector<std::pair<double, int>> expected;
+    for (int f = 0; f < int(s.edges.size()); ++f) {
+      const auto& b = s.edges[f];
+      if (f == e || a[0] == b[0] || a[0] == b[1] || a[1] == b[0] || a[1] == b[1]) continue;
+      const double d = ee_dist(at(x, a[0]), at(x, a[1]), at(x, b[0]), at(x, b[1]));
+      if (d < radius) expected.emplace_back(d, f);
+    }
+    check_list(ee, e, expected, radius);
+  }
+  CHECK(pairs > 100);  // the two layers do face each other
+}
