@@ -131,8 +131,8 @@ TEST_CASE("an executor refuses a launch of a task function its program does not 
   SECTION("a wrong argument list") {
     plan.launches[1][0].args.pop_back();
     CHECK_THROWS_WITH(device::PlanExecutor(devices, plan), Catch::Contains("takes 7"));
-    plan.launches[1][0].args.push_back(plan::KernelArg::of_float(1.0f));
-    CHECK_THROWS_WITH(device::PlanExecutor(devices, plan), Catch::Contains("expects an int"));
+    plan.launches[1][0].args.push_back(plan::KernelArg::of_int(1));  // its last parameter is the float 1/h
+    CHECK_THROWS_WITH(device::PlanExecutor(devices, plan), Catch::Contains("expects a float"));
   }
   SECTION("a declared write to a buffer it does not write through") {
     // The copies between memories follow the declaration: a stale one (a

@@ -15,7 +15,8 @@ double stiffness_to_inertia(const SimLayout& layout, double substep_dt) {
 
 void require_resolvable_inertia(const SimLayout& layout, double substep_dt, int substeps, std::string_view method) {
   const double ratio = stiffness_to_inertia(layout, substep_dt);
-  if (!(ratio > kMaxStiffnessToInertia)) return;
+  // An infinite stiffness (zero compliance) is refused by the method with its scene line.
+  if (!std::isfinite(ratio) || !(ratio > kMaxStiffnessToInertia)) return;
   const double needed = std::ceil(substeps * std::sqrt(ratio / kMaxStiffnessToInertia));
   throw input_error(fmt::format(
       "solver.method {}: the stiffness is {:.2g} times the inertia m/h² (h² λmax(M⁻¹K)), beyond the {:.0e} that "
