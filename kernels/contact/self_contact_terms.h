@@ -8,7 +8,11 @@
 
 #include "common/collider_distance.h"
 
-static inline vertex_system add_self_contact_terms(vertex_system s, int i, __global const float4* x, __global const int4* tris, __global const int2* edges, __global const int* inc, int n, __global const int* vt, __global const int* tv, __global const int* ee, float k, float r, int on) {
+static inline vertex_system add_self_contact_terms(vertex_system s, int i, __global const float4* x,
+                                                   __global const int4* tris, __global const int2* edges,
+                                                   __global const int* inc, int n, __global const int* vt,
+                                                   __global const int* tv, __global const int* ee, float k, float r,
+                                                   int on) {
   if (!on || x[i].w == 0.0f || !sc_is_surface(inc, i)) return s;
   SC_FOR_EACH_PAIR({
     if (g.d < r) {
@@ -20,7 +24,8 @@ static inline vertex_system add_self_contact_terms(vertex_system s, int i, __glo
 }
 
 /* The new position of vertex i held within its bound of x_t. */
-static inline float4 sc_bounded_step(float4 next, int i, __global const float4* x_start, __global const float* bound, int on) {
+static inline float4 sc_bounded_step(float4 next, int i, __global const float4* x_start, __global const float* bound,
+                                     int on) {
   return on ? sc_bounded(next, x_start[i], bound[i]) : next;
 }
 

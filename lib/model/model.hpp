@@ -106,10 +106,10 @@ struct Model {
   Vec3 gravity{0.0, -9.81, 0.0};
   // Last, with an initializer: code that aggregate-initializes the members
   // above (app/simulation.cpp) keeps compiling without a warning.
-  TetSet tets{};                      // empty when the scene has no solid
-  std::optional<double> ground{};     // ground plane height (y), if the scene has one
-  double air_drag = 0.0;              // 1/s: force −m·c·v on every particle
-  std::vector<Collider> colliders{};  // analytic obstacles (model/collider.hpp)
+  TetSet tets{};                                    // empty when the scene has no solid
+  std::optional<double> ground{};                   // ground plane height (y), if the scene has one
+  double air_drag = 0.0;                            // 1/s: force −m·c·v on every particle
+  std::vector<Collider> colliders{};                // analytic obstacles (model/collider.hpp)
   std::optional<ContactSurface> contact_surface{};  // self/cloth-cloth/cloth-solid contact, when the scene asks
 };
 

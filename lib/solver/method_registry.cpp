@@ -146,10 +146,10 @@ void check_scene(const scene::SceneDesc& scene, const MethodDescription& method)
   }
   check_solids(scene, method);
   if (!method.colliders && (!scene.colliders.empty() || scene.contact.enabled)) {
-    const std::string where =
-        !scene.solver.method_where.empty() ? scene.solver.method_where
-        : scene.colliders.empty()          ? scene.contact.where
-                                           : fmt::format("{}:{}", scene.source_path, scene.colliders.front().source_line);
+    const std::string where = !scene.solver.method_where.empty() ? scene.solver.method_where
+                              : scene.colliders.empty()
+                                  ? scene.contact.where
+                                  : fmt::format("{}:{}", scene.source_path, scene.colliders.front().source_line);
     std::string others;
     for (const MethodDescription* m : kMethods) {
       if (m->colliders) others += fmt::format("{}{}", others.empty() ? "" : ", ", m->name);

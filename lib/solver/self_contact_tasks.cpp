@@ -108,8 +108,7 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
                               {particle_write(positions)}});
 }
 
-std::vector<plan::KernelArg> self_contact_args(const SimLayout& layout, const SelfContactBuffers& b,
-                                               double inertia_h) {
+std::vector<plan::KernelArg> self_contact_args(const SimLayout& layout, const SelfContactBuffers& b, double inertia_h) {
   const SelfContactLayout& s = layout.self_contact;
   return {Arg::of_buffer(b.tris),
           Arg::of_buffer(b.edges),

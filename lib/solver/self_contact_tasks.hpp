@@ -32,8 +32,7 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
 // tv, ee, bound, n, k (for the inertia step `inertia_h`), r, on. They follow
 // the kernel's x_start and inv_h (vertex::damping_args), which the bound and
 // the damping share.
-std::vector<plan::KernelArg> self_contact_args(const SimLayout& layout, const SelfContactBuffers& b,
-                                               double inertia_h);
+std::vector<plan::KernelArg> self_contact_args(const SimLayout& layout, const SelfContactBuffers& b, double inertia_h);
 
 // After `last`: `positions` held within each vertex's bound of `start`
 // (JPGD and SOSD after each iteration). Returns the new last task, or `last`.

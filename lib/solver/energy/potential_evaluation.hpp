@@ -15,8 +15,8 @@ struct EnergyTerms {
   double inertia = 0.0;  // 1/2 h^-2 sum m |x - x~|^2
   double stretch = 0.0;
   double bend = 0.0;
-  double tet = 0.0;      // sum V Psi(F) over the tetrahedra
-  double contact = 0.0;  // the colliders' contact energy
+  double tet = 0.0;              // sum V Psi(F) over the tetrahedra
+  double contact = 0.0;          // the colliders' contact energy
   double damping = 0.0;          // the springs' damping terms (DampingTerm)
   double surface_contact = 0.0;  // contact between simulated surfaces
   double total() const { return inertia + stretch + bend + tet + contact + damping + surface_contact; }

@@ -59,17 +59,23 @@ plan::SubstepPlan make_sosd_plan(const SimLayout& layout, double substep_dt, int
   last = add_self_contact_detection(plan, last, layout, sc, b.x_prev, b.x);
   const std::vector<Arg> sc_args = self_contact_args(layout, sc, hi);
   for (int it = 0; it < iterations; ++it) {
-    std::vector<Arg> system_args{Arg::of_buffer(b.x), Arg::of_buffer(b.x_tilde), Arg::of_buffer(b.adjacency_offsets),
-                                 Arg::of_buffer(b.adjacency), Arg::of_buffer(b.stretch), Arg::of_buffer(b.bend),
-                                 Arg::of_buffer(b.tets), Arg::of_buffer(systems), Arg::of_float(inv_h2),
-                                 Arg::of_buffer(b.colliders), Arg::of_int(layout.collider_count), damping[0], damping[1]};
+    std::vector<Arg> system_args{Arg::of_buffer(b.x),
+                                 Arg::of_buffer(b.x_tilde),
+                                 Arg::of_buffer(b.adjacency_offsets),
+                                 Arg::of_buffer(b.adjacency),
+                                 Arg::of_buffer(b.stretch),
+                                 Arg::of_buffer(b.bend),
+                                 Arg::of_buffer(b.tets),
+                                 Arg::of_buffer(systems),
+                                 Arg::of_float(inv_h2),
+                                 Arg::of_buffer(b.colliders),
+                                 Arg::of_int(layout.collider_count),
+                                 damping[0],
+                                 damping[1]};
     system_args.insert(system_args.end(), sc_args.begin(), sc_args.end());
-    const sched::TaskId systems_task =
-        plan.add_task_after(last, plan::make_task(fmt::format("it{}/systems", it + 1), plan::TaskKind::systems, it),
-                            {"sosd_vertex_systems",
-                             {0, n},
-                             std::move(system_args),
-                             {plan::WriteSpan::per_element(systems, 4 * kFloat4)}});
+    const sched::TaskId systems_task = plan.add_task_after(
+        last, plan::make_task(fmt::format("it{}/systems", it + 1), plan::TaskKind::systems, it),
+        {"sosd_vertex_systems", {0, n}, std::move(system_args), {plan::WriteSpan::per_element(systems, 4 * kFloat4)}});
     // All stencils read the same x^k and vertex systems, so a block matters
     // only as the main one: one task for it, and per kind one task for the
     // rest (the Jacobi blocks: up to two element ranges around the main).
@@ -118,7 +124,8 @@ plan::SubstepPlan make_sosd_plan(const SimLayout& layout, double substep_dt, int
     for (sched::TaskId t : stencil_tasks) plan.graph.add_edge(t, combine);
     if (stencil_tasks.empty()) plan.graph.add_edge(systems_task, combine);
     last = add_ground_task(plan, add_self_contact_clamp(plan, combine, layout, sc, b.x_prev, b.x, it), layout, b.x, it);
-    if (layout.self_contact.enabled) last = add_contact_task(plan, last, layout, b.colliders, b.x, it);  // obstacles win
+    if (layout.self_contact.enabled)
+      last = add_contact_task(plan, last, layout, b.colliders, b.x, it);  // obstacles win
   }
   vertex::end_vertex_plan(plan, layout, last, b, substep_dt);
   if (ids != nullptr) *ids = b;
