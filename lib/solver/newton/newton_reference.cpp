@@ -124,16 +124,21 @@ NewtonResult newton_reference(const energy::IncrementalPotential& problem, const
   if (converged()) return finish(NewtonStatus::converged);
 
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
-  std::vector<int> pattern;  // the free set the solver's pattern was analysed for
+  std::vector<int> outer, inner;  // the sparsity the solver's pattern was analysed for
   for (int it = 0; it < settings.max_iterations; ++it) {
     const FreeDofs dofs = step_dofs(problem, settings, at);
-    const Eigen::SparseMatrix<double> H =
-        free_matrix(dofs, energy::hessian_triplets(problem, at.x, settings.project_psd));
-    // Every element emits all its entries, so the pattern changes only with
-    // the free set (ground contact).
-    if (dofs.slot != pattern) {
+    Eigen::SparseMatrix<double> H = free_matrix(dofs, energy::hessian_triplets(problem, at.x, settings.project_psd));
+    H.makeCompressed();
+    // The pattern changes with the free set (ground contact) and with the
+    // pairs of contact between surfaces; factorize() needs the analysed one
+    // (found by ASan: a changed pattern overflowed Eigen's stack buffers).
+    const int* o = H.outerIndexPtr();
+    const int* in = H.innerIndexPtr();
+    if (!std::equal(outer.begin(), outer.end(), o, o + H.outerSize() + 1) ||
+        !std::equal(inner.begin(), inner.end(), in, in + H.nonZeros())) {
       solver.analyzePattern(H);
-      pattern = dofs.slot;
+      outer.assign(o, o + H.outerSize() + 1);
+      inner.assign(in, in + H.nonZeros());
     }
     solver.factorize(H);
     if (solver.info() != Eigen::Success) return finish(NewtonStatus::factorization_failed);
