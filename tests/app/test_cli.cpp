@@ -70,9 +70,8 @@ TEST_CASE("atssim run writes a complete HDF5 file with every frame") {
 }
 
 TEST_CASE("the bundled scenes run") {
-  const char* scene =
-      GENERATE("hanging_cloth.yaml", "mesh_cloth.yaml", "soft_box.yaml", "soft_box_mesh.yaml", "pillows.yaml",
-               "spring_cloth.yaml", "spring_box.yaml");
+  const char* scene = GENERATE("hanging_cloth.yaml", "mesh_cloth.yaml", "soft_box.yaml", "soft_box_mesh.yaml",
+                               "pillows.yaml", "spring_cloth.yaml", "spring_box.yaml");
   test::TempDir dir;
   const auto r = run_atssim(dir, std::string("run ") + ATSSIM_SOURCE_DIR + "/scenes/" + scene + " -o " +
                                      dir.file("out.h5") + " --frames 2 --quiet");

@@ -131,10 +131,10 @@ std::string run_soft_box(const test::TempDir& dir, const std::string& schedule, 
   app::RunOptions o;
   o.scene_path = std::string(ATSSIM_SOURCE_DIR) + "/scenes/soft_box.yaml";
   const std::string out = dir.file(schedule + ".h5");
-  overrides.insert(overrides.end(), {"output.path=" + out, "devices=cpu/2", "solver.method=xpbd",
-                                     "objects.0.material.model=stvk",
-                                     fmt::format("objects.0.box.resolution=[{0}, {0}, {0}]", resolution),
-                                     "simulation.frames=" + std::to_string(frames), "solver.schedule=" + schedule});
+  overrides.insert(overrides.end(),
+                   {"output.path=" + out, "devices=cpu/2", "solver.method=xpbd", "objects.0.material.model=stvk",
+                    fmt::format("objects.0.box.resolution=[{0}, {0}, {0}]", resolution),
+                    "simulation.frames=" + std::to_string(frames), "solver.schedule=" + schedule});
   o.overrides = overrides;
   app::run_simulation(o);
   return out;

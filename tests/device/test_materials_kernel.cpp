@@ -73,8 +73,9 @@ TEST_CASE("the material kernels on the device equal the host float math to 1e-4"
   const plan::BufferId in_id = plan.add_buffer("in", plan::BufferRole::elements, plan::bytes_of(in));
   const plan::BufferId out_id =
       plan.add_buffer("out", plan::BufferRole::results, std::vector<std::byte>(ATS_MATERIALS_OUT * sizeof(float)));
-  plan.add_task(plan::make_task("materials", plan::TaskKind::energy),
-                {{"materials_check", {0, 1}, {plan::KernelArg::of_buffer(in_id), plan::KernelArg::of_buffer(out_id)}, {}}});
+  plan.add_task(
+      plan::make_task("materials", plan::TaskKind::energy),
+      {{"materials_check", {0, 1}, {plan::KernelArg::of_buffer(in_id), plan::KernelArg::of_buffer(out_id)}, {}}});
   const auto devices = device::DeviceSet::open("cpu");
   device::PlanExecutor exec(devices, plan);
   exec.run_substeps(1);

@@ -6,8 +6,8 @@
 
 #include "common/xpbd_tet.h"
 #include "solver/collision_tasks.hpp"
-#include "solver/self_contact_tasks.hpp"
 #include "solver/layout/particle_tables.hpp"
+#include "solver/self_contact_tasks.hpp"
 
 #include "util/error.hpp"
 
