@@ -37,21 +37,40 @@ def complete_points(out):
     return done
 
 
-def kill_session(session):
-    """SIGKILL every process of a session: GNU parallel puts each job in a
-    process group of its own, so killing the sweep's group would leave the
-    running atssim processes behind."""
+def session_processes(session):
+    """The live (not yet zombie) processes of a session."""
+    found = []
     for stat in glob.glob("/proc/[0-9]*/stat"):
         try:
             with open(stat) as f:
                 fields = f.read().rsplit(")", 1)[1].split()
         except OSError:
             continue
-        if int(fields[3]) == session:  # fields after "(comm)": state, ppid, pgrp, session
+        # fields after "(comm)": state, ppid, pgrp, session
+        if int(fields[3]) == session and fields[0] != "Z":
+            found.append(int(stat.split("/")[2]))
+    return found
+
+
+def kill_session(session):
+    """SIGKILL every process of a session: GNU parallel puts each job in a
+    process group of its own, so killing the sweep's group would leave the
+    running atssim processes behind. One pass is not enough: a process forked
+    while /proc is being read (GNU parallel starting the next point, a point
+    script starting its `mv`) escapes it and would finish a point after the
+    test has counted the complete ones, so kill until none is left."""
+    deadline = time.time() + 30
+    while time.time() < deadline:
+        alive = session_processes(session)
+        if not alive:
+            return
+        for pid in alive:
             try:
-                os.kill(int(stat.split("/")[2]), signal.SIGKILL)
+                os.kill(pid, signal.SIGKILL)
             except ProcessLookupError:
                 pass
+        time.sleep(0.01)
+    fail(f"processes of session {session} survive SIGKILL: {session_processes(session)}")
 
 
 def check_merged(out):
