@@ -9,6 +9,7 @@
 #include "io/h5_errors.hpp"
 #include "io/h5_series.hpp"
 #include "io/output_health.hpp"
+#include "io/reserve_driver.hpp"
 #include "io/run_header.hpp"
 #include "io/xdmf_writer.hpp"
 #include "util/error.hpp"
@@ -19,11 +20,23 @@ namespace {
 
 // Without HDF5's file locking: a reader (a notebook watching the run, or
 // `atssim inspect`) may open the file while it is written; OutputLock keeps
-// other writers out.
+// other writers out. Through the reserve driver, so that a kill during a
+// flush leaves a file every reader opens (io/reserve_driver.hpp).
 H5Handle file_access() {
   H5Handle fapl = h5_check(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "file access properties");
   h5_check(H5Pset_file_locking(fapl, false, true), "file locking");
+  use_reserve_driver(fapl);
   return fapl;
+}
+
+// Chunk-index B-tree nodes of 2 x 256 entries instead of 2 x 32: a node
+// split (new nodes written beside a parent rewritten in place) is the one
+// change a torn flush can still leave unreadable, and a node this wide
+// splits once per 512 chunks.
+H5Handle file_creation() {
+  H5Handle fcpl = h5_check(H5Pcreate(H5P_FILE_CREATE), H5Pclose, "file creation properties");
+  h5_check(H5Pset_istore_k(fcpl, 256), "chunk index width");
+  return fcpl;
 }
 
 // The file type of a series (a function: HDF5's type ids exist only once
@@ -94,7 +107,8 @@ void ResultWriter::create(const RunInfo& info, std::span<const model::ObjectRang
   // The default (oldest) format bounds: a superblock without the
   // "open for writing" flags that would refuse readers after a kill.
   H5Handle fapl = file_access();
-  const hid_t id = H5Fcreate(writing_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+  H5Handle fcpl = file_creation();
+  const hid_t id = H5Fcreate(writing_.c_str(), H5F_ACC_TRUNC, fcpl, fapl);
   if (id < 0) {
     throw runtime_error(
         fmt::format("cannot create output file '{}': {} (pass -o elsewhere)", writing_, hdf5_failure()));
@@ -103,7 +117,7 @@ void ResultWriter::create(const RunInfo& info, std::span<const model::ObjectRang
   write_run_header(file_, info, objects);
   open_series(true);
   views_ = write_xdmf_cells(file_, objects, particles_);
-  h5_check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flushing the output file");
+  flush();
 }
 
 void ResultWriter::reopen(const RunInfo& info, Checkpoint& resume) {
@@ -167,7 +181,7 @@ void ResultWriter::reopen(const RunInfo& info, Checkpoint& resume) {
   write_int_attribute(file_, "complete", 0);
   write_string_attribute(file_, "error", "");
   write_string_attribute(file_, "resumed", now_iso8601());
-  h5_check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flushing the output file");
+  flush();
   resume = std::move(*point);
 }
 
@@ -297,7 +311,7 @@ void ResultWriter::append_frame(double time, std::span<const float> xyz, double 
       checkpoint_.write(*pending_);
       pending_.reset();
     }
-    h5_check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flushing the output file");
+    flush();
   } catch (...) {
     broken_ = true;
     throw;
@@ -305,6 +319,13 @@ void ResultWriter::append_frame(double time, std::span<const float> xyz, double 
   ++frames_;
   times_.push_back(time);
   xdmf_.append(time);
+}
+
+// Every flush of the output: the reserve covers two frames of positions and
+// a checkpoint (positions, velocities, multipliers) with a MiB to spare.
+void ResultWriter::flush() {
+  prepare_flush(file_, (1u << 20) + 96 * particles_);
+  h5_check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flushing the output file");
 }
 
 void ResultWriter::finish() { close_with(true, ""); }
@@ -340,7 +361,7 @@ void ResultWriter::close_with(bool complete, const std::string& error) {
   write_int_attribute(file_, "complete", complete ? 1 : 0);
   write_string_attribute(file_, "error", error);
   for (const SeriesSpec& s : kSeries) (this->*s.member).reset();
-  h5_check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flushing the output file");
+  flush();
   file_.reset();
   write_xdmf_file(xdmf_path(), std::filesystem::path(writing_).filename().string(), views_, object_names_, times_);
   if (complete && writing_ != path_) {

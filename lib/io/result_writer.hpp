@@ -97,6 +97,7 @@ class ResultWriter {
   void close_with(bool complete, const std::string& error);
   void abandon();
   void append_scalar(hid_t set, double value);
+  void flush();
 
   struct SeriesSpec {
     const char* path;
