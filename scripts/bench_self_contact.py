@@ -59,11 +59,14 @@ def run(tmp, n, method, self_on, args):
         start = s["measured_start_ms"][:][last]
         finish = s["measured_finish_ms"][:][last]
         contact = 0.0
+        by_name = {}
         for t, a, b in zip(task, start, finish):
             if kinds[t] in CONTACT_KINDS or any(k in names[t] for k in CONTACT_NAMES):
                 contact += b - a
+                base = names[t].split("[")[0]
+                by_name[base] = by_name.get(base, 0.0) + (b - a)
         substep = float(np.nanmax(finish) - np.nanmin(start))
-    return frame_ms, contact, substep
+    return frame_ms, contact, substep, by_name
 
 
 def native_ms(tmp, n, method, args):
@@ -96,12 +99,14 @@ def main() -> int:
     print("| method | vertices | frame ms, self off | frame ms, self on | on/off | contact tasks ms/frame | "
           "share of substep |")
     print("|---|---|---|---|---|---|---|")
+    breakdown = []
     with tempfile.TemporaryDirectory() as tmp:
         for method in args.methods.split(","):
             points = []
             for n in sizes:
-                off, _, _ = run(tmp, n, method, False, args)
-                on, contact, substep = run(tmp, n, method, True, args)
+                off, _, _, _ = run(tmp, n, method, False, args)
+                on, contact, substep, by_name = run(tmp, n, method, True, args)
+                breakdown.append((method, n * n, by_name))
                 points.append((n * n, contact))
                 print(f"| {method} | {n * n} | {off:.1f} | {on:.1f} | {on / off:.2f} | {contact * args.substeps:.2f} | "
                       f"{100 * contact / substep:.0f} % |", flush=True)
@@ -112,6 +117,12 @@ def main() -> int:
                 (v0, c0), (v1, c1) = points[0], points[-1]
                 print(f"| {method} | log-log slope of the contact time, {v0} → {v1} vertices: "
                       f"{math.log(c1 / c0) / math.log(v1 / v0):.2f} | | | | | |", flush=True)
+    print("\nWhere the contact time goes (ms per frame, the four largest contact tasks by name):\n")
+    print("| method | vertices | tasks |")
+    print("|---|---|---|")
+    for method, v, by_name in breakdown:
+        top = sorted(by_name.items(), key=lambda kv: -kv[1])[:4]
+        print(f"| {method} | {v} | " + ", ".join(f"{k} {ms * args.substeps:.2f}" for k, ms in top) + " |")
     return 0
 
 
