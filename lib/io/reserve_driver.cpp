@@ -26,9 +26,7 @@ const ReserveFile* of(const H5FD_t* f) { return reinterpret_cast<const ReserveFi
 
 // The inner driver's EOA bounds its reads and sets the file's length at
 // truncate: never below what the superblock may claim.
-herr_t sync_inner(ReserveFile* f) {
-  return H5FDset_eoa(f->inner, H5FD_MEM_DEFAULT, std::max(f->eoa, f->ahead));
-}
+herr_t sync_inner(ReserveFile* f) { return H5FDset_eoa(f->inner, H5FD_MEM_DEFAULT, std::max(f->eoa, f->ahead)); }
 
 H5FD_t* open(const char* name, unsigned flags, hid_t, haddr_t maxaddr) {
   const hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);

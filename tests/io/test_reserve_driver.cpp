@@ -111,8 +111,9 @@ TEST_CASE("without the reserve driver, a flush torn before its superblock leaves
   CHECK(unreadable(dir.file("torn.h5")) == std::vector<std::string>{"positions"});
 }
 
-TEST_CASE("through the reserve driver, every dataset of a run killed between a flush's metadata and its superblock "
-          "reads in full") {
+TEST_CASE(
+    "through the reserve driver, every dataset of a run killed between a flush's metadata and its superblock "
+    "reads in full") {
   test::TempDir dir;
   const auto m = model::build_model(scene::parse_scene(test::hanging_cloth_yaml(8), "s.yaml", "."));
   const std::size_t n = m.particles.size();
