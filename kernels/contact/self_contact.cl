@@ -15,7 +15,9 @@
  *   sc_clamp: a position held within its bound of x_t (the first guess;
  *     every solve step of the vertex methods does the same);
  *   sc_project, sc_apply: XPBD's inequality constraints d >= r of every pair
- *     of a vertex, Jacobi-averaged, into a scratch copy and back (bounded).
+ *     of a vertex, Jacobi-averaged, into a scratch copy and back (bounded);
+ *   sc_friction (then sc_apply): Coulomb friction between the surfaces,
+ *     after the iterations, every method.
  * The pair lists: per primitive ATS_SC_STRIDE ints, [count, nearest distance
  * (float bits), ids of the nearest first]. */
 #include "common/ats_math.h"
@@ -291,4 +293,60 @@ ATS_TASK void sc_project(int i, __global const float4* x, __global float4* x_out
 
 ATS_TASK void sc_apply(int i, __global float4* x, __global const float4* x_out, __global const float4* x_start, __global const float* bound) {
   x[i] = sc_bounded(x_out[i], x_start[i], bound[i]);
+}
+
+/* Coulomb friction of every pair of vertex i in contact (d < 1.01 r), after
+ * the iterations. A pair has two sides, the point and the triangle, or the
+ * two edges (weights w_j > 0 and < 0); its relative displacement over the
+ * substep is u = sum_j w_j (x_j - x_prev_j), the motion of the first side's
+ * point against the second's. Its tangential part is removed whole when it
+ * is within mu_s dn (static), else by mu_k dn (kinetic), dn the normal
+ * displacement the contact made against the inertial prediction
+ * x~ = x_prev + h v (v already holds the substep's gravity),
+ * dn = n . sum_j w_j (x_j - x~_j). Each side takes the share of the other
+ * side's inverse mass (sum of w_j^2 / m_j over the side), and every vertex of
+ * a side moves by its side's share, so that the pair's relative motion loses
+ * what Coulomb removes. Vertex i averages its pairs weighted by how hard they
+ * press (dn); into x_out (Jacobi). */
+ATS_TASK void sc_friction(int i, __global const float4* x, __global float4* x_out, __global const float4* x_prev, __global const float4* v, float h, __global const int4* tris, __global const int2* edges, __global const int* inc, int n, __global const int* vt, __global const int* tv, __global const int* ee, float r, float mu_s, float mu_k) {
+  const float4 p = x[i];
+  x_out[i] = p;
+  if (p.w == 0.0f || !sc_is_surface(inc, i)) return;
+  /* Touching: XPBD's projection leaves its pairs at d = r exactly. */
+  const float touching = 1.01f * r;
+  ats_vec3 sum = ats_v3(0, 0, 0);
+  float weight = 0.0f;
+  SC_FOR_EACH_PAIR({
+    if (g.d < touching && g.d > 1e-12f && g.w[slot] != 0.0f) {
+      const ats_vec3 nrm = ats_pair_normal(g);
+      /* (no comma outside parentheses: the body is a macro argument) */
+      ats_vec3 u = ats_v3(0, 0, 0);
+      ats_vec3 push = ats_v3(0, 0, 0);
+      float first = 0.0f;
+      float second = 0.0f;
+      for (int j = 0; j < 4; ++j) {
+        const float4 xj = x[pv[j]];
+        const float4 qj = x_prev[pv[j]];
+        const float4 vj = v[pv[j]];
+        u = ats_add(u, ats_scale(ats_v3(xj.x - qj.x, xj.y - qj.y, xj.z - qj.z), g.w[j]));
+        push = ats_add(push, ats_scale(ats_v3(xj.x - qj.x - h * vj.x, xj.y - qj.y - h * vj.y, xj.z - qj.z - h * vj.z),
+                                       g.w[j]));
+        if (g.w[j] > 0.0f) first += g.w[j] * g.w[j] * xj.w;
+        if (g.w[j] < 0.0f) second += g.w[j] * g.w[j] * xj.w;
+      }
+      const float dn = ats_dot(push, nrm);
+      const ats_vec3 ut = ats_sub(u, ats_scale(nrm, ats_dot(u, nrm)));
+      const float len = ats_length(ut);
+      if (dn > 0.0f && len > 0.0f && first + second > 0.0f) {
+        const float removed = len <= mu_s * dn ? 1.0f : fmin(1.0f, mu_k * dn / len);
+        /* On the first side i moves against u, on the second with it. */
+        const float share = g.w[slot] > 0.0f ? -first / (first + second) : second / (first + second);
+        sum = ats_add(sum, ats_scale(ut, dn * removed * share));
+        weight += dn;
+      }
+    }
+  })
+  if (!(weight > 0.0f)) return;
+  const float s = 1.0f / weight;
+  x_out[i] = (float4)(p.x + s * sum.x, p.y + s * sum.y, p.z + s * sum.z, p.w);
 }

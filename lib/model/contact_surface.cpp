@@ -14,6 +14,8 @@ std::optional<ContactSurface> make_contact_surface(const scene::SelfContactDesc&
   ContactSurface s;
   s.thickness = desc.thickness;
   s.stiffness = desc.stiffness;
+  s.static_friction = desc.static_friction;
+  s.kinetic_friction = desc.kinetic_friction;
   s.query_radius = desc.query_radius > 0.0 ? desc.query_radius : 3.0 * desc.thickness;
   double shortest = std::numeric_limits<double>::infinity();
   std::string shortest_object;

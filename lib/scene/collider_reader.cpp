@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "scene/friction_reader.hpp"
 #include "scene/kinematic_reader.hpp"
 #include "scene/obstacle_reader.hpp"
 #include "util/did_you_mean.hpp"
@@ -14,7 +15,6 @@ namespace {
 
 constexpr std::array<std::string_view, 5> kShapes{"plane", "sphere", "capsule", "box", "mesh"};
 constexpr std::array<std::string_view, 5> kCommonKeys{"name", "type", "thickness", "friction", "stiffness"};
-constexpr std::array<std::string_view, 2> kFrictionKeys{"static", "kinetic"};
 
 std::vector<std::string_view> keys_of(ColliderShape shape) {
   std::vector<std::string_view> keys(kCommonKeys.begin(), kCommonKeys.end());
@@ -63,26 +63,6 @@ double positive(const YamlReader& r, std::string_view what) {
   return v;
 }
 
-double coefficient(const YamlReader& r) {
-  const double v = r.number();
-  if (v < 0.0 || v > 100.0) {
-    r.fail(fmt::format("'{}' is {}, but a friction coefficient lies from 0 to 100", r.path(), r.node().Scalar()),
-           "use 0 for none, e.g. 0.3 for cloth on wood");
-  }
-  return v;
-}
-
-void read_friction(const YamlReader& r, ColliderDesc& c) {
-  if (r.node().IsScalar()) {
-    c.static_friction = c.kinetic_friction = coefficient(r);
-    return;
-  }
-  r.expect_map(kFrictionKeys);
-  if (r.has("static")) c.static_friction = coefficient(r.child("static"));
-  c.kinetic_friction = r.has("kinetic") ? coefficient(r.child("kinetic")) : c.static_friction;
-  if (!r.has("static")) c.static_friction = c.kinetic_friction;
-}
-
 }  // namespace
 
 ColliderDesc read_collider(const YamlReader& r, int index, const std::filesystem::path& base_dir) {
@@ -95,7 +75,11 @@ ColliderDesc read_collider(const YamlReader& r, int index, const std::filesystem
   r.expect_map(keys);
   c.name = r.has("name") ? r.child("name").string() : fmt::format("{}{}", shape_name(c.shape), index);
   if (r.has("thickness")) c.thickness = positive(r.child("thickness"), "thickness");
-  if (r.has("friction")) read_friction(r.child("friction"), c);
+  if (r.has("friction")) {
+    const FrictionDesc f = read_friction(r.child("friction"));
+    c.static_friction = f.static_coefficient;
+    c.kinetic_friction = f.kinetic_coefficient;
+  }
   if (r.has("stiffness")) {
     c.stiffness = r.child("stiffness").number_in(0.0, 1e6, true, "a contact stiffness relative to m/h², e.g. 100");
   }

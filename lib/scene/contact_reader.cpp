@@ -4,11 +4,13 @@
 
 #include <fmt/format.h>
 
+#include "scene/friction_reader.hpp"
+
 namespace atssim::scene {
 
 namespace {
 
-constexpr std::array<std::string_view, 4> kContactKeys{"self", "thickness", "stiffness", "query_radius"};
+constexpr std::array<std::string_view, 5> kContactKeys{"self", "thickness", "stiffness", "query_radius", "friction"};
 
 }  // namespace
 
@@ -39,6 +41,11 @@ SelfContactDesc read_self_contact(const YamlReader& r) {
              "give a query radius of at least the thickness (default 3 × thickness)");
     }
   }
+  if (r.has("friction")) {
+    const FrictionDesc f = read_friction(r.child("friction"));
+    c.static_friction = f.static_coefficient;
+    c.kinetic_friction = f.kinetic_coefficient;
+  }
   return c;
 }
 
@@ -49,6 +56,12 @@ void emit_self_contact(YAML::Emitter& out, const SelfContactDesc& c) {
   out << YAML::Key << "thickness" << YAML::Value << c.thickness;
   out << YAML::Key << "stiffness" << YAML::Value << c.stiffness;
   out << YAML::Key << "query_radius" << YAML::Value << (c.query_radius > 0.0 ? c.query_radius : 3.0 * c.thickness);
+  if (c.static_friction > 0.0 || c.kinetic_friction > 0.0) {
+    out << YAML::Key << "friction" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    out << YAML::Key << "static" << YAML::Value << c.static_friction;
+    out << YAML::Key << "kinetic" << YAML::Value << c.kinetic_friction;
+    out << YAML::EndMap;
+  }
   out << YAML::EndMap;
 }
 

@@ -163,4 +163,27 @@ sched::TaskId add_self_contact_projection(plan::SubstepPlan& plan, sched::TaskId
        {particle_write(positions)}});
 }
 
+sched::TaskId add_self_contact_friction(plan::SubstepPlan& plan, sched::TaskId last, const SimLayout& layout,
+                                        const SelfContactBuffers& b, plan::BufferId start, plan::BufferId positions,
+                                        plan::BufferId velocities, double h) {
+  const SelfContactLayout& s = layout.self_contact;
+  if (!s.enabled || !(s.mu_s > 0.0f || s.mu_k > 0.0f)) return last;
+  const int n = static_cast<int>(layout.x.size());
+  last = plan.add_task_after(
+      last, plan::make_task("contact/friction", plan::TaskKind::friction),
+      {"sc_friction",
+       {0, n},
+       {Arg::of_buffer(positions), Arg::of_buffer(b.x_out), Arg::of_buffer(start), Arg::of_buffer(velocities),
+        Arg::of_float(static_cast<float>(h)), Arg::of_buffer(b.tris), Arg::of_buffer(b.edges),
+        Arg::of_buffer(b.incidence), Arg::of_int(n), Arg::of_buffer(b.vt), Arg::of_buffer(b.tv), Arg::of_buffer(b.ee),
+        Arg::of_float(s.thickness), Arg::of_float(s.mu_s), Arg::of_float(s.mu_k)},
+       {particle_write(b.x_out)}});
+  return plan.add_task_after(
+      last, plan::make_task("contact/friction_apply", plan::TaskKind::copy),
+      {"sc_apply",
+       {0, n},
+       {Arg::of_buffer(positions), Arg::of_buffer(b.x_out), Arg::of_buffer(start), Arg::of_buffer(b.bound)},
+       {particle_write(positions)}});
+}
+
 }  // namespace atssim::solver

@@ -46,4 +46,14 @@ sched::TaskId add_self_contact_projection(plan::SubstepPlan& plan, sched::TaskId
                                           const SelfContactBuffers& b, plan::BufferId start, plan::BufferId positions,
                                           int iteration);
 
+// After the iterations, every method: Coulomb friction between the surfaces
+// in contact (scene `contact.friction`) from `positions` into a scratch
+// copy, then back within the bound; `start` and `velocities` (with the
+// substep's gravity, after predict) give the inertial prediction
+// start + h velocities. Returns the new last task, or `last` when the layout
+// has no self contact or no friction.
+sched::TaskId add_self_contact_friction(plan::SubstepPlan& plan, sched::TaskId last, const SimLayout& layout,
+                                        const SelfContactBuffers& b, plan::BufferId start, plan::BufferId positions,
+                                        plan::BufferId velocities, double h);
+
 }  // namespace atssim::solver

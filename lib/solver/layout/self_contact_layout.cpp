@@ -50,6 +50,8 @@ SelfContactLayout make_self_contact_layout(const model::Model& model) {
   out.thickness = static_cast<float>(s.thickness);
   out.query_radius = static_cast<float>(s.query_radius);
   out.stiffness = static_cast<float>(s.stiffness);
+  out.mu_s = static_cast<float>(s.static_friction);
+  out.mu_k = static_cast<float>(s.kinetic_friction);
 
   const int t_count = static_cast<int>(s.triangles.size());
   std::vector<Eigen::Vector3d> centroid(t_count);

@@ -47,6 +47,7 @@ plan::SubstepPlan make_vbd_plan(const SimLayout& layout, double substep_dt, int 
     }
     last = add_ground_task(plan, last, layout, b.x, it);
   }
+  last = add_self_contact_friction(plan, last, layout, sc, b.x_prev, b.x, b.v, substep_dt);
   vertex::end_vertex_plan(plan, layout, last, b, substep_dt);
   if (ids != nullptr) *ids = b;
   return plan;
