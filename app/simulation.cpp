@@ -131,7 +131,7 @@ scene::SceneDesc load_scene(const std::string& path, std::span<const std::string
   auto& given = scene.solver.method_options;
   for (const solver::MethodOption& o : method.options) {
     const bool set = std::any_of(given.begin(), given.end(), [&](const auto& g) { return g.key == o.key; });
-    if (!set) given.push_back({std::string(o.key), o.default_text(), ""});
+    if (!set && !o.depends_on_scene) given.push_back({std::string(o.key), o.default_text(), ""});
   }
   scene.resolved_yaml = scene::to_resolved_yaml(scene);
   return scene;

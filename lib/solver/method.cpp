@@ -14,6 +14,10 @@ double MethodSettings::option(std::string_view key) const {
   return it->second;
 }
 
+double MethodSettings::option_or(std::string_view key, double fallback) const {
+  return given.contains(key) ? option(key) : fallback;
+}
+
 std::string MethodOption::default_text() const {
   const auto i = static_cast<std::size_t>(default_value);
   if (!choices.empty() && i < choices.size()) return std::string(choices[i]);

@@ -5,6 +5,7 @@
 // (lib/solver/<method>/) exports one MethodDescription; the registry
 // (method_registry.hpp) lists them, and nothing else names a method.
 #include <map>
+#include <set>
 #include <span>
 #include <string>
 #include <string_view>
@@ -26,6 +27,10 @@ struct MethodOption {
   // A named option (e.g. solver.integrator: rk4): the value is one of these
   // names and its index is the number the method reads; empty = a number.
   std::span<const std::string_view> choices{};
+  // The method picks the value from the scene when the scene does not set
+  // it (default_value is the usual pick): the resolved scene then leaves
+  // the option out, so that running it again picks the same.
+  bool depends_on_scene = false;
 
   // The default as a scene would write it (a name for a named option).
   std::string default_text() const;
@@ -37,10 +42,14 @@ struct MethodSettings {
   int iterations = 8;
   int substeps = 16;  // per frame (for messages that say how many a scene needs)
   std::map<std::string, double, std::less<>> options;
+  std::set<std::string, std::less<>> given;  // the options the scene sets
 
   // The value of one of the method's options; throws atssim::Error for a
   // key the method does not declare (a bug, not an input error).
   double option(std::string_view key) const;
+  // The scene's value, or `fallback` where the scene leaves the option to
+  // the method (a default that depends on the scene).
+  double option_or(std::string_view key, double fallback) const;
 };
 
 struct MethodDescription {

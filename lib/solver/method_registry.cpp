@@ -169,7 +169,10 @@ MethodSettings method_settings(const scene::SceneDesc& scene, const MethodDescri
   s.substeps = scene.simulation.substeps;
   for (const MethodOption& o : method.options) s.options[std::string(o.key)] = o.default_value;
   for (const scene::MethodOptionDesc& given : scene.solver.method_options) {
-    if (const MethodOption* o = find_option(method, given.key)) s.options[given.key] = option_value(given, *o);
+    if (const MethodOption* o = find_option(method, given.key)) {
+      s.options[given.key] = option_value(given, *o);
+      s.given.insert(given.key);
+    }
   }
   return s;
 }

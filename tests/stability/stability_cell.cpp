@@ -44,7 +44,7 @@
 #include "solver/energy/potential_evaluation.hpp"
 #include "solver/layout/sim_layout.hpp"
 #include "solver/method_registry.hpp"
-#include "solver/vertex/float_resolution.hpp"
+#include "solver/vertex/stiffness_ratio.hpp"
 #include "util/error.hpp"
 
 using namespace atssim;

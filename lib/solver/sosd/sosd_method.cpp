@@ -1,7 +1,7 @@
 #include "solver/sosd/sosd_method.hpp"
 
 #include "solver/sosd/sosd_plan.hpp"
-#include "solver/vertex/float_resolution.hpp"
+#include "solver/vertex/stiffness_ratio.hpp"
 
 namespace atssim::solver::sosd {
 
@@ -12,12 +12,21 @@ constexpr scene::SolidModel kSolids[] = {scene::SolidModel::neo_hookean, scene::
                                          scene::SolidModel::springs};
 
 constexpr MethodOption kOptions[] = {
-    {"stencil_step", 0.7, 0.0, 1.0, true, false, "a step length 0 < step ≤ 1 (sosd)"},
+    {"stencil_step",
+     0.7,
+     0.0,
+     1.0,
+     true,
+     false,
+     "a step length 0 < step ≤ 1 (default 0.7, 0.35 on stiff scenes; sosd)",
+     {},
+     true},
 };
 
 plan::SubstepPlan build(const SimLayout& layout, const MethodSettings& s) {
-  vertex::require_resolvable_inertia(layout, s.substep_dt, s.substeps, "sosd");
-  return make_sosd_plan(layout, s.substep_dt, s.iterations, s.option("stencil_step"));
+  // A long stencil step diverges on stiff scenes (vertex/stiffness_ratio.hpp).
+  const double step = s.option_or("stencil_step", vertex::stiff_for_jacobi(layout, s.substep_dt) ? 0.35 : 0.7);
+  return make_sosd_plan(layout, s.substep_dt, s.iterations, step);
 }
 
 }  // namespace

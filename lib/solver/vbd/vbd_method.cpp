@@ -1,7 +1,6 @@
 #include "solver/vbd/vbd_method.hpp"
 
 #include "solver/vbd/vbd_plan.hpp"
-#include "solver/vertex/float_resolution.hpp"
 
 namespace atssim::solver::vbd {
 
@@ -12,7 +11,6 @@ constexpr scene::SolidModel kSolids[] = {scene::SolidModel::neo_hookean, scene::
                                          scene::SolidModel::springs};
 
 plan::SubstepPlan build(const SimLayout& layout, const MethodSettings& s) {
-  vertex::require_resolvable_inertia(layout, s.substep_dt, s.substeps, "vbd");
   return make_vbd_plan(layout, s.substep_dt, s.iterations);
 }
 
