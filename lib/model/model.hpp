@@ -93,9 +93,9 @@ struct ObjectRange {
 // model/contact_surface.hpp): every object's triangles, global indices.
 struct ContactSurface {
   std::vector<std::array<int, 3>> triangles;
-  double thickness = 0.0;     // m
-  double stiffness = 0.0;     // relative to m/h², m the mean free surface particle mass
-  double query_radius = 0.0;  // m, detection radius at the start of a substep
+  double thickness = 0.0;                                // m
+  double stiffness = 0.0;                                // relative to m/h², m the mean free surface particle mass
+  double query_radius = 0.0;                             // m, detection radius at the start of a substep
   double static_friction = 0.0, kinetic_friction = 0.0;  // Coulomb mu_s, mu_k between the surfaces
 };
 

@@ -12,6 +12,7 @@
 #include "app/convergence.hpp"
 #include "app/simulation.hpp"
 #include "io/result_reader.hpp"
+#include "support/scene_runs.hpp"
 #include "support/temp_dir.hpp"
 
 using namespace atssim;
@@ -49,12 +50,7 @@ double box_distance(const Vector3d& x) {
   return q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0);
 }
 
-std::vector<Vector3d> frame(const std::string& file, std::size_t f) {
-  const std::vector<float> xyz = io::read_frame_positions(file, f);
-  std::vector<Vector3d> out;
-  for (std::size_t i = 0; i + 2 < xyz.size(); i += 3) out.emplace_back(xyz[i], xyz[i + 1], xyz[i + 2]);
-  return out;
-}
+using test::frame;
 
 // A 0.1 m cloth patch resting on a plane through the origin tilted by
 // `degrees` about z, at the contact thickness above it.
@@ -88,14 +84,7 @@ std::vector<double> downhill(const std::string& file, double degrees, std::size_
   return s;
 }
 
-app::RunOptions options(const test::TempDir& dir, const std::string& yaml, const std::string& method,
-                        const std::string& schedule) {
-  app::RunOptions o;
-  o.scene_path = dir.write("scene.yaml", yaml);
-  o.overrides = {"output.path=" + dir.file("out.h5"), "devices=cpu/2", "solver.method=" + method,
-                 "solver.schedule=" + schedule};
-  return o;
-}
+using test::options;
 
 }  // namespace
 

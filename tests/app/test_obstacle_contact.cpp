@@ -16,6 +16,7 @@
 #include "app/simulation.hpp"
 #include "io/result_reader.hpp"
 #include "support/obstacle_meshes.hpp"
+#include "support/scene_runs.hpp"
 #include "support/temp_dir.hpp"
 
 using namespace atssim;
@@ -23,21 +24,9 @@ using Eigen::Vector3d;
 
 namespace {
 
-std::vector<Vector3d> frame(const std::string& file, std::size_t f) {
-  const std::vector<float> xyz = io::read_frame_positions(file, f);
-  std::vector<Vector3d> out;
-  for (std::size_t i = 0; i + 2 < xyz.size(); i += 3) out.emplace_back(xyz[i], xyz[i + 1], xyz[i + 2]);
-  return out;
-}
+using test::frame;
 
-app::RunOptions options(const test::TempDir& dir, const std::string& yaml, const std::string& method,
-                        const std::string& schedule) {
-  app::RunOptions o;
-  o.scene_path = dir.write("scene.yaml", yaml);
-  o.overrides = {"output.path=" + dir.file("out.h5"), "devices=cpu/2", "solver.method=" + method,
-                 "solver.schedule=" + schedule};
-  return o;
-}
+using test::options;
 
 // A cloth pinned at its four corners, and a sphere coming up from below at
 // 0.3 m/s that lifts its middle (centre from y = -0.12 to 0.08 in 40 frames).

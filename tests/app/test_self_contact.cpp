@@ -21,6 +21,7 @@
 #include "io/result_reader.hpp"
 #include "model/cloth_builder.hpp"
 #include "scene/scene_loader.hpp"
+#include "support/scene_runs.hpp"
 #include "support/temp_dir.hpp"
 
 using namespace atssim;
@@ -108,12 +109,7 @@ Surface surface_of(const std::string& yaml) {
   return s;
 }
 
-std::vector<Vector3d> frame(const std::string& file, std::size_t f) {
-  const std::vector<float> xyz = io::read_frame_positions(file, f);
-  std::vector<Vector3d> out;
-  for (std::size_t i = 0; i + 2 < xyz.size(); i += 3) out.emplace_back(xyz[i], xyz[i + 1], xyz[i + 2]);
-  return out;
-}
+using test::frame;
 
 struct SurfaceCheck {
   double closest = std::numeric_limits<double>::infinity();  // smallest vertex-triangle distance, non-incident
@@ -144,14 +140,7 @@ SurfaceCheck check_run(const Surface& s, const std::string& file, int frames) {
   return out;
 }
 
-app::RunOptions options(const test::TempDir& dir, const std::string& yaml, const std::string& method,
-                        const std::string& schedule, const std::string& output = "out.h5") {
-  app::RunOptions o;
-  o.scene_path = dir.write("scene.yaml", yaml);
-  o.overrides = {"output.path=" + dir.file(output), "devices=cpu/2", "solver.method=" + method,
-                 "solver.schedule=" + schedule};
-  return o;
-}
+using test::options;
 
 // Whether the sheet folded onto itself: some vertex within 2 thicknesses of
 // a triangle that started more than 0.1 m away from it.

@@ -14,6 +14,7 @@
 
 #include "app/simulation.hpp"
 #include "io/result_reader.hpp"
+#include "support/scene_runs.hpp"
 #include "support/temp_dir.hpp"
 
 using namespace atssim;
@@ -56,14 +57,7 @@ std::vector<Vector3d> patch(const std::string& file, std::size_t f) {
   return out;
 }
 
-app::RunOptions options(const test::TempDir& dir, const std::string& yaml, const std::string& method,
-                        const std::string& schedule) {
-  app::RunOptions o;
-  o.scene_path = dir.write("scene.yaml", yaml);
-  o.overrides = {"output.path=" + dir.file("out.h5"), "devices=cpu/2", "solver.method=" + method,
-                 "solver.schedule=" + schedule};
-  return o;
-}
+using test::options;
 
 }  // namespace
 
@@ -129,7 +123,6 @@ TEST_CASE("a patch on a cloth tilted by 20 degrees slides with g (sin - mu_k cos
 // friction: the normal displacement dn that Coulomb scales is read from the
 // positions, and their contacts jitter along the normal (up to 2 mm under
 // VBD), so that the clipped dn > 0 overstates the load.
-TEST_CASE("surface friction under VBD and JPGD: g (sin - mu_k cos) (hidden: fails)",
-          "[.][contact][self][friction]") {
+TEST_CASE("surface friction under VBD and JPGD: g (sin - mu_k cos) (hidden: fails)", "[.][contact][self][friction]") {
   slides_with_coulomb(GENERATE("vbd", "jpgd"), 0.2);
 }

@@ -23,7 +23,7 @@ struct SelfContactLayout {
   float query_radius = 0.0f;              // detection radius at the start of a substep
   float stiffness = 0.0f;                 // relative to m/h²
   float contact_mass = 0.0f;              // m: the mean mass of the free surface particles; k = stiffness m / h²
-  float mu_s = 0.0f, mu_k = 0.0f;          // Coulomb friction between the surfaces
+  float mu_s = 0.0f, mu_k = 0.0f;         // Coulomb friction between the surfaces
   float gamma = 0.4f;                     // VBD's displacement bound: gamma times the distance to the nearest primitive
   std::vector<std::array<int, 4>> tris;   // leaf order; [3] = -1
   std::vector<std::array<int, 2>> edges;  // unique surface edges
