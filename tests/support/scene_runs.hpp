@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include "app/convergence.hpp"
 #include "app/simulation.hpp"
 #include "io/result_reader.hpp"
 #include "support/temp_dir.hpp"
@@ -20,6 +21,19 @@ inline app::RunOptions options(const TempDir& dir, const std::string& yaml, cons
   o.scene_path = dir.write("scene.yaml", yaml);
   o.overrides = {"output.path=" + dir.file(output), "devices=cpu/2", "solver.method=" + method,
                  "solver.schedule=" + schedule};
+  return o;
+}
+
+// `atssim converge` of VBD, JPGD and SOSD (in that order) on `yaml` written
+// into `dir`, 20 frames in, on the whole CPU device, up to `max_iterations`.
+inline app::ConvergeOptions converge_options(const TempDir& dir, const std::string& yaml, int max_iterations) {
+  app::ConvergeOptions o;
+  o.scene_path = dir.write("rest.yaml", yaml);
+  o.overrides = {"devices=cpu"};
+  o.methods = {"vbd", "jpgd", "sosd"};
+  o.max_iterations = max_iterations;
+  o.frames_before = 20;
+  o.timing_repeats = 1;
   return o;
 }
 
