@@ -23,6 +23,7 @@ packages=(
   python3 python3-h5py python3-matplotlib python3-numpy
   python3-meshio python3-jsonschema python3-yaml
   parallel time
+  assimp-testmodels  # test data: the figure mesh of tests/app/test_figure_drape.cpp
 )
 
 for group in "$@"; do

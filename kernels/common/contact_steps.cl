@@ -62,6 +62,19 @@ static inline float4 coulomb_friction(float4 p, float4 q, ats_vec3 n, float dn, 
   return (float4)(p.x - removed.x, p.y - removed.y, p.z - removed.z, p.w);
 }
 
+/* Friction moves a particle along the surface, which on a curved or faceted
+ * collider can take it into the thickened surface: f, the step's result
+ * from p, is put back to p's gap (or onto the surface, if p was outside).
+ * Friction never deepens a contact (before: cloth on a mesh figure ended
+ * 1.02 % of the thickness inside under VBD, 0 with friction off). */
+static inline float4 no_deeper(float4 f, float4 p, __global const ats_collider_c* c) {
+  const float before = fmin(ats_collider_gap(c, ats_v3(p.x, p.y, p.z)).phi, 0.0f);
+  const ats_surface_distance s = ats_collider_gap(c, ats_v3(f.x, f.y, f.z));
+  if (!(s.phi < before)) return f;
+  const float push = before - s.phi;
+  return (float4)(f.x + push * s.n.x, f.y + push * s.n.y, f.z + push * s.n.z, f.w);
+}
+
 ATS_TASK void particles_friction(int i, __global float4* x, __global const float4* x_prev, __global const float4* v, __global const ats_collider_c* colliders, int count, float dt) {
   const float4 p = x[i];
   if (p.w == 0.0f) return;
@@ -72,5 +85,5 @@ ATS_TASK void particles_friction(int i, __global float4* x, __global const float
   const float4 vel = v[i];
   const ats_vec3 predicted = ats_v3(q.x + dt * vel.x, q.y + dt * vel.y, q.z + dt * vel.z);
   const float dn = ats_dot(ats_sub(ats_v3(p.x, p.y, p.z), predicted), n);
-  x[i] = coulomb_friction(p, q, n, dn, colliders + c);
+  x[i] = no_deeper(coulomb_friction(p, q, n, dn, colliders + c), p, colliders + c);
 }

@@ -15,5 +15,5 @@ ATS_TASK void vertex_friction(int i, __global const float4* x, __global float4* 
   if (c < 0) return;
   const vertex_system s = gather_vertex_system(i, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend, tets);
   const float dn = -ats_dot(s.f, n) * p.w / inv_h2;
-  x_out[i] = coulomb_friction(p, x_prev[i], n, dn, colliders + c);
+  x_out[i] = no_deeper(coulomb_friction(p, x_prev[i], n, dn, colliders + c), p, colliders + c);
 }

@@ -224,6 +224,11 @@ ATS_TASK void sc_clamp(int i, __global float4* x, __global const float4* x_start
   x[i] = sc_bounded(x[i], x_start[i], bound[i]);
 }
 
+/* A pair's other vertices are read through SC_AT(j): x[j] here; VBD's solve
+ * reads a vertex of its own colour from the iteration's start instead
+ * (contact/self_contact_terms.h). */
+#define SC_AT(j) x[j]
+
 /* Every pair vertex i belongs to, with the pair's geometry g at x, its slot
  * in the pair and the four vertex ids pv[4]: as the point of a
  * vertex-triangle pair, as a corner of one, as an end of an edge-edge pair.
@@ -236,7 +241,7 @@ ATS_TASK void sc_clamp(int i, __global float4* x, __global const float4* x_start
       const int4 sc_f = tris[sc_l[2 + sc_m]];                                                                         \
       const int pv[4] = {(i), sc_f.x, sc_f.y, sc_f.z};                                                                      \
       const int slot = 0;                                                                                          \
-      const ats_pair_geometry g = ats_point_triangle(sc_v(sc_p), sc_v(x[sc_f.x]), sc_v(x[sc_f.y]), sc_v(x[sc_f.z]));        \
+      const ats_pair_geometry g = ats_point_triangle(sc_v(sc_p), sc_v(SC_AT(sc_f.x)), sc_v(SC_AT(sc_f.y)), sc_v(SC_AT(sc_f.z)));        \
       BODY                                                                                                         \
     }                                                                                                              \
     for (int sc_k = inc[i]; sc_k < inc[(i) + 1]; ++sc_k) {                                                         \
@@ -247,7 +252,7 @@ ATS_TASK void sc_clamp(int i, __global float4* x, __global const float4* x_start
       for (int sc_m = 0; sc_m < sc_q[0]; ++sc_m) {                                                                 \
         const int sc_o = sc_q[2 + sc_m];                                                                           \
         const int pv[4] = {sc_o, sc_f.x, sc_f.y, sc_f.z};                                                                   \
-        const ats_pair_geometry g = ats_point_triangle(sc_v(x[sc_o]), sc_v(x[sc_f.x]), sc_v(x[sc_f.y]), sc_v(x[sc_f.z]));   \
+        const ats_pair_geometry g = ats_point_triangle(sc_v(SC_AT(sc_o)), sc_v(SC_AT(sc_f.x)), sc_v(SC_AT(sc_f.y)), sc_v(SC_AT(sc_f.z)));   \
         BODY                                                                                                       \
       }                                                                                                            \
     }                                                                                                              \
@@ -259,7 +264,7 @@ ATS_TASK void sc_clamp(int i, __global float4* x, __global const float4* x_start
       for (int sc_m = 0; sc_m < sc_q[0]; ++sc_m) {                                                                 \
         const int2 sc_o2 = edges[sc_q[2 + sc_m]];                                                                      \
         const int pv[4] = {sc_s.x, sc_s.y, sc_o2.x, sc_o2.y};                                                                    \
-        const ats_pair_geometry g = ats_edge_edge(sc_v(x[sc_s.x]), sc_v(x[sc_s.y]), sc_v(x[sc_o2.x]), sc_v(x[sc_o2.y]));         \
+        const ats_pair_geometry g = ats_edge_edge(sc_v(SC_AT(sc_s.x)), sc_v(SC_AT(sc_s.y)), sc_v(SC_AT(sc_o2.x)), sc_v(SC_AT(sc_o2.y)));         \
         BODY                                                                                                       \
       }                                                                                                            \
     }                                                                                                              \

@@ -8,20 +8,46 @@
 
 #include "common/collider_distance.h"
 
+#define SC_VERTEX_TERMS_BODY                                          \
+  if (!on || x[i].w == 0.0f || !sc_is_surface(inc, i)) return s;     \
+  SC_FOR_EACH_PAIR({                                                  \
+    if (g.d < r) {                                                    \
+      s.f = ats_sub(s.f, ats_pair_gradient(g, k, r, slot));           \
+      s.h = ats_m3_add(s.h, ats_pair_hessian(g, k, r, slot, slot));   \
+    }                                                                 \
+  })                                                                  \
+  return s;
+
+/* Jacobi methods (SOSD, JPGD): every vertex reads the same x. */
 static inline vertex_system add_self_contact_terms(vertex_system s, int i, __global const float4* x,
                                                    __global const int4* tris, __global const int2* edges,
                                                    __global const int* inc, int n, __global const int* vt,
                                                    __global const int* tv, __global const int* ee, float k, float r,
                                                    int on) {
-  if (!on || x[i].w == 0.0f || !sc_is_surface(inc, i)) return s;
-  SC_FOR_EACH_PAIR({
-    if (g.d < r) {
-      s.f = ats_sub(s.f, ats_pair_gradient(g, k, r, slot));
-      s.h = ats_m3_add(s.h, ats_pair_hessian(g, k, r, slot, slot));
-    }
-  })
-  return s;
+  SC_VERTEX_TERMS_BODY
 }
+
+/* Gauss-Seidel over colours (VBD): a contact pair can join two vertices of
+ * one colour, which are solved at the same time (on two work-groups or two
+ * devices), so the one would read the other while it is written. A partner
+ * of vertex i's own colour is read from x_iter, the positions at the
+ * iteration's start, which is where it stands until its colour's solve;
+ * partners of other colours from x. The result no longer depends on how the
+ * colour's vertices are shared out (before: two runs of one scene on the
+ * 2-CU device ended 8 cm apart after 20 frames). */
+#undef SC_AT
+#define SC_AT(j) (color[j] == color[i] ? x_iter[j] : x[j])
+static inline vertex_system add_self_contact_terms_gs(vertex_system s, int i, __global const float4* x,
+                                                      __global const float4* x_iter, __global const int* color,
+                                                      __global const int4* tris, __global const int2* edges,
+                                                      __global const int* inc, int n, __global const int* vt,
+                                                      __global const int* tv, __global const int* ee, float k,
+                                                      float r, int on) {
+  SC_VERTEX_TERMS_BODY
+}
+#undef SC_AT
+#define SC_AT(j) x[j]
+#undef SC_VERTEX_TERMS_BODY
 
 /* The new position of vertex i held within its bound of x_t. */
 static inline float4 sc_bounded_step(float4 next, int i, __global const float4* x_start, __global const float* bound,

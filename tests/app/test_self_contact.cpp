@@ -231,8 +231,11 @@ TEST_CASE("a sheet falling on its edge with self-contact stays intersection-free
   CHECK(lowest >= 0.005 * 0.99);
 }
 
-TEST_CASE("with self-contact the Jacobi methods give the same bits on one device and cut over two", "[contact][self]") {
-  const std::string method = GENERATE("jpgd", "sosd");
+// VBD's colours ignore contact pairs; before its solve read a partner of
+// its own colour from the iteration's start, two runs on the whole 2-CU
+// device ended 8 cm apart after 20 frames.
+TEST_CASE("with self-contact every method gives the same bits on one device and cut over two", "[contact][self]") {
+  const std::string method = GENERATE("jpgd", "sosd", "vbd", "xpbd");
   const std::string schedule = GENERATE("split", "heft");
   INFO(method << "/" << schedule);
   test::TempDir dir;
@@ -240,7 +243,12 @@ TEST_CASE("with self-contact the Jacobi methods give the same bits on one device
   yaml.replace(yaml.find("frames: 40"), 10, "frames: 10");
   app::run_simulation(options(dir, yaml, method, "single", "one.h5"));
   app::run_simulation(options(dir, yaml, method, schedule, "two.h5"));
-  CHECK(io::read_frame_positions(dir.file("one.h5"), 10) == io::read_frame_positions(dir.file("two.h5"), 10));
+  app::RunOptions whole = options(dir, yaml, method, "single", "whole.h5");  // one device of two cores
+  whole.overrides.push_back("devices=cpu");
+  app::run_simulation(whole);
+  const std::vector<float> one = io::read_frame_positions(dir.file("one.h5"), 10);
+  CHECK(one == io::read_frame_positions(dir.file("two.h5"), 10));
+  CHECK(one == io::read_frame_positions(dir.file("whole.h5"), 10));
 }
 
 namespace {
@@ -356,16 +364,28 @@ void pillows_rest_on_the_cloth(const std::string& method, const std::string& sch
 }  // namespace
 
 TEST_CASE("converge on two cloth layers resting on a sphere: y falls against the self-contact-aware Newton E*",
-          "[.][contact][self][converge]") {
-  // Hidden: this run aborted with "free(): corrupted unsorted chunks" (heap
-  // corruption, cause not found yet) when first run; see the issue #12 report.
+          "[contact][self][converge]") {
   // 20 frames on, the layers lie on each other on the sphere; E* is the
   // minimum of the incremental potential with both contact energies in it
-  // (the surface pairs found by brute force on the host).
+  // (the surface pairs found by brute force on the host). The sphere is
+  // frictionless here: friction is no term of the potential, and its step
+  // after the iterations moves the result off E* (with the scene's friction
+  // 0.5 SOSD's y rose from 0.42 at k = 1 to 0.56 at k = 32).
   test::TempDir dir;
   std::string yaml = kLayers;
   yaml.replace(yaml.find("frames: 40"), 10, "frames: 20");
+  yaml.replace(yaml.find(", friction: 0.5"), 15, "");
   const io::ConvergenceResult r =
       app::run_convergence(test::converge_options(dir, yaml + "solver: {method: vbd}\n", 32));
   test::check_ends_lower(r);
+  // Measured (k = 1 -> 32): VBD 0.42 -> 0.085, JPGD 0.54 -> 0.17, SOSD
+  // 0.48 -> 0.24, not monotone; all three stall near 0.1 up to k = 256.
+  // Not the bound or the step out of the colliders: VBD with both off still
+  // stalls at 0.027 (without self-contact it reaches 1e-7), so the device's
+  // pairs (found at x_t, the 8 nearest per primitive) and the host's (every
+  // pair within the thickness at x) seem to differ; not found yet.
+  for (const auto& t : r.traces) {
+    INFO(t.variant);
+    CHECK(t.relative_error.back() < 0.6 * t.relative_error.front());
+  }
 }

@@ -22,6 +22,26 @@ plan::SubstepPlan make_vbd_plan(const SimLayout& layout, double substep_dt, int 
   // Element k of a color writes particle order[k].
   const auto order =
       std::make_shared<const std::vector<std::int32_t>>(vertices.colors.order.begin(), vertices.colors.order.end());
+  // Contact pairs may join two vertices of one colour: the solve reads such a
+  // partner from the iteration's start (kernels/contact/self_contact_terms.h),
+  // kept by a copy before the first iteration and at the end of every other.
+  const bool contact = layout.self_contact.enabled;
+  const int n = static_cast<int>(layout.x.size());
+  std::vector<std::int32_t> color_of(contact ? n : 0, -1);
+  for (int c = 0; contact && c < vertices.colors.count(); ++c) {
+    for (int k = vertices.colors.offsets[c]; k < vertices.colors.offsets[c + 1]; ++k) color_of[(*order)[k]] = c;
+  }
+  const plan::BufferId x_iter = plan.add_buffer("sc_x_iter", plan::BufferRole::scratch,
+                                                std::vector<std::byte>(color_of.size() * kParticleBytes));
+  const plan::BufferId color = plan.add_buffer("sc_color", plan::BufferRole::topology, plan::bytes_of(color_of));
+  const auto snapshot = [&](int iteration, const std::string& name) {
+    if (!contact) return;
+    last = plan.add_task_after(
+        last, plan::make_task(name, plan::TaskKind::collision, iteration, 4),
+        {"particles_copy", {0, n}, {plan::KernelArg::of_buffer(x_iter), plan::KernelArg::of_buffer(b.x)},
+         {particle_write(x_iter)}});
+  };
+  snapshot(-1, "contact/iteration_start");
   for (int it = 0; it < iterations; ++it) {
     for (int c = 0; c < vertices.colors.count(); ++c) {
       const int first = vertices.colors.offsets[c];
@@ -41,11 +61,14 @@ plan::SubstepPlan make_vbd_plan(const SimLayout& layout, double substep_dt, int 
       for (const Arg& a : vertex::collider_args(layout, b)) args.push_back(a);
       for (const Arg& a : vertex::damping_args(layout, b, substep_dt)) args.push_back(a);
       for (const Arg& a : self_contact_args(layout, sc, hi)) args.push_back(a);
+      args.push_back(Arg::of_buffer(x_iter));
+      args.push_back(Arg::of_buffer(color));
       last = plan.add_task_after(
           last, plan::make_task(fmt::format("it{}/vertex/c{}", it + 1, c), plan::TaskKind::vertex, it, c),
           {"vbd_solve", {first, count}, std::move(args), {plan::WriteSpan::per_index(b.x, kParticleBytes, 1, order)}});
     }
     last = add_ground_task(plan, last, layout, b.x, it);
+    if (it + 1 < iterations) snapshot(it, fmt::format("it{}/collision/iteration_end", it + 1));
   }
   last = add_self_contact_friction(plan, last, layout, sc, b.x_prev, b.x, b.v, substep_dt);
   vertex::end_vertex_plan(plan, layout, last, b, substep_dt);
