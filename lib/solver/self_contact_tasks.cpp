@@ -144,6 +144,12 @@ sched::TaskId add_self_contact_projection(plan::SubstepPlan& plan, sched::TaskId
   if (!s.enabled) return last;
   const int n = static_cast<int>(layout.x.size());
   const plan::BufferId scratch = b.x_out;
+  // The constraints' step held within the bound first, then the contact
+  // projection on top, unbounded: it separates a pair, and held within a
+  // bound that shrinks with the gap it could not reopen one (a pillow vertex
+  // pressed into the cloth reached distance 0, where its bound froze it, and
+  // the cloth then slid over it).
+  last = add_self_contact_clamp(plan, last, layout, b, start, positions, iteration);
   last = plan.add_task_after(
       last,
       plan::make_task(fmt::format("it{}/collision/surfaces", iteration + 1), plan::TaskKind::collision, iteration, 2),
@@ -157,10 +163,7 @@ sched::TaskId add_self_contact_projection(plan::SubstepPlan& plan, sched::TaskId
       last,
       plan::make_task(fmt::format("it{}/collision/surfaces_apply", iteration + 1), plan::TaskKind::collision, iteration,
                       3),
-      {"sc_apply",
-       {0, n},
-       {Arg::of_buffer(positions), Arg::of_buffer(scratch), Arg::of_buffer(start), Arg::of_buffer(b.bound)},
-       {particle_write(positions)}});
+      {"particles_copy", {0, n}, {Arg::of_buffer(positions), Arg::of_buffer(scratch)}, {particle_write(positions)}});
 }
 
 sched::TaskId add_self_contact_friction(plan::SubstepPlan& plan, sched::TaskId last, const SimLayout& layout,
