@@ -48,16 +48,25 @@ static inline ats_vec3 surface_motion(__global const ats_collider_c* c, float4 p
   return ats_add(ats_v3(c->move[0], c->move[1], c->move[2]), wxr);
 }
 
+/* The coefficients (mu_s, mu_k) between collider c and a particle of a
+ * material with pf (-1: unset; so is a collider's without `friction:`): the
+ * mean when both are set, else the one that is, else none. */
+static inline float2 contact_mu(__global const ats_collider_c* c, float2 pf) {
+  const float2 cm = (float2)(c->mu_s, c->mu_k);
+  if (cm.x < 0.0f) return pf.x < 0.0f ? (float2)(0.0f) : pf;
+  return pf.x < 0.0f ? cm : 0.5f * (cm + pf);
+}
+
 /* Coulomb friction on the substep's displacement from q (x_t) to p relative
  * to the collider's surface, given the normal displacement dn the contact
- * caused (see above). */
-static inline float4 coulomb_friction(float4 p, float4 q, ats_vec3 n, float dn, __global const ats_collider_c* c) {
+ * caused (see above), with the coefficients mu = (mu_s, mu_k). */
+static inline float4 coulomb_friction(float4 p, float4 q, ats_vec3 n, float dn, __global const ats_collider_c* c, float2 mu) {
   if (!(dn > 0.0f)) return p;
   const ats_vec3 u = ats_sub(ats_v3(p.x - q.x, p.y - q.y, p.z - q.z), surface_motion(c, p));
   const ats_vec3 ut = ats_sub(u, ats_scale(n, ats_dot(u, n)));
   const float len = ats_length(ut);
   if (!(len > 0.0f)) return p;
-  const float keep = len <= c->mu_s * dn ? 0.0f : fmax(0.0f, 1.0f - c->mu_k * dn / len);
+  const float keep = len <= mu.x * dn ? 0.0f : fmax(0.0f, 1.0f - mu.y * dn / len);
   const ats_vec3 removed = ats_scale(ut, 1.0f - keep);
   return (float4)(p.x - removed.x, p.y - removed.y, p.z - removed.z, p.w);
 }
@@ -75,7 +84,7 @@ static inline float4 no_deeper(float4 f, float4 p, __global const ats_collider_c
   return (float4)(f.x + push * s.n.x, f.y + push * s.n.y, f.z + push * s.n.z, f.w);
 }
 
-ATS_TASK void particles_friction(int i, __global float4* x, __global const float4* x_prev, __global const float4* v, __global const ats_collider_c* colliders, int count, float dt) {
+ATS_TASK void particles_friction(int i, __global float4* x, __global const float4* x_prev, __global const float4* v, __global const ats_collider_c* colliders, int count, float dt, __global const float2* pf) {
   const float4 p = x[i];
   if (p.w == 0.0f) return;
   ats_vec3 n;
@@ -85,5 +94,5 @@ ATS_TASK void particles_friction(int i, __global float4* x, __global const float
   const float4 vel = v[i];
   const ats_vec3 predicted = ats_v3(q.x + dt * vel.x, q.y + dt * vel.y, q.z + dt * vel.z);
   const float dn = ats_dot(ats_sub(ats_v3(p.x, p.y, p.z), predicted), n);
-  x[i] = no_deeper(coulomb_friction(p, q, n, dn, colliders + c), p, colliders + c);
+  x[i] = no_deeper(coulomb_friction(p, q, n, dn, colliders + c, contact_mu(colliders + c, pf[i])), p, colliders + c);
 }

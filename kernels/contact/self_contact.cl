@@ -313,7 +313,11 @@ ATS_TASK void sc_apply(int i, __global float4* x, __global const float4* x_out, 
  * a side moves by its side's share, so that the pair's relative motion loses
  * what Coulomb removes. Vertex i averages its pairs weighted by how hard they
  * press (dn); into x_out (Jacobi). */
-ATS_TASK void sc_friction(int i, __global const float4* x, __global float4* x_out, __global const float4* x_prev, __global const float4* v, float h, __global const int4* tris, __global const int2* edges, __global const int* inc, int n, __global const int* vt, __global const int* tv, __global const int* ee, float r, float mu_s, float mu_k) {
+/* The coefficients of one side of a pair: its material's (pf, -1: unset),
+ * else the scene's contact.friction (mu). A pair takes the mean of its sides. */
+static inline float2 sc_side_mu(float2 pf, float2 mu) { return pf.x < 0.0f ? mu : pf; }
+
+ATS_TASK void sc_friction(int i, __global const float4* x, __global float4* x_out, __global const float4* x_prev, __global const float4* v, float h, __global const int4* tris, __global const int2* edges, __global const int* inc, int n, __global const int* vt, __global const int* tv, __global const int* ee, float r, float mu_s, float mu_k, __global const float2* pf) {
   const float4 p = x[i];
   x_out[i] = p;
   if (p.w == 0.0f || !sc_is_surface(inc, i)) return;
@@ -329,6 +333,8 @@ ATS_TASK void sc_friction(int i, __global const float4* x, __global float4* x_ou
       ats_vec3 push = ats_v3(0, 0, 0);
       float first = 0.0f;
       float second = 0.0f;
+      float2 mu_first = (float2)(0.0f);
+      float2 mu_second = (float2)(0.0f);
       for (int j = 0; j < 4; ++j) {
         const float4 xj = x[pv[j]];
         const float4 qj = x_prev[pv[j]];
@@ -338,12 +344,15 @@ ATS_TASK void sc_friction(int i, __global const float4* x, __global float4* x_ou
                                        g.w[j]));
         if (g.w[j] > 0.0f) first += g.w[j] * g.w[j] * xj.w;
         if (g.w[j] < 0.0f) second += g.w[j] * g.w[j] * xj.w;
+        if (g.w[j] > 0.0f) mu_first = sc_side_mu(pf[pv[j]], (float2)(mu_s, mu_k));
+        if (g.w[j] < 0.0f) mu_second = sc_side_mu(pf[pv[j]], (float2)(mu_s, mu_k));
       }
       const float dn = ats_dot(push, nrm);
       const ats_vec3 ut = ats_sub(u, ats_scale(nrm, ats_dot(u, nrm)));
       const float len = ats_length(ut);
       if (dn > 0.0f && len > 0.0f && first + second > 0.0f) {
-        const float removed = len <= mu_s * dn ? 1.0f : fmin(1.0f, mu_k * dn / len);
+        const float2 mu = 0.5f * (mu_first + mu_second);
+        const float removed = len <= mu.x * dn ? 1.0f : fmin(1.0f, mu.y * dn / len);
         /* On the first side i moves against u, on the second with it. */
         const float share = g.w[slot] > 0.0f ? -first / (first + second) : second / (first + second);
         sum = ats_add(sum, ats_scale(ut, dn * removed * share));

@@ -30,6 +30,7 @@ std::vector<Collider> make_colliders(const std::vector<scene::ColliderDesc>& col
     c.thickness = d.thickness;
     c.static_friction = d.static_friction;
     c.kinetic_friction = d.kinetic_friction;
+    c.friction_set = d.friction_set;
     c.stiffness = d.stiffness;
     c.motion = d.motion;
     c.pivot = pivot_of(c);

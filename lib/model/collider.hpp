@@ -24,6 +24,7 @@ struct Collider {
   double radius = 0.0;
   double thickness = 0.0;
   double static_friction = 0.0, kinetic_friction = 0.0;
+  bool friction_set = false;                        // false: the touching object's material friction decides
   double stiffness = 0.0;                           // contact energy stiffness relative to m/h^2
   scene::ColliderMotion motion;                     // still, velocity or keyframes
   Eigen::Vector3d pivot = Eigen::Vector3d::Zero();  // what moves and turns: centre, capsule midpoint, mesh origin

@@ -87,6 +87,8 @@ struct ObjectRange {
   // Solids: object-local tetrahedra; `triangles` then holds their outward
   // surface (faces of exactly one tet), so output and XDMF show the body.
   std::vector<std::array<int, 4>> tetrahedra;
+  // The material's Coulomb mu_s, mu_k (`material.friction`); -1: unset.
+  std::array<double, 2> friction{-1.0, -1.0};
 };
 
 // Contact between the simulated surfaces (scene `contact:`,

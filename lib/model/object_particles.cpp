@@ -27,6 +27,7 @@ ObjectRange begin_object(const Model& model, const scene::ObjectDesc& obj,
   range.vertex_offset = static_cast<int>(model.particles.size());
   range.vertex_count = static_cast<int>(vertices.size());
   range.rest_position = place_vertices(obj.transform, vertices);
+  if (obj.material.has_friction) range.friction = {obj.material.static_friction, obj.material.kinetic_friction};
   return range;
 }
 

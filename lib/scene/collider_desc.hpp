@@ -26,6 +26,7 @@ struct ColliderDesc {
   double thickness = 0.005;                         // m (> 0): particles keep this distance from the surface
   double static_friction = 0.0;                     // Coulomb mu_s (>= 0)
   double kinetic_friction = 0.0;                    // Coulomb mu_k (>= 0)
+  bool friction_set = false;                        // `friction:` given; else the touching object's material decides
   double stiffness = 100.0;                         // contact energy stiffness relative to m/h^2 (> 0)
   ColliderMotion motion;                            // still, velocity or keyframes
   // mesh: the file (resolved against the scene's folder), its scale per

@@ -79,6 +79,7 @@ ColliderDesc read_collider(const YamlReader& r, int index, const std::filesystem
     const FrictionDesc f = read_friction(r.child("friction"));
     c.static_friction = f.static_coefficient;
     c.kinetic_friction = f.kinetic_coefficient;
+    c.friction_set = true;
   }
   if (r.has("stiffness")) {
     c.stiffness = r.child("stiffness").number_in(0.0, 1e6, true, "a contact stiffness relative to m/h², e.g. 100");
@@ -157,8 +158,11 @@ void emit_collider(YAML::Emitter& out, const ColliderDesc& c) {
   }
   emit_motion(out, c.motion);
   out << YAML::Key << "thickness" << YAML::Value << c.thickness;
-  out << YAML::Key << "friction" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "static" << YAML::Value
-      << c.static_friction << YAML::Key << "kinetic" << YAML::Value << c.kinetic_friction << YAML::EndMap;
+  if (c.friction_set) {
+    out << YAML::Key << "friction" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "static"
+        << YAML::Value << c.static_friction << YAML::Key << "kinetic" << YAML::Value << c.kinetic_friction
+        << YAML::EndMap;
+  }
   out << YAML::Key << "stiffness" << YAML::Value << c.stiffness;
   out << YAML::EndMap;
 }

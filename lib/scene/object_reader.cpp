@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "scene/friction_reader.hpp"
 #include "scene/mesh_loader.hpp"
 #include "scene/tet_mesh_loader.hpp"
 #include "util/did_you_mean.hpp"
@@ -23,10 +24,11 @@ constexpr std::array<std::string_view, 8> kObjectKeys{"name", "type",      "grid
                                                       "mesh", "transform", "material", "pins"};
 constexpr std::array<std::string_view, 2> kGridKeys{"size", "resolution"};
 constexpr std::array<std::string_view, 3> kTransformKeys{"translate", "rotate", "scale"};
-constexpr std::array<std::string_view, 12> kMaterialKeys{
+constexpr std::array<std::string_view, 13> kMaterialKeys{
     "density",         "stretch_stiffness", "stretch_compliance", "bend_stiffness",
     "bend_compliance", "bend_model",        "youngs_modulus",     "poisson_ratio",
-    "model",           "damping",           "shear_stiffness",    "bend_spring_stiffness"};
+    "model",           "damping",           "shear_stiffness",    "bend_spring_stiffness",
+    "friction"};
 // Keys that only one object type takes; on the other type they are an error
 // that says so, rather than being silently ignored.
 constexpr std::array<std::string_view, 7> kClothOnlyMaterialKeys{
@@ -205,6 +207,12 @@ MaterialDesc read_material(const YamlReader& r, ObjectType type, const std::stri
                         m.zero_compliance_where);
     if (r.has("bend_model")) m.bend_model = read_bend_model(r.child("bend_model"));
     read_cloth_springs(r, m);
+  }
+  if (r.has("friction")) {
+    const FrictionDesc f = read_friction(r.child("friction"));
+    m.has_friction = true;
+    m.static_friction = f.static_coefficient;
+    m.kinetic_friction = f.kinetic_coefficient;
   }
   if (r.has("damping")) {
     const YamlReader d = r.child("damping");

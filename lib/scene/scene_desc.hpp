@@ -60,6 +60,10 @@ struct MaterialDesc {
   double youngs_modulus = 1.0e5;                // solids: Pa (> 0)
   double poisson_ratio = 0.3;                   // solids: 0 ≤ ν < 0.5
   SolidModel solid_model = SolidModel::neo_hookean;
+  // Coulomb coefficients of the object's surface (`friction:`); unset: a
+  // collider's own decide, and between surfaces contact.friction.
+  bool has_friction = false;
+  double static_friction = 0.0, kinetic_friction = 0.0;
   std::string model_where;            // "file:line" (or the --set) that chose solid_model; empty = default
   std::string zero_compliance_where;  // "file:line" of a compliance of 0 (perfectly stiff); empty = none
 };

@@ -86,6 +86,11 @@ void emit_object(YAML::Emitter& out, const ObjectDesc& obj) {
     out << YAML::Key << "bend_spring_stiffness" << YAML::Value << m.bend_spring_stiffness;
   }
   if (m.damping > 0.0) out << YAML::Key << "damping" << YAML::Value << m.damping;
+  if (m.has_friction) {
+    out << YAML::Key << "friction" << YAML::Value << YAML::Flow << YAML::BeginMap << YAML::Key << "static"
+        << YAML::Value << m.static_friction << YAML::Key << "kinetic" << YAML::Value << m.kinetic_friction
+        << YAML::EndMap;
+  }
   out << YAML::EndMap;
   if (!obj.pins.vertices.empty() || !obj.pins.boxes.empty()) {
     out << YAML::Key << "pins" << YAML::Value << YAML::BeginMap;

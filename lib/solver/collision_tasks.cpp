@@ -38,9 +38,13 @@ sched::TaskId add_contact_task(plan::SubstepPlan& plan, sched::TaskId last, cons
        {particle_write(positions)}});
 }
 
+plan::BufferId add_friction_buffer(plan::SubstepPlan& plan, const SimLayout& layout) {
+  return plan.add_buffer("material_friction", plan::BufferRole::topology, plan::bytes_of(layout.friction));
+}
+
 sched::TaskId add_friction_task(plan::SubstepPlan& plan, sched::TaskId last, const SimLayout& layout,
-                                plan::BufferId colliders, plan::BufferId positions, plan::BufferId start_positions,
-                                plan::BufferId velocities, double substep_dt) {
+                                plan::BufferId colliders, plan::BufferId friction, plan::BufferId positions,
+                                plan::BufferId start_positions, plan::BufferId velocities, double substep_dt) {
   if (layout.colliders.empty()) return last;
   const int n = static_cast<int>(layout.x.size());
   return plan.add_task_after(
@@ -48,7 +52,8 @@ sched::TaskId add_friction_task(plan::SubstepPlan& plan, sched::TaskId last, con
       {"particles_friction",
        {0, n},
        {Arg::of_buffer(positions), Arg::of_buffer(start_positions), Arg::of_buffer(velocities),
-        Arg::of_buffer(colliders), Arg::of_int(layout.collider_count), Arg::of_float(static_cast<float>(substep_dt))},
+        Arg::of_buffer(colliders), Arg::of_int(layout.collider_count), Arg::of_float(static_cast<float>(substep_dt)),
+        Arg::of_buffer(friction)},
        {particle_write(positions)}});
 }
 

@@ -29,8 +29,13 @@ sched::TaskId add_contact_task(plan::SubstepPlan& plan, sched::TaskId last, cons
 // After `last` (the iterations), Coulomb friction on the substep's
 // displacement of every particle that touches a collider. Returns the new
 // last task, or `last` when the layout has no colliders.
+// `friction`: the buffer of add_friction_buffer.
 sched::TaskId add_friction_task(plan::SubstepPlan& plan, sched::TaskId last, const SimLayout& layout,
-                                plan::BufferId colliders, plan::BufferId positions, plan::BufferId start_positions,
-                                plan::BufferId velocities, double substep_dt);
+                                plan::BufferId colliders, plan::BufferId friction, plan::BufferId positions,
+                                plan::BufferId start_positions, plan::BufferId velocities, double substep_dt);
+
+// The particles' material friction (SimLayout::friction) as a buffer, for
+// the friction tasks.
+plan::BufferId add_friction_buffer(plan::SubstepPlan& plan, const SimLayout& layout);
 
 }  // namespace atssim::solver

@@ -1,5 +1,7 @@
 #include "solver/self_contact_tasks.hpp"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "solver/layout/particle_tables.hpp"
@@ -168,9 +170,11 @@ sched::TaskId add_self_contact_projection(plan::SubstepPlan& plan, sched::TaskId
 
 sched::TaskId add_self_contact_friction(plan::SubstepPlan& plan, sched::TaskId last, const SimLayout& layout,
                                         const SelfContactBuffers& b, plan::BufferId start, plan::BufferId positions,
-                                        plan::BufferId velocities, double h) {
+                                        plan::BufferId velocities, plan::BufferId friction, double h) {
   const SelfContactLayout& s = layout.self_contact;
-  if (!s.enabled || !(s.mu_s > 0.0f || s.mu_k > 0.0f)) return last;
+  const bool material = std::any_of(layout.friction.begin(), layout.friction.end(),
+                                    [](const std::array<float, 2>& f) { return f[0] > 0.0f || f[1] > 0.0f; });
+  if (!s.enabled || !(s.mu_s > 0.0f || s.mu_k > 0.0f || material)) return last;
   const int n = static_cast<int>(layout.x.size());
   last = plan.add_task_after(
       last, plan::make_task("contact/friction", plan::TaskKind::friction),
@@ -179,7 +183,7 @@ sched::TaskId add_self_contact_friction(plan::SubstepPlan& plan, sched::TaskId l
        {Arg::of_buffer(positions), Arg::of_buffer(b.x_out), Arg::of_buffer(start), Arg::of_buffer(velocities),
         Arg::of_float(static_cast<float>(h)), Arg::of_buffer(b.tris), Arg::of_buffer(b.edges),
         Arg::of_buffer(b.incidence), Arg::of_int(n), Arg::of_buffer(b.vt), Arg::of_buffer(b.tv), Arg::of_buffer(b.ee),
-        Arg::of_float(s.thickness), Arg::of_float(s.mu_s), Arg::of_float(s.mu_k)},
+        Arg::of_float(s.thickness), Arg::of_float(s.mu_s), Arg::of_float(s.mu_k), Arg::of_buffer(friction)},
        {particle_write(b.x_out)}});
   return plan.add_task_after(
       last, plan::make_task("contact/friction_apply", plan::TaskKind::copy),

@@ -54,6 +54,6 @@ sched::TaskId add_self_contact_projection(plan::SubstepPlan& plan, sched::TaskId
 // has no self contact or no friction.
 sched::TaskId add_self_contact_friction(plan::SubstepPlan& plan, sched::TaskId last, const SimLayout& layout,
                                         const SelfContactBuffers& b, plan::BufferId start, plan::BufferId positions,
-                                        plan::BufferId velocities, double h);
+                                        plan::BufferId velocities, plan::BufferId friction, double h);
 
 }  // namespace atssim::solver

@@ -155,6 +155,49 @@ TEST_CASE("a patch on a plane tilted by 20 degrees slides with g (sin - mu_k cos
   CHECK(measured == Approx(analytic).epsilon(0.05));
 }
 
+namespace {
+
+// tilted_patch with the plane's coefficient `plane` (none: negative) and the
+// cloth material's `cloth`, mu_s = mu_k each.
+std::string tilted_patch_materials(double plane, double cloth) {
+  std::string yaml = tilted_patch(20.0, plane, plane);
+  if (plane < 0.0) {
+    const std::size_t at = yaml.find(",\n     friction:");
+    yaml.replace(at, yaml.find('}', at) + 1 - at, "");
+  }
+  const std::string material = "bend_stiffness: 0.0001}";
+  yaml.replace(yaml.find(material), material.size(), fmt::format("bend_stiffness: 0.0001, friction: {}}}", cloth));
+  return yaml;
+}
+
+}  // namespace
+
+TEST_CASE("friction per material: a plane without friction takes the cloth's; with both, their mean (every method)",
+          "[contact][friction]") {
+  const std::string method = GENERATE("xpbd", "vbd", "sosd", "jpgd");
+  INFO(method);
+  {
+    test::TempDir dir;  // the plane sets none: the cloth's 0.6 holds the patch
+    app::run_simulation(options(dir, tilted_patch_materials(-1.0, 0.6), method, "single"));
+    const std::string out = dir.file("out.h5");
+    const std::vector<Vector3d> start = frame(out, 0), end = frame(out, 120);
+    double moved = 0.0;
+    for (std::size_t i = 0; i < end.size(); ++i) moved = std::max(moved, (end[i] - start[i]).norm());
+    CHECK(moved < 1e-3);
+  }
+  // Plane 0.1, cloth 0.3: the mean 0.2, 1.51 m/s² (the plane's alone would
+  // give 2.43, the cloth's 0.59).
+  test::TempDir dir;
+  app::run_simulation(options(dir, tilted_patch_materials(0.1, 0.3), method, "single"));
+  const std::vector<double> s = downhill(dir.file("out.h5"), 20.0, 120);
+  const double dt = 45.0 / 60.0;
+  const double measured = (s[120] - 2.0 * s[75] + s[30]) / (dt * dt);
+  const double t = 20.0 * std::numbers::pi / 180.0;
+  const double analytic = 9.81 * (std::sin(t) - 0.2 * std::cos(t));
+  INFO("measured " << measured << " m/s², analytic " << analytic << " m/s²");
+  CHECK(measured == Approx(analytic).epsilon(0.05));
+}
+
 TEST_CASE("converge on a cloth resting on a sphere: y falls with iterations against the contact-aware Newton E*",
           "[contact][converge]") {
   // A small cloth dropped onto a frictionless sphere, 20 frames on: it lies

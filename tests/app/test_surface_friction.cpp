@@ -49,6 +49,21 @@ std::string patch_on_tilted_cloth(double mu_s, double mu_k) {
       kDegrees, kDegrees, at.x(), at.y(), kThickness, mu_s, mu_k);
 }
 
+// The same with friction per material (`material.friction`, mu_s = mu_k)
+// and none in `contact:`: a pair takes the mean of its two sides.
+std::string patch_on_tilted_cloth_materials(double base_mu, double patch_mu) {
+  const std::string full = patch_on_tilted_cloth(0.0, 0.0);
+  const std::string contact = ", friction: {static: 0, kinetic: 0}";
+  const std::size_t cut = full.find(contact);
+  const std::string yaml = full.substr(0, cut) + full.substr(cut + contact.size());
+  // The base's material line first, then the patch's.
+  const std::string material = "bend_stiffness: 0.0001}";
+  const std::size_t base = yaml.find(material), patch = yaml.find(material, base + 1);
+  return yaml.substr(0, base) + fmt::format("bend_stiffness: 0.0001, friction: {}}}", base_mu) +
+         yaml.substr(base + material.size(), patch - base - material.size()) +
+         fmt::format("bend_stiffness: 0.0001, friction: {}}}", patch_mu) + yaml.substr(patch + material.size());
+}
+
 // The patch's particles (after the base's 105) in frame f.
 std::vector<Vector3d> patch(const std::string& file, std::size_t f) {
   const std::vector<float> xyz = io::read_frame_positions(file, f);
@@ -60,6 +75,32 @@ std::vector<Vector3d> patch(const std::string& file, std::size_t f) {
 using test::options;
 
 }  // namespace
+
+namespace {
+
+double most_moved(const std::string& out) {
+  const std::vector<Vector3d> start = patch(out, 0);
+  REQUIRE(start.size() == 16);
+  double moved = 0.0;
+  for (std::size_t f = 0; f <= 120; f += 10) {
+    const std::vector<Vector3d> x = patch(out, f);
+    for (std::size_t i = 0; i < x.size(); ++i) moved = std::max(moved, (x[i] - start[i]).norm());
+  }
+  return moved;
+}
+
+}  // namespace
+
+// Per material: the patch 1.0, the base 0.2; the mean 0.6 > tan 20 holds
+// it (the smaller side alone would let it slide).
+TEST_CASE("friction per material: the mean of the two surfaces' coefficients holds the patch (every method)",
+          "[contact][self][friction]") {
+  const std::string method = GENERATE("xpbd", "vbd", "sosd", "jpgd");
+  INFO(method);
+  test::TempDir dir;
+  app::run_simulation(options(dir, patch_on_tilted_cloth_materials(0.2, 1.0), method, "single"));
+  CHECK(most_moved(dir.file("out.h5")) < 1e-3);
+}
 
 TEST_CASE("a patch on a cloth tilted by 20 degrees stays put when mu_s > tan 20 (every method, single and heft)",
           "[contact][self][friction]") {
@@ -97,11 +138,11 @@ double acceleration_down(const std::string& out) {
   return (slid(20) - 2.0 * slid(12) + slid(4)) / (dt * dt);
 }
 
-void slides_with_coulomb(const std::string& method, double mu) {
+void slides_with_coulomb(const std::string& method, double mu, const std::string& yaml = "") {
   const std::string schedule = GENERATE("single", "heft");
   INFO(method << "/" << schedule << ", mu " << mu);
   test::TempDir dir;
-  app::run_simulation(options(dir, patch_on_tilted_cloth(mu, mu), method, schedule));
+  app::run_simulation(options(dir, yaml.empty() ? patch_on_tilted_cloth(mu, mu) : yaml, method, schedule));
   const double t = kDegrees * std::numbers::pi / 180.0;
   const double measured = acceleration_down(dir.file("out.h5"));
   const double analytic = 9.81 * (std::sin(t) - mu * std::cos(t));
@@ -125,4 +166,11 @@ TEST_CASE("a patch on a cloth tilted by 20 degrees slides with g (sin - mu_k cos
 // VBD), so that the clipped dn > 0 overstates the load.
 TEST_CASE("surface friction under VBD and JPGD: g (sin - mu_k cos) (hidden: fails)", "[.][contact][self][friction]") {
   slides_with_coulomb(GENERATE("vbd", "jpgd"), 0.2);
+}
+
+// Per material: the patch 0.4, the base 0; the mean 0.2 (the larger side
+// alone, 0.4 > tan 20, would hold it; the smaller would give g sin 20).
+TEST_CASE("friction per material: the patch slides with the mean coefficient (XPBD, SOSD)",
+          "[contact][self][friction]") {
+  slides_with_coulomb(GENERATE("xpbd", "sosd"), 0.2, patch_on_tilted_cloth_materials(0.0, 0.4));
 }

@@ -130,6 +130,26 @@ TEST_CASE("the resolved scene reads back to the same description") {
   CHECK(again.output.path == s.output.path);
 }
 
+TEST_CASE("friction per material and a collider without friction survive the resolved YAML") {
+  const std::string yaml = std::string(kGood) +
+                           "colliders:\n  - {type: plane, thickness: 0.005}\n"
+                           "  - {type: sphere, center: [0, 0, 0], radius: 0.1, friction: 0.3}\n";
+  const auto s = scene::parse_scene(
+      yaml, "scene.yaml", ".", std::vector<std::string>{"objects.0.material.friction={static: 0.5, kinetic: 0.25}"});
+  REQUIRE(s.objects[0].material.has_friction);
+  CHECK(s.objects[0].material.static_friction == 0.5);
+  CHECK(s.objects[0].material.kinetic_friction == 0.25);
+  REQUIRE(s.colliders.size() == 2);
+  CHECK_FALSE(s.colliders[0].friction_set);  // the cloth's coefficients decide there
+  CHECK(s.colliders[1].friction_set);
+  const auto again = scene::parse_scene(s.resolved_yaml, "resolved.yaml", ".");
+  CHECK(again.objects[0].material.has_friction);
+  CHECK(again.objects[0].material.static_friction == 0.5);
+  CHECK(again.objects[0].material.kinetic_friction == 0.25);
+  CHECK_FALSE(again.colliders[0].friction_set);
+  CHECK(again.colliders[1].kinetic_friction == 0.3);
+}
+
 TEST_CASE("an invalid override value is reported against its --set") {
   const std::string msg = error_of(kGood, {"simulation.substeps=-3"});
   CHECK(msg.find("--set simulation.substeps=-3") != std::string::npos);

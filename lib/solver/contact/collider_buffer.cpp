@@ -82,8 +82,9 @@ ats_collider_c collider_record(const model::Collider& c) {
   ats_collider_c r{};
   r.shape = float(static_cast<int>(c.shape));  // scene::ColliderShape follows ATS_COLLIDER_* order
   r.thickness = float(c.thickness);
-  r.mu_s = float(c.static_friction);
-  r.mu_k = float(c.kinetic_friction);
+  // Unset: -1, the particle's material friction decides (common/contact_steps.cl).
+  r.mu_s = c.friction_set ? float(c.static_friction) : -1.0f;
+  r.mu_k = c.friction_set ? float(c.kinetic_friction) : -1.0f;
   put(r.c, c.point);
   put(r.n, c.shape == scene::ColliderShape::capsule ? c.end : c.normal);
   for (int k = 0; k < 3; ++k) put(r.axes + 4 * k, c.axes.row(k).transpose());

@@ -74,7 +74,7 @@ plan::SubstepPlan make_jpgd_plan(const SimLayout& layout, const JpgdSettings& se
         last, plan::make_task("copy_result", plan::TaskKind::copy),
         {"particles_copy", {0, n}, {Arg::of_buffer(b.x), Arg::of_buffer(result)}, {particle_write(b.x)}});
   }
-  last = add_self_contact_friction(plan, last, layout, sc, b.x_prev, b.x, b.v, settings.substep_dt);
+  last = add_self_contact_friction(plan, last, layout, sc, b.x_prev, b.x, b.v, b.friction, settings.substep_dt);
   vertex::end_vertex_plan(plan, layout, last, b, settings.substep_dt);
   if (ids != nullptr) *ids = b;
   return plan;

@@ -42,6 +42,11 @@ SimLayout make_sim_layout(const model::Model& model) {
   out.colliders = std::move(colliders.records);
   out.collider_count = colliders.count;
   out.self_contact = make_self_contact_layout(model);
+  out.friction.assign(model.particles.size(), {-1.0f, -1.0f});
+  for (const model::ObjectRange& o : model.objects) {
+    for (int k = 0; k < o.vertex_count; ++k)
+      out.friction[o.vertex_offset + k] = {float(o.friction[0]), float(o.friction[1])};
+  }
 
   if (model.stretch.size() > 0) {
     const graph::ColorBlocks blocks = color<2>(model.stretch.edges, movable);

@@ -127,7 +127,7 @@ plan::SubstepPlan make_sosd_plan(const SimLayout& layout, double substep_dt, int
     if (layout.self_contact.enabled)
       last = add_contact_task(plan, last, layout, b.colliders, b.x, it);  // obstacles win
   }
-  last = add_self_contact_friction(plan, last, layout, sc, b.x_prev, b.x, b.v, substep_dt);
+  last = add_self_contact_friction(plan, last, layout, sc, b.x_prev, b.x, b.v, b.friction, substep_dt);
   vertex::end_vertex_plan(plan, layout, last, b, substep_dt);
   if (ids != nullptr) *ids = b;
   return plan;

@@ -70,7 +70,7 @@ plan::SubstepPlan make_vbd_plan(const SimLayout& layout, double substep_dt, int 
     last = add_ground_task(plan, last, layout, b.x, it);
     if (it + 1 < iterations) snapshot(it, fmt::format("it{}/collision/iteration_end", it + 1));
   }
-  last = add_self_contact_friction(plan, last, layout, sc, b.x_prev, b.x, b.v, substep_dt);
+  last = add_self_contact_friction(plan, last, layout, sc, b.x_prev, b.x, b.v, b.friction, substep_dt);
   vertex::end_vertex_plan(plan, layout, last, b, substep_dt);
   if (ids != nullptr) *ids = b;
   return plan;

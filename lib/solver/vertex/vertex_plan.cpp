@@ -26,6 +26,7 @@ sched::TaskId begin_vertex_plan(plan::SubstepPlan& plan, const SimLayout& layout
   b.adjacency = plan.add_buffer("adjacency", BufferRole::topology, plan::bytes_of(vertices.adjacency));
   b.order = plan.add_buffer("vertex_order", BufferRole::topology, plan::bytes_of(vertices.colors.order));
   b.colliders = add_collider_buffer(plan, layout);
+  b.friction = add_friction_buffer(plan, layout);
   const float dt = static_cast<float>(substep_dt);
   return plan.add_task(
       plan::make_task("predict", plan::TaskKind::predict),
@@ -61,7 +62,8 @@ void end_vertex_plan(plan::SubstepPlan& plan, const SimLayout& layout, sched::Ta
          {Arg::of_buffer(b.x), Arg::of_buffer(out), Arg::of_buffer(b.x_prev), Arg::of_buffer(b.x_tilde),
           Arg::of_buffer(b.adjacency_offsets), Arg::of_buffer(b.adjacency), Arg::of_buffer(b.stretch),
           Arg::of_buffer(b.bend), Arg::of_buffer(b.tets), Arg::of_buffer(b.colliders),
-          Arg::of_int(layout.collider_count), Arg::of_float(static_cast<float>(1.0 / (substep_dt * substep_dt)))},
+          Arg::of_int(layout.collider_count), Arg::of_float(static_cast<float>(1.0 / (substep_dt * substep_dt))),
+          Arg::of_buffer(b.friction)},
          {particle_write(out)}});
     last = plan.add_task_after(
         last, plan::make_task("friction_copy", plan::TaskKind::copy),

@@ -10,7 +10,7 @@ namespace atssim::solver::vertex {
 
 struct VertexBuffers {
   plan::BufferId x = -1, v = -1, x_prev = -1, x_tilde = -1, stretch = -1, bend = -1, tets = -1, adjacency_offsets = -1,
-                 adjacency = -1, order = -1, colliders = -1;
+                 adjacency = -1, order = -1, colliders = -1, friction = -1;
 };
 
 // Adds the buffers and the predict task; returns predict's id. Throws

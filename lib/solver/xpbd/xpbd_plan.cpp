@@ -120,8 +120,9 @@ plan::SubstepPlan make_xpbd_plan(const SimLayout& layout, const XpbdSettings& se
     last = add_ground_task(plan, last, layout, b.x, it);
     last = add_contact_task(plan, last, layout, colliders, b.x, it);
   }
-  last = add_self_contact_friction(plan, last, layout, sc, b.x_prev, b.x, b.v, settings.substep_dt);
-  last = add_friction_task(plan, last, layout, colliders, b.x, b.x_prev, b.v, settings.substep_dt);
+  const plan::BufferId friction = add_friction_buffer(plan, layout);
+  last = add_self_contact_friction(plan, last, layout, sc, b.x_prev, b.x, b.v, friction, settings.substep_dt);
+  last = add_friction_task(plan, last, layout, colliders, friction, b.x, b.x_prev, b.v, settings.substep_dt);
   plan.add_task_after(last, plan::make_task("update_velocity", plan::TaskKind::update_velocity),
                       {"particles_update_velocity",
                        {0, n},
