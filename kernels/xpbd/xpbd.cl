@@ -7,6 +7,7 @@
 #include "common/xpbd_distance.h"
 #include "common/xpbd_bending.h"
 #include "common/xpbd_tet.h"
+#include "common/xpbd_batches.h"
 #include "common/particle_steps.cl"
 #include "common/contact_steps.cl"
 #include "contact/self_contact.cl"
@@ -52,6 +53,33 @@ ATS_TASK void xpbd_bend(int i, __global float4* x, __global const ats_bend_c* c,
   const ats_bend_step s = ats_xpbd_bend_element(p, w, &con, xyz(l4), dt);
   lambda[i] = (float4)(l4.x + s.dlambda.x, l4.y + s.dlambda.y, l4.z + s.dlambda.z, 0.0f);
   ATS_UNROLL for (int j = 0; j < 4; ++j) x[con.v[j]] = add_xyz(q[j], s.dx[j]);
+}
+
+/* solver.ordering: batches. One work-item sweeps a whole element set, padded
+ * to batches of ATS_XPBD_BATCH_WIDTH elements that share no particle
+ * (graph/simd_batches), batch after batch: a Gauss-Seidel order with no
+ * barrier between colors. A lane whose first particle is n or past it is
+ * NvCloth's padding dummy and does nothing. */
+ATS_TASK void xpbd_stretch_batches(int i, __global float4* x, __global const ats_distance_c* c, __global float* lambda,
+                                   float dt, int reset, __global const float4* x_start, float inv_h, int batches, int n) {
+  (void)i;
+  for (int b = 0; b < batches; ++b) {
+    ATS_UNROLL for (int l = 0; l < ATS_XPBD_BATCH_WIDTH; ++l) {
+      const int k = b * ATS_XPBD_BATCH_WIDTH + l;
+      if (c[k].a < n) xpbd_stretch(k, x, c, lambda, dt, reset, x_start, inv_h);
+    }
+  }
+}
+
+ATS_TASK void xpbd_bend_batches(int i, __global float4* x, __global const ats_bend_c* c, __global float4* lambda,
+                                float dt, int reset, int batches, int n) {
+  (void)i;
+  for (int b = 0; b < batches; ++b) {
+    for (int l = 0; l < ATS_XPBD_BATCH_WIDTH; ++l) {
+      const int k = b * ATS_XPBD_BATCH_WIDTH + l;
+      if (c[k].v[0] < n) xpbd_bend(k, x, c, lambda, dt, reset);
+    }
+  }
 }
 
 /* One StVK tet per work-item: its seven strain constraints in sequence
