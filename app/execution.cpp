@@ -184,6 +184,13 @@ ExecutionOptions execution_options(const scene::SceneDesc& scene) {
   return o;
 }
 
+void check_one_device_plan(const plan::SubstepPlan& plan, ScheduleMode mode) {
+  if (mode != ScheduleMode::single && !plan.one_device_reason.empty()) {
+    throw input_error(fmt::format("{}; schedule '{}' cuts or moves tasks between devices: use schedule single",
+                                  plan.one_device_reason, to_string(mode)));
+  }
+}
+
 Execution prepare_execution(const device::DeviceSet& devices, plan::SubstepPlan base, const ExecutionOptions& options) {
   const std::size_t n = devices.size();
   if (options.mode != ScheduleMode::single && n < 2) {
@@ -192,6 +199,7 @@ Execution prepare_execution(const device::DeviceSet& devices, plan::SubstepPlan 
                     "use e.g. --devices cpu/2 (the CPU split into two sub-devices)",
                     to_string(options.mode)));
   }
+  check_one_device_plan(base, options.mode);
   if (options.mode == ScheduleMode::async) return prepare_async(devices, base, options);
   Execution e;
   e.mode = options.mode;
@@ -232,6 +240,7 @@ plan::SubstepPlan cut_for_mode(const plan::SubstepPlan& base, ScheduleMode mode,
 
 PlannedSchedule schedule_from_costs(const plan::SubstepPlan& base, ScheduleMode mode, const sched::CostTable& costs,
                                     double latency_ms) {
+  check_one_device_plan(base, mode);
   const std::size_t n = costs.devices;
   if (mode == ScheduleMode::async) {
     throw input_error("schedule 'async' needs the devices themselves (its merges are profiled); drop --costs");

@@ -26,6 +26,9 @@ namespace atssim::app {
 enum class ScheduleMode { single, split, heft, async };
 
 ScheduleMode parse_schedule_mode(const std::string& text);  // throws input errors
+// Throws an input error when `plan` is for one device only
+// (SubstepPlan::one_device_reason) and `mode` is not single.
+void check_one_device_plan(const plan::SubstepPlan& plan, ScheduleMode mode);
 std::string to_string(ScheduleMode mode);
 
 struct ExecutionOptions {

@@ -8,6 +8,7 @@
 
 #include "device/device_set.hpp"
 #include "scene/scene_desc.hpp"
+#include "solver/method.hpp"
 
 namespace atssim::app {
 
@@ -17,8 +18,10 @@ device::DeviceSet open_scene_devices(const scene::SceneDesc& scene);
 
 // Throws atssim::Error (input) at solver.schedule's line when the schedule
 // needs two devices and `devices` is one, or is async and the method
-// iterates Jacobi sweeps (`gauss_seidel` false).
-void check_schedule_fits(const scene::SceneDesc& scene, bool gauss_seidel, std::size_t devices);
+// iterates Jacobi sweeps; at a method option's line when its value makes a
+// one-device plan (MethodOption::one_device_from) and the schedule is not single.
+void check_schedule_fits(const scene::SceneDesc& scene, const solver::MethodDescription& method,
+                         const solver::MethodSettings& settings, std::size_t devices);
 
 // Runs `build` (a plan builder); an input error it raises about a perfectly
 // stiff constraint is given the scene line of the compliance of 0.

@@ -156,7 +156,7 @@ void run_simulation(const RunOptions& options, RunResult& result,
   const solver::MethodDescription& method = solver::method(scene.solver.method);
   const solver::MethodSettings settings = solver::method_settings(scene, method);
   const device::DeviceSet devices = open_scene_devices(scene);
-  check_schedule_fits(scene, method.gauss_seidel, devices.size());
+  check_schedule_fits(scene, method, settings, devices.size());
   const auto& sim = scene.simulation;
 
   // Each stage's data is released once the next holds it, so the peak memory

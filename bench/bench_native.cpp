@@ -6,7 +6,7 @@
 //
 //   bench_native --scene scenes/hanging_cloth.yaml --method xpbd|vbd|explicit --resolution N
 //                --threads 1|2 --frames F [--warmup W] [--integrator semi_euler|midpoint|rk4]
-//                [--shape cloth|solid]
+//                [--shape cloth|solid] [--ordering colors|batches]
 // (explicit: the explicit reference's semi-implicit Euler, midpoint or RK4;
 // solid: N sets objects.0.box.resolution=[N,N,N] instead of the grid's.)
 //
@@ -28,6 +28,7 @@
 #include "solver/layout/sim_layout.hpp"
 #include "solver/method_registry.hpp"
 #include "solver/vbd/vbd_reference.hpp"
+#include "solver/xpbd/xpbd_batches.hpp"
 #include "solver/xpbd/xpbd_reference.hpp"
 #include "util/error.hpp"
 
@@ -48,7 +49,8 @@ struct Options {
   int warmup = 3;
   std::string integrator = "semi_euler";
   std::string shape = "cloth";
-  int substeps = 0;  // 0: the scene's
+  int substeps = 0;                 // 0: the scene's
+  std::string ordering = "colors";  // xpbd: colors or batches (solver/xpbd/xpbd_batches)
 };
 
 struct FrameTimes {
@@ -95,7 +97,10 @@ int run(const Options& o) {
   FrameTimes times;
   double sum = 0.0;
   if (method == Method::xpbd) {
-    solver::xpbd::XpbdReference reference(layout, {h, sim.iterations}, o.threads);
+    if (o.ordering == "batches" && o.threads != 1)
+      throw input_error("--ordering batches runs one thread (--threads 1)");
+    solver::xpbd::XpbdReference reference(o.ordering == "batches" ? solver::xpbd::in_batch_order(layout) : layout,
+                                          {h, sim.iterations}, o.threads);
     times = time_frames(reference, sim.substeps, o);
     sum = checksum(reference.state());
   } else if (method == Method::explicit_rk) {
@@ -127,6 +132,10 @@ int main(int argc, char** argv) {
   cli.add_option("--method", o.method, "xpbd, vbd or explicit")
       ->required()
       ->check(CLI::IsMember({"xpbd", "vbd", "explicit"}));
+  cli.add_option("--ordering", o.ordering,
+                 "xpbd: colors, or batches (the constraints in the order of "
+                 "solver.ordering: batches, one thread)")
+      ->check(CLI::IsMember({"colors", "batches"}));
   cli.add_option("--integrator", o.integrator, "explicit: semi_euler, midpoint or rk4")
       ->check(CLI::IsMember({"semi_euler", "midpoint", "rk4"}))
       ->capture_default_str();

@@ -7,6 +7,7 @@
 #include "common/xpbd_distance.h"
 #include "common/xpbd_bending.h"
 #include "common/xpbd_tet.h"
+#include "common/xpbd_batches.h"
 #include "common/particle_steps.cl"
 #include "common/contact_steps.cl"
 #include "contact/self_contact.cl"
@@ -52,6 +53,146 @@ ATS_TASK void xpbd_bend(int i, __global float4* x, __global const ats_bend_c* c,
   const ats_bend_step s = ats_xpbd_bend_element(p, w, &con, xyz(l4), dt);
   lambda[i] = (float4)(l4.x + s.dlambda.x, l4.y + s.dlambda.y, l4.z + s.dlambda.z, 0.0f);
   ATS_UNROLL for (int j = 0; j < 4; ++j) x[con.v[j]] = add_xyz(q[j], s.dx[j]);
+}
+
+/* solver.ordering: batches. One work-item sweeps a whole element set, padded
+ * to batches of ATS_XPBD_BATCH_WIDTH elements that share no particle
+ * (graph/simd_batches), batch after batch: a Gauss-Seidel order with no
+ * barrier between colors. A lane whose first particle is n or past it is
+ * NvCloth's padding dummy and does nothing. */
+/* Undamped distance constraints (common/xpbd_distance.h, the same
+ * operations) of one batch of 8 as float8 lanes: gather, solve, scatter.
+ * A batch's lanes share no particle, so this equals the lanes one after
+ * another. pocl's compiler left the scalar lane loop scalar (vsqrtss). */
+static inline void xpbd_stretch_batch8(int k0, __global float4* x, __global const ats_distance_c* c,
+                                       __global float* lambda, float dt, int reset, int n) {
+  float ax[8], ay[8], az[8], aw[8], bx[8], by[8], bz[8], bw[8], rest[8], comp[8];
+  int ia[8], ib[8];
+  ATS_UNROLL for (int l = 0; l < 8; ++l) {
+    const ats_distance_c con = c[k0 + l];
+    const int live = con.a < n;
+    ia[l] = live ? con.a : -1;
+    ib[l] = con.b;
+    const float4 pa = x[live ? con.a : 0];
+    const float4 pb = x[live ? con.b : 0];
+    ax[l] = pa.x; ay[l] = pa.y; az[l] = pa.z; aw[l] = pa.w;
+    bx[l] = pb.x; by[l] = pb.y; bz[l] = pb.z; bw[l] = pb.w;
+    rest[l] = con.rest;
+    comp[l] = con.compliance;
+  }
+  const float8 lam = reset ? (float8)(0.0f) : vload8(0, lambda + k0);
+  const float8 wa = vload8(0, aw), wb = vload8(0, bw);
+  const float8 dx = vload8(0, ax) - vload8(0, bx), dy = vload8(0, ay) - vload8(0, by), dz = vload8(0, az) - vload8(0, bz);
+  const float8 alpha = vload8(0, comp) / (dt * dt);
+  const float8 len = sqrt(dx * dx + dy * dy + dz * dz);
+  const float8 denom = wa + wb + alpha;
+  const int8 solved = len > 1e-20f && denom > 0.0f;
+  const float8 dl = select((float8)(0.0f), (-(len - vload8(0, rest)) - alpha * lam) / denom, solved);
+  const float8 inv = select((float8)(0.0f), 1.0f / len, solved);
+  const float8 nx = dx * inv, ny = dy * inv, nz = dz * inv;
+  vstore8(lam + dl, 0, lambda + k0);
+  const float8 sa = wa * dl, sb = -wb * dl;
+  float ox[8], oy[8], oz[8], qx[8], qy[8], qz[8];
+  vstore8(vload8(0, ax) + nx * sa, 0, ox); vstore8(vload8(0, ay) + ny * sa, 0, oy); vstore8(vload8(0, az) + nz * sa, 0, oz);
+  vstore8(vload8(0, bx) + nx * sb, 0, qx); vstore8(vload8(0, by) + ny * sb, 0, qy); vstore8(vload8(0, bz) + nz * sb, 0, qz);
+  ATS_UNROLL for (int l = 0; l < 8; ++l) {
+    if (ia[l] >= 0) {
+      x[ia[l]] = (float4)(ox[l], oy[l], oz[l], aw[l]);
+      x[ib[l]] = (float4)(qx[l], qy[l], qz[l], bw[l]);
+    }
+  }
+}
+
+ATS_TASK void xpbd_stretch_batches(int i, __global float4* x, __global const ats_distance_c* c, __global float* lambda,
+                                   float dt, int reset, __global const float4* x_start, float inv_h, int batches, int n) {
+  (void)i;
+  for (int b = 0; b < batches; ++b) {
+    const int k0 = b * ATS_XPBD_BATCH_WIDTH;
+    if (inv_h == 0.0f && ATS_XPBD_BATCH_WIDTH == 8) {
+      xpbd_stretch_batch8(k0, x, c, lambda, dt, reset, n);
+      continue;
+    }
+    ATS_UNROLL for (int l = 0; l < ATS_XPBD_BATCH_WIDTH; ++l) {
+      if (c[k0 + l].a < n) xpbd_stretch(k0 + l, x, c, lambda, dt, reset, x_start, inv_h);
+    }
+  }
+}
+
+/* Isometric bending stencils (common/xpbd_bending.h, ats_xpbd_bend: the same
+ * operations) of one batch of 8 as float8 lanes; a batch with a dihedral
+ * stencil takes the scalar lanes instead. */
+static inline void xpbd_bend_batch8(int k0, __global float4* x, __global const ats_bend_c* c, __global float4* lambda,
+                                    float dt, int reset, int n) {
+  float px[4][8], py[4][8], pz[4][8], pw[4][8], kk[4][8], sc[8], comp[8], lx[8], ly[8], lz[8];
+  int v[4][8];
+  ATS_UNROLL for (int l = 0; l < 8; ++l) {
+    const ats_bend_c con = c[k0 + l];
+    const int live = con.v[0] < n;
+    ATS_UNROLL for (int j = 0; j < 4; ++j) {
+      v[j][l] = live ? con.v[j] : -1;
+      const float4 q = x[live ? con.v[j] : 0];
+      px[j][l] = q.x;
+      py[j][l] = q.y;
+      pz[j][l] = q.z;
+      pw[j][l] = q.w;
+      kk[j][l] = con.K[j];
+    }
+    sc[l] = con.scale;
+    comp[l] = con.compliance;
+    const float4 l4 = reset ? (float4)(0.0f) : lambda[k0 + l];
+    lx[l] = l4.x;
+    ly[l] = l4.y;
+    lz[l] = l4.z;
+  }
+  const float8 scale = vload8(0, sc);
+  const float8 alpha = vload8(0, comp) / (dt * dt);
+  float8 denom = alpha;
+  float8 cx = (float8)(0.0f), cy = cx, cz = cx;
+  ATS_UNROLL for (int j = 0; j < 4; ++j) {
+    const float8 k = vload8(0, kk[j]);
+    denom += scale * vload8(0, pw[j]) * k * k;
+    cx += vload8(0, px[j]) * k;
+    cy += vload8(0, py[j]) * k;
+    cz += vload8(0, pz[j]) * k;
+  }
+  const float8 root = sqrt(scale);
+  const float8 f = select((float8)(0.0f), -1.0f / denom, denom > 0.0f);
+  const float8 dlx = (cx * root + vload8(0, lx) * alpha) * f;
+  const float8 dly = (cy * root + vload8(0, ly) * alpha) * f;
+  const float8 dlz = (cz * root + vload8(0, lz) * alpha) * f;
+  float ox[8], oy[8], oz[8];
+  vstore8(dlx, 0, ox);
+  vstore8(dly, 0, oy);
+  vstore8(dlz, 0, oz);
+  ATS_UNROLL for (int l = 0; l < 8; ++l) lambda[k0 + l] = (float4)(lx[l] + ox[l], ly[l] + oy[l], lz[l] + oz[l], 0.0f);
+  ATS_UNROLL for (int j = 0; j < 4; ++j) {
+    const float8 g = vload8(0, pw[j]) * root * vload8(0, kk[j]);
+    vstore8(vload8(0, px[j]) + dlx * g, 0, px[j]);
+    vstore8(vload8(0, py[j]) + dly * g, 0, py[j]);
+    vstore8(vload8(0, pz[j]) + dlz * g, 0, pz[j]);
+  }
+  ATS_UNROLL for (int l = 0; l < 8; ++l) {
+    if (v[0][l] >= 0) {
+      ATS_UNROLL for (int j = 0; j < 4; ++j) x[v[j][l]] = (float4)(px[j][l], py[j][l], pz[j][l], pw[j][l]);
+    }
+  }
+}
+
+ATS_TASK void xpbd_bend_batches(int i, __global float4* x, __global const ats_bend_c* c, __global float4* lambda,
+                                float dt, int reset, int batches, int n) {
+  (void)i;
+  for (int b = 0; b < batches; ++b) {
+    const int k0 = b * ATS_XPBD_BATCH_WIDTH;
+    int dihedral = 0;
+    for (int l = 0; l < ATS_XPBD_BATCH_WIDTH; ++l) dihedral |= c[k0 + l].model == ATS_BEND_DIHEDRAL;
+    if (!dihedral && ATS_XPBD_BATCH_WIDTH == 8) {
+      xpbd_bend_batch8(k0, x, c, lambda, dt, reset, n);
+      continue;
+    }
+    for (int l = 0; l < ATS_XPBD_BATCH_WIDTH; ++l) {
+      if (c[k0 + l].v[0] < n) xpbd_bend(k0 + l, x, c, lambda, dt, reset);
+    }
+  }
 }
 
 /* One StVK tet per work-item: its seven strain constraints in sequence

@@ -6,52 +6,19 @@
 #include <fmt/format.h>
 
 #include "graph/adjacency.hpp"
+#include "graph/simd_batches.hpp"
 #include "util/error.hpp"
 
 namespace atssim::graph {
 
-namespace {
-
-bool shares(const std::vector<int>& batch_particles, const Triplet& t) {
-  for (int p : batch_particles) {
-    if (p == t[0] || p == t[1] || p == t[2]) return true;
-  }
-  return false;
-}
-
-int padding_for(int size, int width) { return (width - size % width) % width; }
-
-}  // namespace
-
 SimdBatches schedule_simd(std::span<const Triplet> triplets, int particle_count, int width) {
-  if (width < 1) throw Error(fmt::format("schedule_simd: width {} < 1", width));
+  const SimdOrder order = schedule_simd_order<3>(triplets, particle_count, width);
   SimdBatches out;
-  out.triplets.assign(triplets.begin(), triplets.end());
-  std::vector<Triplet>& t = out.triplets;
-  std::vector<int> batch;  // particles of the batch being filled
-  int set_size = 0;
-  for (std::size_t i = 0; i < t.size();) {
-    if (set_size % width == 0) batch.clear();
-    // The first remaining triplet that shares no particle with the batch.
-    std::size_t j = i;
-    while (j < t.size() && shares(batch, t[j])) ++j;
-    if (j == t.size()) {  // none fits: the set ends, the next one starts with triplet i
-      out.set_sizes.push_back(set_size);
-      set_size = 0;
-      continue;
-    }
-    batch.insert(batch.end(), t[j].begin(), t[j].end());
-    std::swap(t[i], t[j]);
-    ++set_size;
-    ++i;
-  }
-  if (set_size > 0) out.set_sizes.push_back(set_size);
-  const Triplet dummy{particle_count, particle_count + 1, particle_count + 2};
-  std::size_t k = 0;
-  for (int size : out.set_sizes) {
-    out.padded.insert(out.padded.end(), t.begin() + static_cast<long>(k), t.begin() + static_cast<long>(k + size));
-    out.padded.insert(out.padded.end(), static_cast<std::size_t>(padding_for(size, width)), dummy);
-    k += static_cast<std::size_t>(size);
+  out.set_sizes = order.set_sizes;
+  const Triplet dummy = padding_dummy<3>(particle_count);
+  for (int e : order.slots) {
+    if (e >= 0) out.triplets.push_back(triplets[static_cast<std::size_t>(e)]);
+    out.padded.push_back(e >= 0 ? triplets[static_cast<std::size_t>(e)] : dummy);
   }
   return out;
 }

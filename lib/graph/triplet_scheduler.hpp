@@ -1,7 +1,7 @@
 #pragma once
 // NvCloth's TripletScheduler (seed 002): orders triangles ("triplets") so
 // that the ones processed together share no particle.
-//   simd(width): greedy batches of `width` triplets sharing no particle;
+//   simd(width) (graph/simd_batches, any arity): greedy batches of `width` triplets sharing no particle;
 //     a set is a run of triplets split into such batches, a new set starts
 //     when no remaining triplet fits the current batch; each set is padded
 //     to a multiple of `width` with a dummy triplet (n, n + 1, n + 2) of

@@ -19,6 +19,9 @@ struct SubstepPlan {
   sched::TaskGraph graph;                           // labels are TaskKind values
   std::vector<std::vector<KernelLaunch>> launches;  // indexed by task id
   int particle_count = 0;
+  // Non-empty: the plan is for one device (schedule single), and this says
+  // why (XPBD's solver.ordering: batches sweeps a whole set in one task).
+  std::string one_device_reason;
 
   BufferId add_buffer(std::string name, BufferRole role, std::vector<std::byte> initial);
   // Appends a task with its launches; returns its id.

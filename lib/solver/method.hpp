@@ -31,6 +31,10 @@ struct MethodOption {
   // it (default_value is the usual pick): the resolved scene then leaves
   // the option out, so that running it again picks the same.
   bool depends_on_scene = false;
+  // A named option whose choices from this index on make a plan for one
+  // device: a schedule other than single is refused at the option's line
+  // (app/scene_checks). -1: every choice runs on any schedule.
+  int one_device_from = -1;
 
   // The default as a scene would write it (a name for a named option).
   std::string default_text() const;

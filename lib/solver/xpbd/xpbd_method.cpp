@@ -9,16 +9,25 @@ namespace {
 // The strain constraints (common/xpbd_tet.h) minimise the StVK energy only.
 // springs: tet-edge springs in the stretch set (model/tet_builder.cpp).
 constexpr scene::SolidModel kSolids[] = {scene::SolidModel::stvk, scene::SolidModel::springs};
+constexpr std::string_view kOrderings[] = {"colors", "batches"};  // XpbdOrdering's values in order
+
+constexpr MethodOption kOptions[] = {
+    {"ordering", 0.0, 0.0, 1.0, false, false,
+     "colors or batches: the order of the stretch and bending constraints, one task per color block or one "
+     "sweep of NvCloth's simd batches per element set (xpbd; batches: schedule single only)",
+     kOrderings, false, 1},
+};
 
 plan::SubstepPlan build(const SimLayout& layout, const MethodSettings& s) {
-  return make_xpbd_plan(layout, {s.substep_dt, s.iterations});
+  return make_xpbd_plan(
+      layout, {s.substep_dt, s.iterations, static_cast<XpbdOrdering>(static_cast<int>(s.option("ordering")))});
 }
 
 }  // namespace
 
 const MethodDescription kDescription{
     "xpbd",  "extended position-based dynamics: Gauss-Seidel over constraint color blocks (Macklin et al. 2016)",
-    true,    {},
+    true,    kOptions,
     kSolids, build};
 
 }  // namespace atssim::solver::xpbd

@@ -8,6 +8,7 @@
 #include "solver/collision_tasks.hpp"
 #include "solver/layout/particle_tables.hpp"
 #include "solver/self_contact_tasks.hpp"
+#include "solver/xpbd/xpbd_batches.hpp"
 
 #include "util/error.hpp"
 
@@ -40,6 +41,23 @@ sched::TaskId add_blocks(plan::SubstepPlan& plan, sched::TaskId last, const std:
   return last;
 }
 
+// solver.ordering: batches. One task sweeps the whole padded set batch after
+// batch in one work-item (range {0, 1}); `extra` as for add_blocks, then the
+// batch count and the particle count (a lane at or past it is the dummy).
+sched::TaskId add_batch_sweep(plan::SubstepPlan& plan, sched::TaskId last, int batches, plan::TaskKind kind,
+                              const std::string& function, plan::BufferId x, plan::BufferId elements,
+                              plan::BufferId lambda, float dt, int iteration, const std::vector<Arg>& extra = {}) {
+  const std::string name = fmt::format("it{}/{}/batches", iteration + 1, plan::to_string(kind));
+  std::vector<Arg> args{Arg::of_buffer(x), Arg::of_buffer(elements), Arg::of_buffer(lambda), Arg::of_float(dt),
+                        Arg::of_int(iteration == 0 ? 1 : 0)};
+  args.insert(args.end(), extra.begin(), extra.end());
+  args.push_back(Arg::of_int(batches));
+  args.push_back(Arg::of_int(plan.particle_count));
+  return plan.add_task_after(
+      last, plan::make_task(name, kind, iteration, 0),
+      {function, {0, 1}, std::move(args), {plan::WriteSpan::whole_buffer(x), plan::WriteSpan::whole_buffer(lambda)}});
+}
+
 // The strain constraints (common/xpbd_tet.h) minimise the StVK energy; solving
 // them for a neo-Hookean solid would silently change its material.
 void check_tets_are_stvk(const SimLayout& layout) {
@@ -61,18 +79,25 @@ plan::SubstepPlan make_xpbd_plan(const SimLayout& layout, const XpbdSettings& se
   plan.particle_count = static_cast<int>(layout.x.size());
   XpbdBuffers b;
   using plan::BufferRole;
+  const bool batched = settings.ordering == XpbdOrdering::batches;
+  if (batched) plan.one_device_reason = "solver.ordering 'batches' sweeps each element set in one task on one device";
+  const int n = plan.particle_count;
+  const auto stretch_batches = batched ? batch_elements(layout.stretch, n) : ElementBatches<ats_distance_c>{};
+  const auto bend_batches = batched ? batch_elements(layout.bend, n) : ElementBatches<ats_bend_c>{};
   b.x = plan.add_buffer("x", BufferRole::positions, plan::bytes_of(layout.x));
   b.v = plan.add_buffer("v", BufferRole::velocities, plan::bytes_of(layout.v));
   b.x_prev = plan.add_buffer("x_prev", BufferRole::start_positions, plan::bytes_of(layout.x));
   if (!layout.stretch.empty()) {
-    b.stretch = plan.add_buffer("stretch", BufferRole::elements, plan::bytes_of(layout.stretch));
+    const auto& stretch = batched ? stretch_batches.elements : layout.stretch;
+    b.stretch = plan.add_buffer("stretch", BufferRole::elements, plan::bytes_of(stretch));
     b.stretch_lambda = plan.add_buffer("stretch_lambda", BufferRole::multipliers,
-                                       std::vector<std::byte>(layout.stretch.size() * sizeof(float)));
+                                       std::vector<std::byte>(stretch.size() * sizeof(float)));
   }
   if (!layout.bend.empty()) {
-    b.bend = plan.add_buffer("bend", BufferRole::elements, plan::bytes_of(layout.bend));
+    const auto& bend = batched ? bend_batches.elements : layout.bend;
+    b.bend = plan.add_buffer("bend", BufferRole::elements, plan::bytes_of(bend));
     b.bend_lambda = plan.add_buffer("bend_lambda", BufferRole::multipliers,
-                                    std::vector<std::byte>(layout.bend.size() * 4 * sizeof(float)));
+                                    std::vector<std::byte>(bend.size() * 4 * sizeof(float)));
   }
   if (!layout.tets.empty()) {
     check_tets_are_stvk(layout);
@@ -86,7 +111,6 @@ plan::SubstepPlan make_xpbd_plan(const SimLayout& layout, const XpbdSettings& se
   const float h = static_cast<float>(settings.substep_dt);
   const float dt = static_cast<float>(inertia_dt(layout, settings.substep_dt));
   const plan::BufferId colliders = layout.colliders.empty() ? -1 : add_collider_buffer(plan, layout);
-  const int n = plan.particle_count;
   sched::TaskId last =
       plan.add_task(plan::make_task("predict", plan::TaskKind::predict),
                     {{"xpbd_predict",
@@ -104,11 +128,17 @@ plan::SubstepPlan make_xpbd_plan(const SimLayout& layout, const XpbdSettings& se
   const auto bend_particles = particles_of(layout.bend);
   const auto tet_particles = particles_of(layout.tets);
   for (int it = 0; it < settings.iterations; ++it) {
-    if (b.stretch >= 0) {
+    if (b.stretch >= 0 && batched) {
+      last = add_batch_sweep(plan, last, stretch_batches.batches(), plan::TaskKind::stretch, "xpbd_stretch_batches",
+                             b.x, b.stretch, b.stretch_lambda, dt, it, spring_damping);
+    } else if (b.stretch >= 0) {
       last = add_blocks(plan, last, layout.stretch_blocks, plan::TaskKind::stretch, "xpbd_stretch", b.x, b.stretch,
                         b.stretch_lambda, dt, it, stretch_particles, 2, sizeof(float), spring_damping);
     }
-    if (b.bend >= 0) {
+    if (b.bend >= 0 && batched) {
+      last = add_batch_sweep(plan, last, bend_batches.batches(), plan::TaskKind::bend, "xpbd_bend_batches", b.x, b.bend,
+                             b.bend_lambda, dt, it);
+    } else if (b.bend >= 0) {
       last = add_blocks(plan, last, layout.bend_blocks, plan::TaskKind::bend, "xpbd_bend", b.x, b.bend, b.bend_lambda,
                         dt, it, bend_particles, 4, 4 * sizeof(float));
     }

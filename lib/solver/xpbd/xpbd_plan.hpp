@@ -1,6 +1,6 @@
 #pragma once
 // The XPBD substep as a task graph with kernel launches (paper Fig. 2):
-// predict -> per iteration: stretch color blocks, then bending color blocks,
+// predict -> per iteration: stretch color blocks (or batches), then bending color blocks,
 // then tetrahedron (StVK strain) color blocks, in Gauss-Seidel order ->
 // update velocity. Only the element sets the model has produce tasks.
 #include "model/model.hpp"
@@ -9,9 +9,16 @@
 
 namespace atssim::solver::xpbd {
 
+// The order of the stretch and bending constraints (solver.ordering):
+// colors = one task per color block, the blocks one after another;
+// batches = one task per element set sweeping NvCloth's simd batches
+// (solver/xpbd/xpbd_batches), a one-device order (no part to cut).
+enum class XpbdOrdering { colors, batches };
+
 struct XpbdSettings {
   double substep_dt = 1.0 / 960.0;
   int iterations = 8;
+  XpbdOrdering ordering = XpbdOrdering::colors;
 };
 
 // Buffer ids inside an XPBD plan (those absent from the model are -1).
