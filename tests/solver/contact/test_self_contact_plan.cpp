@@ -51,9 +51,13 @@ TEST_CASE("with contact every method detects once per substep before its iterati
     CHECK(tasks_named(p, "detect/bound") == 1);
     CHECK(tasks_named(p, "contact/first_guess") == 1);
     for (sched::TaskId t : p.tasks_of(plan::TaskKind::detection)) CHECK(p.graph.task(t).iteration < 0);
-    // XPBD projects every iteration; JPGD and SOSD bound every iterate; VBD bounds inside its solve.
+    // XPBD bounds its constraint step and projects every iteration; JPGD and
+    // SOSD bound every iterate; VBD bounds inside its solve and keeps the
+    // iteration's start for a contact partner of the vertex's own colour.
     CHECK(tasks_named(p, "collision/surfaces_apply") == (m->name == "xpbd" ? iterations : 0));
-    CHECK(tasks_named(p, "collision/bound") == (m->name == "jpgd" || m->name == "sosd" ? iterations : 0));
+    CHECK(tasks_named(p, "collision/bound") == (m->name == "vbd" ? 0 : iterations));
+    CHECK(tasks_named(p, "contact/iteration_start") == (m->name == "vbd" ? 1 : 0));
+    CHECK(tasks_named(p, "collision/iteration_end") == (m->name == "vbd" ? iterations - 1 : 0));
   }
 }
 
