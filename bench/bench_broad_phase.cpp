@@ -83,7 +83,29 @@ struct Runner {
 
 struct Timing {
   std::vector<double> build, query;
+  std::vector<double> part[3];  // the query's share per vertex, per triangle, per edge
+  void clear() {
+    build.clear();
+    query.clear();
+    for (auto& p : part) p.clear();
+  }
 };
+
+// Runs the three queries, timing each.
+template <typename V, typename T, typename E>
+void timed_queries(Timing& t, V&& vertices, T&& triangles, E&& edges) {
+  const auto start = Clock::now();
+  auto at = start;
+  vertices();
+  t.part[0].push_back(ms_since(at));
+  at = Clock::now();
+  triangles();
+  t.part[1].push_back(ms_since(at));
+  at = Clock::now();
+  edges();
+  t.part[2].push_back(ms_since(at));
+  t.query.push_back(ms_since(start));
+}
 
 struct Scene {
   solver::SelfContactLayout layout;
@@ -109,11 +131,15 @@ void bvh_step(const Scene& sc, std::vector<Box>& nodes, const Runner& run, Timin
     }
   }
   t.build.push_back(ms_since(start));
-  start = Clock::now();
-  run.each(sc.n(), [&](int b, int e, PairLists& o) { bvh_query_vertices(s, sc.x, nodes, sc.r, b, e, o); });
-  run.each(sc.tris(), [&](int b, int e, PairLists& o) { bvh_query_triangles(s, sc.x, nodes, sc.r, b, e, o); });
-  run.each(sc.edges(), [&](int b, int e, PairLists& o) { bvh_query_edges(s, sc.x, nodes, sc.r, b, e, o); });
-  t.query.push_back(ms_since(start));
+  timed_queries(
+      t,
+      [&] { run.each(sc.n(), [&](int b, int e, PairLists& o) { bvh_query_vertices(s, sc.x, nodes, sc.r, b, e, o); }); },
+      [&] {
+        run.each(sc.tris(), [&](int b, int e, PairLists& o) { bvh_query_triangles(s, sc.x, nodes, sc.r, b, e, o); });
+      },
+      [&] {
+        run.each(sc.edges(), [&](int b, int e, PairLists& o) { bvh_query_edges(s, sc.x, nodes, sc.r, b, e, o); });
+      });
 }
 
 // One substep of the hash: boxes and cells in parallel, the counting sort
@@ -133,11 +159,12 @@ void hash_step(const Scene& sc, SurfaceHash& h, const Runner& run, Timing& t) {
   hash_fill(h.triangles);
   hash_fill(h.edges);
   t.build.push_back(ms_since(start));
-  start = Clock::now();
-  run.each(sc.n(), [&](int b, int e, PairLists& o) { hash_query_vertices(s, sc.x, h, sc.r, b, e, o); });
-  run.each(sc.tris(), [&](int b, int e, PairLists& o) { hash_query_triangles(s, sc.x, h, sc.r, b, e, o); });
-  run.each(sc.edges(), [&](int b, int e, PairLists& o) { hash_query_edges(s, sc.x, h, sc.r, b, e, o); });
-  t.query.push_back(ms_since(start));
+  timed_queries(
+      t, [&] { run.each(sc.n(), [&](int b, int e, PairLists& o) { hash_query_vertices(s, sc.x, h, sc.r, b, e, o); }); },
+      [&] {
+        run.each(sc.tris(), [&](int b, int e, PairLists& o) { hash_query_triangles(s, sc.x, h, sc.r, b, e, o); });
+      },
+      [&] { run.each(sc.edges(), [&](int b, int e, PairLists& o) { hash_query_edges(s, sc.x, h, sc.r, b, e, o); }); });
 }
 
 void uptime(const char* when) {
@@ -164,7 +191,7 @@ int main(int argc, char** argv) {
 
   uptime("load before");
   bool ok = true;
-  std::vector<std::string> rows;
+  std::vector<std::string> rows, parts;
   for (int size : sizes) {
     Scene sc;
     const model::Model m = crumpled_sheet(size);
@@ -197,8 +224,7 @@ int main(int argc, char** argv) {
           }
           if (round == 0) {
             found[ti][method] = run.gathered();
-            t.build.clear();
-            t.query.clear();
+            t.clear();
           }
         }
       }
@@ -255,6 +281,8 @@ int main(int argc, char** argv) {
         rows.push_back(fmt::format("| {} | {} | {} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {:.2f} |", sc.n(),
                                    thread_counts[ti], name, median(t.build), median(t.query), tot,
                                    double(f.tested) / double(f.found()), tot / bvh_total));
+        parts.push_back(fmt::format("| {} | {} | {} | {:.2f} | {:.2f} | {:.2f} |", sc.n(), thread_counts[ti], name,
+                                    median(t.part[0]), median(t.part[1]), median(t.part[2])));
       }
     }
   }
@@ -262,6 +290,10 @@ int main(int argc, char** argv) {
       "\n| vertices | threads | broad phase | build/refit ms | query ms | total ms/substep | tested / pair "
       "found | total / BVH total |\n|---:|---:|---|---:|---:|---:|---:|---:|\n");
   for (const auto& row : rows) std::printf("%s\n", row.c_str());
+  std::printf(
+      "\nThe query ms per kind (medians):\n\n| vertices | threads | broad phase | per vertex the triangles | "
+      "per triangle the vertices | per edge the edges |\n|---:|---:|---|---:|---:|---:|\n");
+  for (const auto& row : parts) std::printf("%s\n", row.c_str());
   uptime("load after");
   if (!ok) std::printf("FAIL: the broad phases disagree (see above)\n");
   return ok ? 0 : 1;
