@@ -10,6 +10,9 @@
 // refit and queries are one pass per element with no atomics and no sort,
 // so every detection task is a range of independent elements that `split`
 // and `heft` cut, with the same result on any cut (no insertion order).
+// Measured against a spatial hash rebuilt per step (bench/bench_broad_phase,
+// docs/benchmarks.md): on the host the hash took 4-18 % less time at its best
+// cell size; the BVH stays for the property above (docs/architecture.md).
 #include <array>
 #include <vector>
 

@@ -1,0 +1,300 @@
+// Broad phase of contact between simulated surfaces: the device's BVH
+// (built once by solver/layout/self_contact_layout, refitted every substep,
+// walked by kernels/contact/self_contact.cl; mirrored on the host in
+// broad_phase/bvh_pairs.hpp) against a uniform spatial hash rebuilt every
+// substep (Teschner et al. 2003; broad_phase/hash_pairs.hpp), for the same
+// three queries and the same pairs, on a folded, crumpled cloth sheet
+// (broad_phase/crumpled_sheet.hpp). Host float, 1 thread and TBB threads.
+//
+//   bench_broad_phase [--sizes 128,256,512] [--cells 1,2,4] [--threads 1,2] [--rounds 5] [--brute-max 128]
+//
+// Every method runs once per round, interleaved; the medians are printed.
+// Before timing, the pair sets of every method are compared (and with a
+// brute force up to --brute-max); a mismatch prints FAIL and exits 1.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+#include <CLI/CLI.hpp>
+
+#include "broad_phase/bvh_pairs.hpp"
+#include "broad_phase/crumpled_sheet.hpp"
+#include "broad_phase/hash_pairs.hpp"
+
+using namespace atssim;
+using namespace atssim::bench;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+double ms_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+double median(std::vector<double> v) {
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+// body(begin, end, lists) over [0, count): directly with one thread, else in
+// chunks on the arena, each thread into its own lists.
+struct Runner {
+  int threads = 1;
+  tbb::task_arena* arena = nullptr;
+  tbb::enumerable_thread_specific<PairLists>* lists = nullptr;
+  PairLists* serial = nullptr;
+
+  template <typename Body>
+  void each(int count, Body&& body) const {
+    if (threads == 1) return body(0, count, *serial);
+    arena->execute([&] {
+      tbb::parallel_for(tbb::blocked_range<int>(0, count, 1024),
+                        [&](const tbb::blocked_range<int>& r) { body(r.begin(), r.end(), lists->local()); });
+    });
+  }
+  template <typename Body>
+  void each_item(int count, Body&& body) const {  // no pair output
+    each(count, [&](int b, int e, PairLists&) { body(b, e); });
+  }
+  void clear() const {
+    if (serial) serial->clear();
+    if (lists)
+      for (PairLists& l : *lists) l.clear();
+  }
+  PairLists gathered() const {
+    PairLists all;
+    if (threads == 1) {
+      all = *serial;
+    } else {
+      for (const PairLists& l : *lists) all.append(l);
+    }
+    all.sort();
+    return all;
+  }
+};
+
+struct Timing {
+  std::vector<double> build, query;
+  std::vector<double> part[3];  // the query's share per vertex, per triangle, per edge
+  void clear() {
+    build.clear();
+    query.clear();
+    for (auto& p : part) p.clear();
+  }
+};
+
+// Runs the three queries, timing each.
+template <typename V, typename T, typename E>
+void timed_queries(Timing& t, V&& vertices, T&& triangles, E&& edges) {
+  const auto start = Clock::now();
+  auto at = start;
+  vertices();
+  t.part[0].push_back(ms_since(at));
+  at = Clock::now();
+  triangles();
+  t.part[1].push_back(ms_since(at));
+  at = Clock::now();
+  edges();
+  t.part[2].push_back(ms_since(at));
+  t.query.push_back(ms_since(start));
+}
+
+struct Scene {
+  solver::SelfContactLayout layout;
+  std::vector<ats_vec3> x;
+  float r = 0.0f;
+  int n() const { return static_cast<int>(x.size()); }
+  int tris() const { return static_cast<int>(layout.tris.size()); }
+  int edges() const { return static_cast<int>(layout.edges.size()); }
+};
+
+// One substep of the BVH: refit (leaf boxes, then level by level), three queries.
+void bvh_step(const Scene& sc, std::vector<Box>& nodes, const Runner& run, Timing& t) {
+  const auto& s = sc.layout;
+  run.clear();
+  auto start = Clock::now();
+  run.each_item(sc.tris(), [&](int b, int e) { bvh_leaf_boxes(s, sc.x, nodes, b, e); });
+  for (int l = 1; l <= s.root(); ++l) {
+    const int size = bvh_level_size(s, l);
+    if (size > 256) {
+      run.each_item(size, [&](int b, int e) { bvh_refit_level(s, nodes, l, b, e); });
+    } else {
+      bvh_refit_level(s, nodes, l, 0, size);  // sc_refit_top: one work-item for the small levels
+    }
+  }
+  t.build.push_back(ms_since(start));
+  timed_queries(
+      t,
+      [&] { run.each(sc.n(), [&](int b, int e, PairLists& o) { bvh_query_vertices(s, sc.x, nodes, sc.r, b, e, o); }); },
+      [&] {
+        run.each(sc.tris(), [&](int b, int e, PairLists& o) { bvh_query_triangles(s, sc.x, nodes, sc.r, b, e, o); });
+      },
+      [&] {
+        run.each(sc.edges(), [&](int b, int e, PairLists& o) { bvh_query_edges(s, sc.x, nodes, sc.r, b, e, o); });
+      });
+}
+
+// One substep of the hash: boxes and cells in parallel, the counting sort
+// serial (a parallel one needs per-thread histograms or atomics), three queries.
+void hash_step(const Scene& sc, SurfaceHash& h, const Runner& run, Timing& t) {
+  const auto& s = sc.layout;
+  run.clear();
+  auto start = Clock::now();
+  run.each_item(sc.n(), [&](int b, int e) {
+    hash_boxes(h.vertices, vertex_box_of(sc.x), b, e);
+    for (int i = b; i < e; ++i)
+      if (!is_surface(s, i)) h.vertices.cells[i] = {{0, 0, 0}, {-1, -1, -1}};
+  });
+  run.each_item(sc.tris(), [&](int b, int e) { hash_boxes(h.triangles, triangle_box_of(s, sc.x), b, e); });
+  run.each_item(sc.edges(), [&](int b, int e) { hash_boxes(h.edges, edge_box_of(s, sc.x), b, e); });
+  hash_fill(h.vertices);
+  hash_fill(h.triangles);
+  hash_fill(h.edges);
+  t.build.push_back(ms_since(start));
+  timed_queries(
+      t, [&] { run.each(sc.n(), [&](int b, int e, PairLists& o) { hash_query_vertices(s, sc.x, h, sc.r, b, e, o); }); },
+      [&] {
+        run.each(sc.tris(), [&](int b, int e, PairLists& o) { hash_query_triangles(s, sc.x, h, sc.r, b, e, o); });
+      },
+      [&] { run.each(sc.edges(), [&](int b, int e, PairLists& o) { hash_query_edges(s, sc.x, h, sc.r, b, e, o); }); });
+}
+
+void uptime(const char* when) {
+  std::fflush(stdout);
+  std::printf("%s: ", when);
+  std::fflush(stdout);
+  if (std::system("uptime") != 0) std::printf("(uptime failed)\n");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Broad phase: refitted BVH against a spatial hash"};
+  std::vector<int> sizes{128, 256, 512};
+  std::vector<float> cells{1.0f, 2.0f, 4.0f};
+  std::vector<int> thread_counts{1, 2};
+  int rounds = 5, brute_max = 128;
+  app.add_option("--sizes", sizes, "cloth grids N x N")->delimiter(',');
+  app.add_option("--cells", cells, "hash cell sizes, in query radii")->delimiter(',');
+  app.add_option("--threads", thread_counts, "thread counts (1: plain loops; more: TBB)")->delimiter(',');
+  app.add_option("--rounds", rounds, "interleaved rounds (the median is printed)");
+  app.add_option("--brute-max", brute_max, "largest N checked against brute force");
+  CLI11_PARSE(app, argc, argv);
+
+  uptime("load before");
+  bool ok = true;
+  std::vector<std::string> rows, parts;
+  for (int size : sizes) {
+    Scene sc;
+    const model::Model m = crumpled_sheet(size);
+    auto start = Clock::now();
+    sc.layout = solver::make_self_contact_layout(m);
+    const double layout_ms = ms_since(start);
+    sc.x = float_positions(m.particles.position);
+    sc.r = sc.layout.query_radius;
+
+    std::vector<Box> nodes(sc.layout.node_count());
+    std::vector<SurfaceHash> hashes(cells.size());
+    for (std::size_t c = 0; c < cells.size(); ++c) hash_resize(hashes[c], sc.layout, sc.n(), cells[c] * sc.r);
+
+    // Methods: 0 = BVH, 1 + c = hash with cells[c]; per thread count.
+    const int methods = 1 + static_cast<int>(cells.size());
+    std::vector<std::vector<Timing>> timing(thread_counts.size(), std::vector<Timing>(methods));
+    std::vector<std::vector<PairLists>> found(thread_counts.size(), std::vector<PairLists>(methods));
+    for (int round = 0; round <= rounds; ++round) {  // round 0: warm-up and the pair check
+      for (std::size_t ti = 0; ti < thread_counts.size(); ++ti) {
+        tbb::task_arena arena(thread_counts[ti]);
+        tbb::enumerable_thread_specific<PairLists> lists;
+        PairLists serial;
+        const Runner run{thread_counts[ti], &arena, &lists, &serial};
+        for (int method = 0; method < methods; ++method) {
+          Timing& t = timing[ti][method];
+          if (method == 0) {
+            bvh_step(sc, nodes, run, t);
+          } else {
+            hash_step(sc, hashes[method - 1], run, t);
+          }
+          if (round == 0) {
+            found[ti][method] = run.gathered();
+            t.clear();
+          }
+        }
+      }
+    }
+
+    const PairLists& bvh = found[0][0];
+    for (std::size_t ti = 0; ti < thread_counts.size(); ++ti) {
+      for (int method = 0; method < methods; ++method) {
+        if (!same_pairs(found[ti][method], bvh)) {
+          std::printf("FAIL: %d x %d, %d threads, method %d: pairs differ from the 1-thread BVH's\n", size, size,
+                      thread_counts[ti], method);
+          ok = false;
+        }
+      }
+    }
+    if (!transposes_agree(bvh)) {
+      std::printf("FAIL: %d x %d: per-triangle pairs are not the per-vertex pairs transposed\n", size, size);
+      ok = false;
+    }
+    std::string brute_note = "not checked";
+    if (size <= brute_max) {
+      tbb::enumerable_thread_specific<PairLists> lists;
+      const int count = std::max(sc.n(), sc.edges());
+      tbb::parallel_for(tbb::blocked_range<int>(0, count, 64), [&](const tbb::blocked_range<int>& r) {
+        brute_force_pairs(sc.layout, sc.x, sc.r, r.begin(), r.end(), lists.local());
+      });
+      PairLists brute;
+      for (const PairLists& l : lists) brute.append(l);
+      brute.sort();
+      if (same_pairs(brute, bvh)) {
+        brute_note = "equal";
+      } else {
+        std::printf("FAIL: %d x %d: the BVH's pairs differ from the brute force's (%zu vs %zu)\n", size, size,
+                    bvh.found(), brute.found());
+        ok = false;
+        brute_note = "DIFFER";
+      }
+    }
+    std::printf(
+        "%d x %d: %d triangles, %d edges, layout (BVH build, once) %.1f ms; pairs: %zu vertex-triangle "
+        "(found twice), %zu edge-edge (both ways); brute force: %s\n",
+        size, size, sc.tris(), sc.edges(), layout_ms, bvh.vt.size(), bvh.ee.size() / 2, brute_note.c_str());
+    std::fflush(stdout);
+
+    for (std::size_t ti = 0; ti < thread_counts.size(); ++ti) {
+      const double bvh_total = median(timing[ti][0].build) + median(timing[ti][0].query);
+      for (int method = 0; method < methods; ++method) {
+        const Timing& t = timing[ti][method];
+        std::vector<double> total(t.build.size());
+        for (std::size_t k = 0; k < total.size(); ++k) total[k] = t.build[k] + t.query[k];
+        const PairLists& f = found[ti][method];
+        const std::string name = method == 0 ? "BVH refit" : fmt::format("hash, cell {:g} r", cells[method - 1]);
+        const double tot = median(total);
+        rows.push_back(fmt::format("| {} | {} | {} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {:.2f} |", sc.n(),
+                                   thread_counts[ti], name, median(t.build), median(t.query), tot,
+                                   double(f.tested) / double(f.found()), tot / bvh_total));
+        parts.push_back(fmt::format("| {} | {} | {} | {:.2f} | {:.2f} | {:.2f} |", sc.n(), thread_counts[ti], name,
+                                    median(t.part[0]), median(t.part[1]), median(t.part[2])));
+      }
+    }
+  }
+  std::printf(
+      "\n| vertices | threads | broad phase | build/refit ms | query ms | total ms/substep | tested / pair "
+      "found | total / BVH total |\n|---:|---:|---|---:|---:|---:|---:|---:|\n");
+  for (const auto& row : rows) std::printf("%s\n", row.c_str());
+  std::printf(
+      "\nThe query ms per kind (medians):\n\n| vertices | threads | broad phase | per vertex the triangles | "
+      "per triangle the vertices | per edge the edges |\n|---:|---:|---|---:|---:|---:|\n");
+  for (const auto& row : parts) std::printf("%s\n", row.c_str());
+  uptime("load after");
+  if (!ok) std::printf("FAIL: the broad phases disagree (see above)\n");
+  return ok ? 0 : 1;
+}
