@@ -8,14 +8,14 @@
 
 #include "common/collider_distance.h"
 
-#define SC_VERTEX_TERMS_BODY                                          \
-  if (!on || x[i].w == 0.0f || !sc_is_surface(inc, i)) return s;     \
-  SC_FOR_EACH_PAIR({                                                  \
-    if (g.d < r) {                                                    \
-      s.f = ats_sub(s.f, ats_pair_gradient(g, k, r, slot));           \
-      s.h = ats_m3_add(s.h, ats_pair_hessian(g, k, r, slot, slot));   \
-    }                                                                 \
-  })                                                                  \
+#define SC_VERTEX_TERMS_BODY                                        \
+  if (!on || x[i].w == 0.0f || !sc_is_surface(inc, i)) return s;    \
+  SC_FOR_EACH_PAIR({                                                \
+    if (g.d < r) {                                                  \
+      s.f = ats_sub(s.f, ats_pair_gradient(g, k, r, slot));         \
+      s.h = ats_m3_add(s.h, ats_pair_hessian(g, k, r, slot, slot)); \
+    }                                                               \
+  })                                                                \
   return s;
 
 /* Jacobi methods (SOSD, JPGD): every vertex reads the same x. */
@@ -41,8 +41,8 @@ static inline vertex_system add_self_contact_terms_gs(vertex_system s, int i, __
                                                       __global const float4* x_iter, __global const int* color,
                                                       __global const int4* tris, __global const int2* edges,
                                                       __global const int* inc, int n, __global const int* vt,
-                                                      __global const int* tv, __global const int* ee, float k,
-                                                      float r, int on) {
+                                                      __global const int* tv, __global const int* ee, float k, float r,
+                                                      int on) {
   SC_VERTEX_TERMS_BODY
 }
 #undef SC_AT

@@ -24,11 +24,11 @@ constexpr std::array<std::string_view, 8> kObjectKeys{"name", "type",      "grid
                                                       "mesh", "transform", "material", "pins"};
 constexpr std::array<std::string_view, 2> kGridKeys{"size", "resolution"};
 constexpr std::array<std::string_view, 3> kTransformKeys{"translate", "rotate", "scale"};
-constexpr std::array<std::string_view, 13> kMaterialKeys{
-    "density",         "stretch_stiffness", "stretch_compliance", "bend_stiffness",
-    "bend_compliance", "bend_model",        "youngs_modulus",     "poisson_ratio",
-    "model",           "damping",           "shear_stiffness",    "bend_spring_stiffness",
-    "friction"};
+constexpr std::array<std::string_view, 13> kMaterialKeys{"density",        "stretch_stiffness", "stretch_compliance",
+                                                         "bend_stiffness", "bend_compliance",   "bend_model",
+                                                         "youngs_modulus", "poisson_ratio",     "model",
+                                                         "damping",        "shear_stiffness",   "bend_spring_stiffness",
+                                                         "friction"};
 // Keys that only one object type takes; on the other type they are an error
 // that says so, rather than being silently ignored.
 constexpr std::array<std::string_view, 7> kClothOnlyMaterialKeys{

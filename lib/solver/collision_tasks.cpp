@@ -47,14 +47,13 @@ sched::TaskId add_friction_task(plan::SubstepPlan& plan, sched::TaskId last, con
                                 plan::BufferId start_positions, plan::BufferId velocities, double substep_dt) {
   if (layout.colliders.empty()) return last;
   const int n = static_cast<int>(layout.x.size());
-  return plan.add_task_after(
-      last, plan::make_task("friction", plan::TaskKind::friction),
-      {"particles_friction",
-       {0, n},
-       {Arg::of_buffer(positions), Arg::of_buffer(start_positions), Arg::of_buffer(velocities),
-        Arg::of_buffer(colliders), Arg::of_int(layout.collider_count), Arg::of_float(static_cast<float>(substep_dt)),
-        Arg::of_buffer(friction)},
-       {particle_write(positions)}});
+  return plan.add_task_after(last, plan::make_task("friction", plan::TaskKind::friction),
+                             {"particles_friction",
+                              {0, n},
+                              {Arg::of_buffer(positions), Arg::of_buffer(start_positions), Arg::of_buffer(velocities),
+                               Arg::of_buffer(colliders), Arg::of_int(layout.collider_count),
+                               Arg::of_float(static_cast<float>(substep_dt)), Arg::of_buffer(friction)},
+                              {particle_write(positions)}});
 }
 
 }  // namespace atssim::solver

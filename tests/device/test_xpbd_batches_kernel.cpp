@@ -68,7 +68,8 @@ TEST_CASE("the batched sweep on the device equals the host serial loop over the 
 
   const double to_same = max_difference(device_x, same_order.state().x);
   const double to_colors = max_difference(device_x, colors.state().x);
-  INFO(executor << " " << material << ": max |dx| to the same order " << to_same << ", to the color order " << to_colors);
+  INFO(executor << " " << material << ": max |dx| to the same order " << to_same << ", to the color order "
+                << to_colors);
   CHECK(to_same < 1e-5);
   // The order matters: the color order's result is farther than the tolerance.
   CHECK(to_colors > 10 * to_same);

@@ -29,7 +29,7 @@ struct SimLayout {
   Float4 gravity;
   bool has_ground = false;  // a ground plane y = ground_y (collision task after each iteration)
   float ground_y = 0.0f;
-  float air_drag = 0.0f;                  // c in 1/s: force −m·c·v on every free particle
+  float air_drag = 0.0f;  // c in 1/s: force −m·c·v on every free particle
   // Per particle: its material's Coulomb mu_s, mu_k (`material.friction`);
   // -1: unset (a collider's own, or contact.friction, then decide).
   std::vector<std::array<float, 2>> friction;

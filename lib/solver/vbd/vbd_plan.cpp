@@ -31,15 +31,16 @@ plan::SubstepPlan make_vbd_plan(const SimLayout& layout, double substep_dt, int 
   for (int c = 0; contact && c < vertices.colors.count(); ++c) {
     for (int k = vertices.colors.offsets[c]; k < vertices.colors.offsets[c + 1]; ++k) color_of[(*order)[k]] = c;
   }
-  const plan::BufferId x_iter = plan.add_buffer("sc_x_iter", plan::BufferRole::scratch,
-                                                std::vector<std::byte>(color_of.size() * kParticleBytes));
+  const plan::BufferId x_iter =
+      plan.add_buffer("sc_x_iter", plan::BufferRole::scratch, std::vector<std::byte>(color_of.size() * kParticleBytes));
   const plan::BufferId color = plan.add_buffer("sc_color", plan::BufferRole::topology, plan::bytes_of(color_of));
   const auto snapshot = [&](int iteration, const std::string& name) {
     if (!contact) return;
-    last = plan.add_task_after(
-        last, plan::make_task(name, plan::TaskKind::collision, iteration, 4),
-        {"particles_copy", {0, n}, {plan::KernelArg::of_buffer(x_iter), plan::KernelArg::of_buffer(b.x)},
-         {particle_write(x_iter)}});
+    last = plan.add_task_after(last, plan::make_task(name, plan::TaskKind::collision, iteration, 4),
+                               {"particles_copy",
+                                {0, n},
+                                {plan::KernelArg::of_buffer(x_iter), plan::KernelArg::of_buffer(b.x)},
+                                {particle_write(x_iter)}});
   };
   snapshot(-1, "contact/iteration_start");
   for (int it = 0; it < iterations; ++it) {
