@@ -172,7 +172,7 @@ std::string tilted_patch_materials(double plane, double cloth) {
 
 }  // namespace
 
-TEST_CASE("friction per material: a plane without friction takes the cloth's; with both, their mean (every method)",
+TEST_CASE("friction per material: a plane without friction takes the cloth's, with both their mean (every method)",
           "[contact][friction]") {
   const std::string method = GENERATE("xpbd", "vbd", "sosd", "jpgd");
   INFO(method);

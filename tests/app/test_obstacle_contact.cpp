@@ -244,7 +244,7 @@ test::SimpleMesh read_obj(const std::string& path) {
 }  // namespace
 
 TEST_CASE(
-    "a sphere on keyframes pushes cloth into a funnel mesh; no vertex gets into the funnel's or the sphere's "
+    "a sphere on keyframes pushes cloth into a funnel mesh, no vertex gets into the funnel's or the sphere's "
     "thickness (every method, single and heft)",
     "[contact][mesh][kinematic]") {
   const std::string method = GENERATE("xpbd", "vbd", "sosd", "jpgd");

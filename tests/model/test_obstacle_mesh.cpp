@@ -33,7 +33,7 @@ bool contains(const model::BvhNode& n, const Vector3d& p) {
 
 }  // namespace
 
-TEST_CASE("a tetrahedron is closed and turned outward; a sheet is open") {
+TEST_CASE("a tetrahedron is closed and turned outward, a sheet is open") {
   const model::ObstacleMesh out = model::make_obstacle_mesh(kTetVertices, kTetOutward, {1, 1, 1});
   CHECK(out.closed);
   std::vector<std::array<int, 3>> inward = kTetOutward;

@@ -30,7 +30,7 @@ std::string error_of(const std::string& colliders) {
 
 }  // namespace
 
-TEST_CASE("a collider's velocity and angular velocity are read; without them it is still") {
+TEST_CASE("a collider's velocity and angular velocity are read, without them it is still") {
   const auto s = scene::parse_scene(kCloth +
                                         "  - {type: sphere, center: [0, 0, 0], radius: 0.1, velocity: [1, 2, 3],\n"
                                         "     angular_velocity: [0, 0.5, 0]}\n"

@@ -63,7 +63,7 @@ TEST_CASE("The same fork with a fixed hop (unified memory) ignores the bytes", "
   CHECK(s.makespan_ms == Approx(6.1));
 }
 
-TEST_CASE("HEFT cannot see the copies its choices force later; one device is kept when it ends sooner", "[heft]") {
+TEST_CASE("HEFT cannot see the copies its choices force later, one device is kept when it ends sooner", "[heft]") {
   // The fork again, with 1 000 bytes on A→B, A→C and 250 000 on B→D, C→D
   // at 4e-5 ms per byte (no latency): 0.04 ms into the branches, 10 ms out.
   // HEFT: A, B on d0 (end 5); C on d1 ends 1 + 0.04 + 4 = 5.04 < 9 on d0;

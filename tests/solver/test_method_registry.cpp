@@ -48,7 +48,7 @@ TEST_CASE("the registry names five methods once each, and every description is c
   CHECK_FALSE(solver::method("explicit").gauss_seidel);
 }
 
-TEST_CASE("a named option takes one of its names, read as its index; another name is refused with a guess") {
+TEST_CASE("a named option takes one of its names, read as its index, another name is refused with a guess") {
   const auto s = solver::method_settings(cloth({"solver.integrator=rk4"}), solver::method("explicit"));
   CHECK(s.option("integrator") == 2.0);
   CHECK(s.option("allow_unstable") == 0.0);  // default: false

@@ -128,7 +128,7 @@ TEST_CASE("the distance to an open mesh is unsigned on both sides and matches br
   CHECK(near > 300);
 }
 
-TEST_CASE("the contact record measures a mesh however far it is; the kernels see contact only within reach") {
+TEST_CASE("the contact record measures a mesh however far it is, the kernels see contact only within reach") {
   const test::SimpleMesh sphere = test::obstacle_icosphere(0.3, 1);
   const std::vector<ats_collider_c> records = mesh_records(sphere, {1, 1, 1}, {0, 0, 0}, {0, 0, 0}, 0.01);
   const std::vector<float> far{0.0f, 2.0f, 0.0f};
