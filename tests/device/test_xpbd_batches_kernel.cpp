@@ -4,11 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 
 #include "device/device_set.hpp"
 #include "device/plan_executor.hpp"
 #include "model/cloth_builder.hpp"
+#include "plan/buffer.hpp"
 #include "scene/scene_loader.hpp"
 #include "solver/xpbd/xpbd_batches.hpp"
 #include "solver/xpbd/xpbd_reference.hpp"
@@ -19,12 +19,6 @@ using namespace atssim::solver;
 using namespace atssim::solver::xpbd;
 
 namespace {
-
-std::vector<Float4> as_float4(const std::vector<std::byte>& raw) {
-  std::vector<Float4> out(raw.size() / sizeof(Float4));
-  std::memcpy(out.data(), raw.data(), raw.size());
-  return out;
-}
 
 double max_difference(const std::vector<Float4>& a, const std::vector<Float4>& b) {
   double d = 0.0;
@@ -59,7 +53,7 @@ TEST_CASE("the batched sweep on the device equals the host serial loop over the 
   options.kind = executor == "fused" ? device::ExecutorKind::fused : device::ExecutorKind::events;
   device::PlanExecutor exec(devices, plan, options);
   exec.run_substeps(1);
-  const auto device_x = as_float4(exec.read(ids.x));
+  const auto device_x = plan::values_of<Float4>(exec.read(ids.x));
 
   XpbdReference same_order(in_batch_order(start), {settings.substep_dt, settings.iterations});
   same_order.substep();
