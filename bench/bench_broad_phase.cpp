@@ -110,6 +110,7 @@ void timed_queries(Timing& t, V&& vertices, T&& triangles, E&& edges) {
 struct Scene {
   solver::SelfContactLayout layout;
   std::vector<ats_vec3> x;
+  std::vector<Float4> xf;  // the same, as the kernels' float4
   float r = 0.0f;
   int n() const { return static_cast<int>(x.size()); }
   int tris() const { return static_cast<int>(layout.tris.size()); }
@@ -117,11 +118,10 @@ struct Scene {
 };
 
 // One substep of the BVH: refit (leaf boxes, then level by level), three queries.
-void bvh_step(const Scene& sc, std::vector<Box>& nodes, const Runner& run, Timing& t) {
+void bvh_refit_timed(const Scene& sc, std::vector<Float4>& nodes, const Runner& run, Timing& t) {
   const auto& s = sc.layout;
-  run.clear();
   auto start = Clock::now();
-  run.each_item(sc.tris(), [&](int b, int e) { bvh_leaf_boxes(s, sc.x, nodes, b, e); });
+  run.each_item(sc.tris(), [&](int b, int e) { bvh_leaf_boxes(s, sc.xf, nodes, b, e); });
   for (int l = 1; l <= s.root(); ++l) {
     const int size = bvh_level_size(s, l);
     if (size > 256) {
@@ -131,6 +131,12 @@ void bvh_step(const Scene& sc, std::vector<Box>& nodes, const Runner& run, Timin
     }
   }
   t.build.push_back(ms_since(start));
+}
+
+void bvh_step(const Scene& sc, std::vector<Float4>& nodes, const Runner& run, Timing& t) {
+  run.clear();
+  bvh_refit_timed(sc, nodes, run, t);
+  const auto& s = sc.layout;
   timed_queries(
       t,
       [&] { run.each(sc.n(), [&](int b, int e, PairLists& o) { bvh_query_vertices(s, sc.x, nodes, sc.r, b, e, o); }); },
@@ -140,6 +146,33 @@ void bvh_step(const Scene& sc, std::vector<Box>& nodes, const Runner& run, Timin
       [&] {
         run.each(sc.edges(), [&](int b, int e, PairLists& o) { bvh_query_edges(s, sc.x, nodes, sc.r, b, e, o); });
       });
+}
+
+// One substep of the device's own detection: refit, then the kernels' three
+// queries (8 nearest per primitive), as the device runs them.
+void kernel_step(const Scene& sc, std::vector<Float4>& nodes, KernelLists& lists, const Runner& run, Timing& t) {
+  run.clear();
+  bvh_refit_timed(sc, nodes, run, t);
+  const auto& s = sc.layout;
+  const auto kind = [&](int k, int count) {
+    return [&, k, count] {
+      run.each_item(count, [&](int b, int e) { bvh_kernel_lists(s, sc.xf, nodes, sc.r, k, b, e, lists); });
+    };
+  };
+  timed_queries(t, kind(0, sc.n()), kind(1, sc.tris()), kind(2, sc.edges()));
+}
+
+// The same lists from one walk per leaf (sc_query_leaves), timed as one
+// query (its time stands in the per-triangle column).
+void leaf_step(const Scene& sc, std::vector<Float4>& nodes, KernelLists& lists, const Runner& run, Timing& t) {
+  run.clear();
+  bvh_refit_timed(sc, nodes, run, t);
+  timed_queries(
+      t, [] {},
+      [&] {
+        run.each_item(sc.tris(), [&](int b, int e) { bvh_leaf_lists(sc.layout, sc.xf, nodes, sc.r, b, e, lists); });
+      },
+      [] {});
 }
 
 // One substep of the hash: boxes and cells in parallel, the counting sort
@@ -199,14 +232,21 @@ int main(int argc, char** argv) {
     sc.layout = solver::make_self_contact_layout(m);
     const double layout_ms = ms_since(start);
     sc.x = float_positions(m.particles.position);
+    sc.xf = float4_positions(sc.x);
     sc.r = sc.layout.query_radius;
 
-    std::vector<Box> nodes(sc.layout.node_count());
+    std::vector<Float4> nodes(2 * std::size_t(sc.layout.node_count()));
+    KernelLists kernel_lists, leaf_lists;
+    kernel_lists.resize(sc.layout, sc.x.size());
+    leaf_lists.resize(sc.layout, sc.x.size());
     std::vector<SurfaceHash> hashes(cells.size());
     for (std::size_t c = 0; c < cells.size(); ++c) hash_resize(hashes[c], sc.layout, sc.n(), cells[c] * sc.r);
 
-    // Methods: 0 = BVH, 1 + c = hash with cells[c]; per thread count.
-    const int methods = 1 + static_cast<int>(cells.size());
+    // Methods: 0 = BVH, 1 = the three queries keeping the 8 nearest, 2 = the
+    // kernels' one walk per leaf (1 and 2: lists, compared with each other,
+    // not pair for pair), 3 + c = hash with cells[c]; per thread count.
+    constexpr int kKernel = 1, kLeaf = 2, kFirstHash = 3;
+    const int methods = kFirstHash + static_cast<int>(cells.size());
     std::vector<std::vector<Timing>> timing(thread_counts.size(), std::vector<Timing>(methods));
     std::vector<std::vector<PairLists>> found(thread_counts.size(), std::vector<PairLists>(methods));
     for (int round = 0; round <= rounds; ++round) {  // round 0: warm-up and the pair check
@@ -219,8 +259,12 @@ int main(int argc, char** argv) {
           Timing& t = timing[ti][method];
           if (method == 0) {
             bvh_step(sc, nodes, run, t);
+          } else if (method == kKernel) {
+            kernel_step(sc, nodes, kernel_lists, run, t);
+          } else if (method == kLeaf) {
+            leaf_step(sc, nodes, leaf_lists, run, t);
           } else {
-            hash_step(sc, hashes[method - 1], run, t);
+            hash_step(sc, hashes[method - kFirstHash], run, t);
           }
           if (round == 0) {
             found[ti][method] = run.gathered();
@@ -233,12 +277,17 @@ int main(int argc, char** argv) {
     const PairLists& bvh = found[0][0];
     for (std::size_t ti = 0; ti < thread_counts.size(); ++ti) {
       for (int method = 0; method < methods; ++method) {
+        if (method == kKernel || method == kLeaf) continue;
         if (!same_pairs(found[ti][method], bvh)) {
           std::printf("FAIL: %d x %d, %d threads, method %d: pairs differ from the 1-thread BVH's\n", size, size,
                       thread_counts[ti], method);
           ok = false;
         }
       }
+    }
+    if (kernel_lists.vt != leaf_lists.vt || kernel_lists.tv != leaf_lists.tv || kernel_lists.ee != leaf_lists.ee) {
+      std::printf("FAIL: %d x %d: one walk per leaf left other lists than the three queries\n", size, size);
+      ok = false;
     }
     if (!transposes_agree(bvh)) {
       std::printf("FAIL: %d x %d: per-triangle pairs are not the per-vertex pairs transposed\n", size, size);
@@ -276,11 +325,15 @@ int main(int argc, char** argv) {
         std::vector<double> total(t.build.size());
         for (std::size_t k = 0; k < total.size(); ++k) total[k] = t.build[k] + t.query[k];
         const PairLists& f = found[ti][method];
-        const std::string name = method == 0 ? "BVH refit" : fmt::format("hash, cell {:g} r", cells[method - 1]);
+        const std::string name = method == 0         ? "BVH refit"
+                                 : method == kKernel ? "BVH refit, three queries, 8 nearest (before)"
+                                 : method == kLeaf   ? "BVH refit, one walk per leaf, 8 nearest (the kernels)"
+                                                     : fmt::format("hash, cell {:g} r", cells[method - kFirstHash]);
+        const double per_pair = method == kKernel || method == kLeaf ? 0.0 : double(f.tested) / double(f.found());
         const double tot = median(total);
         rows.push_back(fmt::format("| {} | {} | {} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {:.2f} |", sc.n(),
-                                   thread_counts[ti], name, median(t.build), median(t.query), tot,
-                                   double(f.tested) / double(f.found()), tot / bvh_total));
+                                   thread_counts[ti], name, median(t.build), median(t.query), tot, per_pair,
+                                   tot / bvh_total));
         parts.push_back(fmt::format("| {} | {} | {} | {:.2f} | {:.2f} | {:.2f} |", sc.n(), thread_counts[ti], name,
                                     median(t.part[0]), median(t.part[1]), median(t.part[2])));
       }

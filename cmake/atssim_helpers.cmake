@@ -34,4 +34,6 @@ function(atssim_add_test name)
     WORKING_DIRECTORY ${PROJECT_BINARY_DIR}
     PROPERTIES ${props}
     DISCOVERY_MODE PRE_TEST)
+  add_test(NAME ${name}.test_names_have_no_semicolon
+           COMMAND ${CMAKE_COMMAND} -DEXE=$<TARGET_FILE:${name}> -P ${PROJECT_SOURCE_DIR}/cmake/check_test_names.cmake)
 endfunction()

@@ -1,70 +1,62 @@
 #pragma once
-// The device's broad phase on the host, step for step: the implicit BVH of
-// solver/layout/self_contact_layout (built once) refitted from the leaf
-// boxes up (sc_leaf_boxes, sc_refit_level, sc_refit_top) and walked
-// depth-first with the kernels' 64-entry stack (sc_walk_next); per vertex
-// the triangles, per triangle the vertices its leaves own, per edge the
-// edges its leaves own (kernels/contact/self_contact.cl).
+// The device's broad phase on the host: the kernels' own code
+// (kernels/common/self_contact_bvh.h, compiled here) refits the implicit BVH
+// of solver/layout/self_contact_layout (built once) from the leaf boxes up
+// and walks it depth-first; per vertex the triangles, per triangle the
+// vertices its leaves own, per edge the edges its leaves own. Unlike the
+// kernels' queries (bvh_kernel_lists below), every pair is kept, so two
+// broad phases can be compared pair for pair.
 #include <vector>
 
 #include "broad_phase/surface_pairs.hpp"
+#include "solver/layout/sim_layout.hpp"
+
+#define ats_float4 ::atssim::solver::Float4
+#include "common/self_contact_bvh.h"
 
 namespace atssim::bench {
 
-// nodes[g]: the box of node g = levels[l] + j (level 0: the leaves).
-inline void bvh_leaf_boxes(const SelfContactLayout& s, const std::vector<ats_vec3>& x, std::vector<Box>& nodes,
-                           int begin, int end) {
-  for (int t = begin; t < end; ++t) nodes[t] = triangle_box(x[s.tris[t][0]], x[s.tris[t][1]], x[s.tris[t][2]], 0.0f);
+using solver::Float4;
+
+// The kernels' positions (float4, w unused here) of the bench's points.
+inline std::vector<Float4> float4_positions(const std::vector<ats_vec3>& x) {
+  std::vector<Float4> out(x.size());
+  for (std::size_t i = 0; i < x.size(); ++i) out[i] = {x[i].x, x[i].y, x[i].z, 1.0f};
+  return out;
 }
 
-// Nodes [begin, end) of level l from their children (sc_union).
-inline void bvh_refit_level(const SelfContactLayout& s, std::vector<Box>& nodes, int l, int begin, int end) {
-  const int offset = s.levels[l], child_offset = s.levels[l - 1], children = s.levels[l] - s.levels[l - 1];
-  for (int j = begin; j < end; ++j) {
-    Box b = nodes[child_offset + 2 * j];
-    if (2 * j + 1 < children) {
-      const Box& o = nodes[child_offset + 2 * j + 1];
-      for (int k = 0; k < 3; ++k) {
-        b.lo[k] = std::fmin(b.lo[k], o.lo[k]);
-        b.hi[k] = std::fmax(b.hi[k], o.hi[k]);
-      }
-    }
-    nodes[offset + j] = b;
-  }
+// nodes: two float4 per node (sc_leaf_boxes).
+inline void bvh_leaf_boxes(const SelfContactLayout& s, const std::vector<Float4>& x, std::vector<Float4>& nodes,
+                           int begin, int end) {
+  for (int t = begin; t < end; ++t) sc_leaf_box(t, x.data(), s.tris[0].data(), nodes.data());
+}
+
+// Nodes [begin, end) of level l from their children (sc_refit_level).
+inline void bvh_refit_level(const SelfContactLayout& s, std::vector<Float4>& nodes, int l, int begin, int end) {
+  for (int j = begin; j < end; ++j)
+    sc_refit_node(nodes.data(), s.levels[l] + j, s.levels[l - 1], 2 * j, s.levels[l] - s.levels[l - 1]);
 }
 
 inline int bvh_level_size(const SelfContactLayout& s, int l) { return s.levels[l + 1] - s.levels[l]; }
 
-// Calls leaf(j) for every leaf whose box overlaps q, in the kernels' order.
+inline sc_box sc_box_of(const Box& b) {
+  sc_box out;
+  out.lo = ats_v3(b.lo[0], b.lo[1], b.lo[2]);
+  out.hi = ats_v3(b.hi[0], b.hi[1], b.hi[2]);
+  return out;
+}
+
+// Calls leaf(j) for every leaf whose box overlaps q, in the kernels' order (sc_walk_next).
 template <typename Leaf>
-void bvh_walk(const SelfContactLayout& s, const std::vector<Box>& nodes, const Box& q, Leaf&& leaf) {
-  constexpr int kStack = 64;  // ATS_SC_STACK
-  int level[kStack], index[kStack];
-  int top = 1;
-  level[0] = s.root();
-  index[0] = 0;
-  while (top > 0) {
-    --top;
-    const int l = level[top], j = index[top];
-    if (!overlap(nodes[s.levels[l] + j], q)) continue;
-    if (l == 0) {
-      leaf(j);
-      continue;
-    }
-    const int children = s.levels[l] - s.levels[l - 1];
-    if (2 * j + 1 < children && top < kStack) {
-      level[top] = l - 1;
-      index[top++] = 2 * j + 1;
-    }
-    if (top < kStack) {
-      level[top] = l - 1;
-      index[top++] = 2 * j;
-    }
-  }
+void bvh_walk(const SelfContactLayout& s, const std::vector<Float4>& nodes, const Box& box, Leaf&& leaf) {
+  const sc_box q = sc_box_of(box);
+  sc_walk w;
+  sc_walk_begin(&w, nodes.data(), s.levels.data(), s.root(), q);
+  for (int j; (j = sc_walk_next(&w, nodes.data(), s.levels.data(), q)) >= 0;) leaf(j);
 }
 
 inline void bvh_query_vertices(const SelfContactLayout& s, const std::vector<ats_vec3>& x,
-                               const std::vector<Box>& nodes, float r, int begin, int end, PairLists& out) {
+                               const std::vector<Float4>& nodes, float r, int begin, int end, PairLists& out) {
   for (int i = begin; i < end; ++i) {
     if (!is_surface(s, i)) continue;
     bvh_walk(s, nodes, point_box(x[i], r), [&](int t) { test_vertex_triangle(s, x, i, t, r, out, true); });
@@ -72,7 +64,7 @@ inline void bvh_query_vertices(const SelfContactLayout& s, const std::vector<ats
 }
 
 inline void bvh_query_triangles(const SelfContactLayout& s, const std::vector<ats_vec3>& x,
-                                const std::vector<Box>& nodes, float r, int begin, int end, PairLists& out) {
+                                const std::vector<Float4>& nodes, float r, int begin, int end, PairLists& out) {
   for (int t = begin; t < end; ++t) {
     const auto& f = s.tris[t];
     bvh_walk(s, nodes, triangle_box(x[f[0]], x[f[1]], x[f[2]], r), [&](int u) {
@@ -82,8 +74,8 @@ inline void bvh_query_triangles(const SelfContactLayout& s, const std::vector<at
   }
 }
 
-inline void bvh_query_edges(const SelfContactLayout& s, const std::vector<ats_vec3>& x, const std::vector<Box>& nodes,
-                            float r, int begin, int end, PairLists& out) {
+inline void bvh_query_edges(const SelfContactLayout& s, const std::vector<ats_vec3>& x,
+                            const std::vector<Float4>& nodes, float r, int begin, int end, PairLists& out) {
   for (int e = begin; e < end; ++e) {
     bvh_walk(s, nodes, edge_box(x[s.edges[e][0]], x[s.edges[e][1]], r), [&](int u) {
       for (int k = 4; k < 7; ++k)
@@ -92,14 +84,50 @@ inline void bvh_query_edges(const SelfContactLayout& s, const std::vector<ats_ve
   }
 }
 
+// The three queries, one walk each (sc_query_vertex / _triangle / _edge:
+// the 8 nearest of each primitive), for [begin, end) of one kind (0: per
+// vertex, 1: per triangle, 2: per edge), into lists of ATS_SC_STRIDE ints.
+struct KernelLists {
+  std::vector<int> vt, tv, ee;
+  void resize(const SelfContactLayout& s, std::size_t n) {
+    vt.resize(n * ATS_SC_STRIDE);
+    tv.resize(s.tris.size() * ATS_SC_STRIDE);
+    ee.resize(s.edges.size() * ATS_SC_STRIDE);
+  }
+};
+
+inline void bvh_kernel_lists(const SelfContactLayout& s, const std::vector<Float4>& x, const std::vector<Float4>& nodes,
+                             float r, int kind, int begin, int end, KernelLists& out) {
+  const int* tris = s.tris[0].data();
+  const int* edges = s.edges[0].data();
+  const int* leaves = s.leaves[0].data();
+  for (int k = begin; k < end; ++k) {
+    if (kind == 0)
+      sc_query_vertex(k, x.data(), s.incidence.data(), tris, nodes.data(), s.levels.data(), s.root(), r, out.vt.data());
+    if (kind == 1)
+      sc_query_triangle(k, x.data(), tris, leaves, nodes.data(), s.levels.data(), s.root(), r, out.tv.data());
+    if (kind == 2) sc_query_edge(k, x.data(), edges, leaves, nodes.data(), s.levels.data(), s.root(), r, out.ee.data());
+  }
+}
+
+// The kernels' detection as the device runs it (sc_query_leaves): all three
+// queries of leaves [begin, end) in one walk each.
+inline void bvh_leaf_lists(const SelfContactLayout& s, const std::vector<Float4>& x, const std::vector<Float4>& nodes,
+                           float r, int begin, int end, KernelLists& out) {
+  for (int u = begin; u < end; ++u)
+    sc_query_leaf(u, x.data(), s.incidence.data(), s.tris[0].data(), s.edges[0].data(), s.leaves[0].data(),
+                  nodes.data(), s.levels.data(), s.root(), r, out.vt.data(), out.tv.data(), out.ee.data());
+}
+
 // One substep's detection, single-threaded: refit, then the three queries.
-inline void bvh_refit(const SelfContactLayout& s, const std::vector<ats_vec3>& x, std::vector<Box>& nodes) {
-  nodes.resize(s.node_count());
-  bvh_leaf_boxes(s, x, nodes, 0, static_cast<int>(s.tris.size()));
+inline void bvh_refit(const SelfContactLayout& s, const std::vector<ats_vec3>& x, std::vector<Float4>& nodes) {
+  nodes.resize(2 * std::size_t(s.node_count()));
+  const std::vector<Float4> xf = float4_positions(x);
+  bvh_leaf_boxes(s, xf, nodes, 0, static_cast<int>(s.tris.size()));
   for (int l = 1; l <= s.root(); ++l) bvh_refit_level(s, nodes, l, 0, bvh_level_size(s, l));
 }
 
-inline void bvh_query(const SelfContactLayout& s, const std::vector<ats_vec3>& x, const std::vector<Box>& nodes,
+inline void bvh_query(const SelfContactLayout& s, const std::vector<ats_vec3>& x, const std::vector<Float4>& nodes,
                       float r, PairLists& out) {
   bvh_query_vertices(s, x, nodes, r, 0, static_cast<int>(x.size()), out);
   bvh_query_triangles(s, x, nodes, r, 0, static_cast<int>(s.tris.size()), out);

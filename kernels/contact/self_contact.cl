@@ -4,10 +4,10 @@
  *   sc_leaf_boxes, sc_refit_level, sc_refit_top: refit the BVH over the
  *     surface triangles (built once on the host, solver/layout/
  *     self_contact_layout), one task per level up to the small top levels;
- *   sc_query_vertices / _triangles / _edges: per vertex the triangles, per
- *     triangle the vertices and per edge the edges within the query radius
- *     (incident pairs excluded), the ATS_SC_CAPACITY nearest of each, and
- *     the nearest distance;
+ *   sc_query_leaves: per vertex the triangles, per triangle the vertices and
+ *     per edge the edges within the query radius (incident pairs excluded),
+ *     the ATS_SC_CAPACITY nearest of each, and the nearest distance, in one
+ *     walk per leaf for the primitives it owns;
  *   sc_bound: per vertex the conservative displacement bound of VBD:
  *     gamma times the distance to the nearest primitive it could meet
  *     (as a point, through its triangles, through its edges), so that no
@@ -22,193 +22,30 @@
  * (float bits), ids of the nearest first]. */
 #include "common/ats_math.h"
 #include "common/self_contact.h"
+#include "common/self_contact_bvh.h"
 #include "common/task.h"
 
-#define ATS_SC_CAPACITY 8
-#define ATS_SC_STRIDE (ATS_SC_CAPACITY + 2)
-#define ATS_SC_STACK 64
-
-static inline ats_vec3 sc_v(float4 p) { return ats_v3(p.x, p.y, p.z); }
-
-typedef struct {
-  int count;
-  float nearest;
-  int id[ATS_SC_CAPACITY];
-  float d[ATS_SC_CAPACITY];
-} sc_list;
-
-static inline void sc_list_insert(sc_list* l, int id, float d) {
-  if (d < l->nearest) l->nearest = d;
-  int k;
-  if (l->count < ATS_SC_CAPACITY) {
-    k = l->count++;
-  } else {
-    if (!(d < l->d[ATS_SC_CAPACITY - 1])) return;
-    k = ATS_SC_CAPACITY - 1;
-  }
-  while (k > 0 && l->d[k - 1] > d) {
-    l->d[k] = l->d[k - 1];
-    l->id[k] = l->id[k - 1];
-    --k;
-  }
-  l->d[k] = d;
-  l->id[k] = id;
-}
-
-static inline void sc_list_store(const sc_list* l, __global int* out) {
-  out[0] = l->count;
-  out[1] = as_int(l->nearest);
-  for (int k = 0; k < l->count; ++k) out[2 + k] = l->id[k];
-}
-
-/* Depth-first walk of the implicit tree: node j of level l (level 0: the
- * leaves, i.e. the triangles in leaf order) has children 2j, 2j + 1 of
- * level l - 1; nodes[2 g], nodes[2 g + 1] are the box of node g = levels[l] + j. */
-typedef struct {
-  int level[ATS_SC_STACK];
-  int index[ATS_SC_STACK];
-  int top;
-} sc_walk;
-
-static inline void sc_walk_begin(sc_walk* w, int root) {
-  w->level[0] = root;
-  w->index[0] = 0;
-  w->top = 1;
-}
-
-/* The next leaf whose box overlaps [lo, hi], or -1. */
-static inline int sc_walk_next(sc_walk* w, __global const float4* nodes, __global const int* levels, float4 lo,
-                               float4 hi) {
-  while (w->top > 0) {
-    --w->top;
-    const int l = w->level[w->top], j = w->index[w->top];
-    const int g = levels[l] + j;
-    const float4 bmin = nodes[2 * g], bmax = nodes[2 * g + 1];
-    if (bmin.x > hi.x || bmin.y > hi.y || bmin.z > hi.z || bmax.x < lo.x || bmax.y < lo.y || bmax.z < lo.z) continue;
-    if (l == 0) return j;
-    const int children = levels[l] - levels[l - 1];
-    if (2 * j + 1 < children && w->top < ATS_SC_STACK) {
-      w->level[w->top] = l - 1;
-      w->index[w->top] = 2 * j + 1;
-      ++w->top;
-    }
-    if (w->top < ATS_SC_STACK) {
-      w->level[w->top] = l - 1;
-      w->index[w->top] = 2 * j;
-      ++w->top;
-    }
-  }
-  return -1;
-}
-
 ATS_TASK void sc_leaf_boxes(int t, __global const float4* x, __global const int4* tris, __global float4* nodes) {
-  const int4 f = tris[t];
-  const float4 a = x[f.x], b = x[f.y], c = x[f.z];
-  nodes[2 * t] = (float4)(fmin(a.x, fmin(b.x, c.x)), fmin(a.y, fmin(b.y, c.y)), fmin(a.z, fmin(b.z, c.z)), 0.0f);
-  nodes[2 * t + 1] = (float4)(fmax(a.x, fmax(b.x, c.x)), fmax(a.y, fmax(b.y, c.y)), fmax(a.z, fmax(b.z, c.z)), 0.0f);
-}
-
-static inline void sc_union(__global float4* nodes, int g, int child_offset, int c, int children) {
-  float4 lo = nodes[2 * (child_offset + c)], hi = nodes[2 * (child_offset + c) + 1];
-  if (c + 1 < children) {
-    lo = fmin(lo, nodes[2 * (child_offset + c + 1)]);
-    hi = fmax(hi, nodes[2 * (child_offset + c + 1) + 1]);
-  }
-  nodes[2 * g] = lo;
-  nodes[2 * g + 1] = hi;
+  sc_leaf_box(t, x, (__global const int*)tris, nodes);
 }
 
 /* Node j of the level at `offset` from its children at `child_offset`. */
 ATS_TASK void sc_refit_level(int j, __global float4* nodes, int offset, int child_offset, int children) {
-  sc_union(nodes, offset + j, child_offset, 2 * j, children);
+  sc_refit_node(nodes, offset + j, child_offset, 2 * j, children);
 }
 
 /* The levels from `from` to `root`, each after the one below (one work-item). */
 ATS_TASK void sc_refit_top(int k, __global float4* nodes, __global const int* levels, int from, int root) {
-  if (k != 0) return;
-  for (int l = from; l <= root; ++l) {
-    const int count = levels[l + 1] - levels[l], children = levels[l] - levels[l - 1];
-    for (int j = 0; j < count; ++j) sc_union(nodes, levels[l] + j, levels[l - 1], 2 * j, children);
-  }
+  if (k == 0) sc_refit_levels(nodes, levels, from, root);
 }
 
-/* inc: [0, n]: absolute offsets of each particle's incident triangles,
- * [n + 1, 2n + 1]: of its incident edges; then the lists. */
-static inline int sc_is_surface(__global const int* inc, int i) { return inc[i + 1] > inc[i]; }
-
-ATS_TASK void sc_query_vertices(int i, __global const float4* x, __global const int* inc, __global const int4* tris, __global const float4* nodes, __global const int* levels, int root, float radius, __global int* vt) {
-  sc_list l;
-  l.count = 0;
-  l.nearest = radius;
-  if (sc_is_surface(inc, i)) {
-    const float4 p = x[i];
-    const float4 lo = p - radius, hi = p + radius;
-    sc_walk w;
-    sc_walk_begin(&w, root);
-    int t;
-    while ((t = sc_walk_next(&w, nodes, levels, lo, hi)) >= 0) {
-      const int4 f = tris[t];
-      if (f.x == i || f.y == i || f.z == i) continue;
-      const ats_pair_geometry g = ats_point_triangle(sc_v(p), sc_v(x[f.x]), sc_v(x[f.y]), sc_v(x[f.z]));
-      if (g.d < radius) sc_list_insert(&l, t, g.d);
-    }
-  }
-  sc_list_store(&l, vt + i * ATS_SC_STRIDE);
-}
-
-ATS_TASK void sc_query_triangles(int t, __global const float4* x, __global const int4* tris, __global const int* leaves, __global const float4* nodes, __global const int* levels, int root, float radius, __global int* tv) {
-  sc_list l;
-  l.count = 0;
-  l.nearest = radius;
-  const int4 f = tris[t];
-  const float4 a = x[f.x], b = x[f.y], c = x[f.z];
-  const float4 lo = fmin(a, fmin(b, c)) - radius, hi = fmax(a, fmax(b, c)) + radius;
-  sc_walk w;
-  sc_walk_begin(&w, root);
-  int u;
-  while ((u = sc_walk_next(&w, nodes, levels, lo, hi)) >= 0) {
-    for (int k = 0; k < 3; ++k) {
-      const int v = leaves[8 * u + k];
-      if (v < 0 || v == f.x || v == f.y || v == f.z) continue;
-      const ats_pair_geometry g = ats_point_triangle(sc_v(x[v]), sc_v(a), sc_v(b), sc_v(c));
-      if (g.d < radius) sc_list_insert(&l, v, g.d);
-    }
-  }
-  sc_list_store(&l, tv + t * ATS_SC_STRIDE);
-}
-
-ATS_TASK void sc_query_edges(int e, __global const float4* x, __global const int2* edges, __global const int* leaves, __global const float4* nodes, __global const int* levels, int root, float radius, __global int* ee) {
-  sc_list l;
-  l.count = 0;
-  l.nearest = radius;
-  const int2 s = edges[e];
-  const float4 a = x[s.x], b = x[s.y];
-  const float4 lo = fmin(a, b) - radius, hi = fmax(a, b) + radius;
-  sc_walk w;
-  sc_walk_begin(&w, root);
-  int u;
-  while ((u = sc_walk_next(&w, nodes, levels, lo, hi)) >= 0) {
-    for (int k = 4; k < 7; ++k) {
-      const int f = leaves[8 * u + k];
-      if (f < 0 || f == e) continue;
-      const int2 o = edges[f];
-      if (o.x == s.x || o.x == s.y || o.y == s.x || o.y == s.y) continue;
-      const ats_pair_geometry g = ats_edge_edge(sc_v(a), sc_v(b), sc_v(x[o.x]), sc_v(x[o.y]));
-      if (g.d < radius) sc_list_insert(&l, f, g.d);
-    }
-  }
-  sc_list_store(&l, ee + e * ATS_SC_STRIDE);
+/* The three queries of leaf u in one walk (common/self_contact_bvh.h). */
+ATS_TASK void sc_query_leaves(int u, __global const float4* x, __global const int* inc, __global const int4* tris, __global const int2* edges, __global const int* leaves, __global const float4* nodes, __global const int* levels, int root, float radius, __global int* vt, __global int* tv, __global int* ee) {
+  sc_query_leaf(u, x, inc, (__global const int*)tris, (__global const int*)edges, leaves, nodes, levels, root, radius, vt, tv, ee);
 }
 
 ATS_TASK void sc_bound(int i, __global const int* inc, int n, __global const int* vt, __global const int* tv, __global const int* ee, float gamma, __global float* bound) {
-  if (!sc_is_surface(inc, i)) {
-    bound[i] = 1e30f;
-    return;
-  }
-  float d = as_float(vt[i * ATS_SC_STRIDE + 1]);
-  for (int k = inc[i]; k < inc[i + 1]; ++k) d = fmin(d, as_float(tv[inc[k] * ATS_SC_STRIDE + 1]));
-  for (int k = inc[n + 1 + i]; k < inc[n + 2 + i]; ++k) d = fmin(d, as_float(ee[inc[k] * ATS_SC_STRIDE + 1]));
-  bound[i] = gamma * d;
+  bound[i] = sc_vertex_bound(i, inc, n, vt, tv, ee, gamma);
 }
 
 /* p held within distance b of q (VBD's truncation of a vertex's step). */

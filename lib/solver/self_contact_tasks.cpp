@@ -1,6 +1,8 @@
 #include "solver/self_contact_tasks.hpp"
 
 #include <algorithm>
+#include <cstdint>
+#include <memory>
 
 #include <fmt/format.h>
 
@@ -45,7 +47,7 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
   const SelfContactLayout& s = layout.self_contact;
   if (!s.enabled) return last;
   const int n = static_cast<int>(layout.x.size());
-  const int tris = static_cast<int>(s.tris.size()), edges = static_cast<int>(s.edges.size());
+  const int tris = static_cast<int>(s.tris.size());
   const auto detect = [](const std::string& name) { return plan::make_task(name, plan::TaskKind::detection); };
   // BVH refit, bottom up (He et al. 2025 Fig. 2: "BVH updates").
   last = plan.add_task_after(last, detect("detect/leaves"),
@@ -74,27 +76,24 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
   }
   const float radius = s.query_radius;
   const sched::TaskId refit = last;
-  const sched::TaskId vertices = plan.add_task_after(
-      refit, detect("detect/vertices"),
-      {"sc_query_vertices",
-       {0, n},
-       {Arg::of_buffer(start), Arg::of_buffer(b.incidence), Arg::of_buffer(b.tris), Arg::of_buffer(b.nodes),
-        Arg::of_buffer(b.levels), Arg::of_int(root), Arg::of_float(radius), Arg::of_buffer(b.vt)},
-       {WriteSpan::per_element(b.vt, kListInts * 4)}});
-  const sched::TaskId triangles = plan.add_task_after(
-      refit, detect("detect/triangles"),
-      {"sc_query_triangles",
+  // One walk per leaf finds the pairs of the primitives it owns (one owner
+  // each): its triangle's vertices, its vertices' triangles, its edges' edges.
+  const auto owned = [&](int first) {
+    auto table = std::make_shared<std::vector<std::int32_t>>();
+    table->reserve(3 * s.leaves.size());
+    for (const auto& l : s.leaves)
+      for (int k = first; k < first + 3; ++k) table->push_back(l[k]);
+    return table;
+  };
+  const sched::TaskId pairs = plan.add_task_after(
+      refit, detect("detect/pairs"),
+      {"sc_query_leaves",
        {0, tris},
-       {Arg::of_buffer(start), Arg::of_buffer(b.tris), Arg::of_buffer(b.leaves), Arg::of_buffer(b.nodes),
-        Arg::of_buffer(b.levels), Arg::of_int(root), Arg::of_float(radius), Arg::of_buffer(b.tv)},
-       {WriteSpan::per_element(b.tv, kListInts * 4)}});
-  const sched::TaskId edge_pairs = plan.add_task_after(
-      refit, detect("detect/edges"),
-      {"sc_query_edges",
-       {0, edges},
-       {Arg::of_buffer(start), Arg::of_buffer(b.edges), Arg::of_buffer(b.leaves), Arg::of_buffer(b.nodes),
-        Arg::of_buffer(b.levels), Arg::of_int(root), Arg::of_float(radius), Arg::of_buffer(b.ee)},
-       {WriteSpan::per_element(b.ee, kListInts * 4)}});
+       {Arg::of_buffer(start), Arg::of_buffer(b.incidence), Arg::of_buffer(b.tris), Arg::of_buffer(b.edges),
+        Arg::of_buffer(b.leaves), Arg::of_buffer(b.nodes), Arg::of_buffer(b.levels), Arg::of_int(root),
+        Arg::of_float(radius), Arg::of_buffer(b.vt), Arg::of_buffer(b.tv), Arg::of_buffer(b.ee)},
+       {WriteSpan::per_index(b.vt, kListInts * 4, 3, owned(0)), WriteSpan::per_element(b.tv, kListInts * 4),
+        WriteSpan::per_index(b.ee, kListInts * 4, 3, owned(4))}});
   const sched::TaskId bound =
       plan.add_task(detect("detect/bound"),
                     {{"sc_bound",
@@ -102,7 +101,7 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
                       {Arg::of_buffer(b.incidence), Arg::of_int(n), Arg::of_buffer(b.vt), Arg::of_buffer(b.tv),
                        Arg::of_buffer(b.ee), Arg::of_float(s.gamma), Arg::of_buffer(b.bound)},
                       {WriteSpan::per_element(b.bound, 4)}}});
-  for (sched::TaskId t : {vertices, triangles, edge_pairs}) plan.graph.add_edge(t, bound);
+  plan.graph.add_edge(pairs, bound);
   return plan.add_task_after(bound, plan::make_task("contact/first_guess", plan::TaskKind::collision),
                              {"sc_clamp",
                               {0, n},

@@ -23,7 +23,7 @@ Found find_all(const solver::SelfContactLayout& s, const std::vector<ats_vec3>& 
   const float r = s.query_radius;
   Found f;
   brute_force_pairs(s, x, r, 0, static_cast<int>(std::max(x.size(), s.edges.size())), f.brute);
-  std::vector<Box> nodes;
+  std::vector<Float4> nodes;
   bvh_refit(s, x, nodes);
   bvh_query(s, x, nodes, r, f.bvh);
   SurfaceHash h;

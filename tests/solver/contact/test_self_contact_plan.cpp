@@ -45,9 +45,8 @@ TEST_CASE("with contact every method detects once per substep before its iterati
     if (!m->colliders) continue;  // refused (tested below)
     INFO(m->name);
     const plan::SubstepPlan p = solver::build_plan(s, *m);
-    CHECK(tasks_named(p, "detect/vertices") == 1);
-    CHECK(tasks_named(p, "detect/triangles") == 1);
-    CHECK(tasks_named(p, "detect/edges") == 1);
+    // one walk per leaf for its triangle's, vertices' and edges' pairs
+    CHECK(tasks_named(p, "detect/pairs") == 1);
     CHECK(tasks_named(p, "detect/bound") == 1);
     CHECK(tasks_named(p, "contact/first_guess") == 1);
     for (sched::TaskId t : p.tasks_of(plan::TaskKind::detection)) CHECK(p.graph.task(t).iteration < 0);

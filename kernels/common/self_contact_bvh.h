@@ -1,0 +1,389 @@
+/* The broad phase and the pair lists of contact between simulated surfaces
+ * (kernels/contact/self_contact.cl), in the common subset of C, C++ and
+ * OpenCL C, so that the kernels and the host (bench/broad_phase, the tests)
+ * run the same code: the refit of the implicit BVH of
+ * solver/layout/self_contact_layout (level 0: the triangles in leaf order;
+ * node j of level l has children 2j, 2j + 1 of level l - 1; nodes[2 g],
+ * nodes[2 g + 1] are the box of node g = levels[l] + j), its depth-first walk,
+ * and the three queries that fill the lists: per vertex the triangles, per
+ * triangle the vertices its leaves own, per edge the edges its leaves own,
+ * closer than the query radius, incident pairs excluded, the
+ * ATS_SC_CAPACITY nearest of each. A list is ATS_SC_STRIDE ints: [count,
+ * nearest distance (float bits), ids of the nearest first].
+ *
+ * Host code defines ats_float4 (its 16-byte x, y, z, w struct) before the
+ * first include; the scalar type is float. Topology arrays are plain ints:
+ * tris 4 per triangle ([3] unused), edges 2 per edge, leaves 8 per leaf
+ * (owned vertices [0..2], owned edges [4..6], -1: none). */
+#ifndef ATS_SELF_CONTACT_BVH_H
+#define ATS_SELF_CONTACT_BVH_H
+
+#include "common/ats_math.h"
+#include "common/self_contact.h"
+
+#define ATS_SC_CAPACITY 8
+#define ATS_SC_STRIDE (ATS_SC_CAPACITY + 2)
+#define ATS_SC_STACK 64
+
+#ifdef __OPENCL_VERSION__
+#define sc_float_bits(f) as_int(f)
+#define sc_bits_float(i) as_float(i)
+#else
+#include <string.h>
+ATS_FN int sc_float_bits(float f) {
+  int i;
+  memcpy(&i, &f, sizeof i);
+  return i;
+}
+ATS_FN float sc_bits_float(int i) {
+  float f;
+  memcpy(&f, &i, sizeof f);
+  return f;
+}
+#endif
+
+ATS_FN ats_vec3 sc_v(ats_float4 p) { return ats_v3(p.x, p.y, p.z); }
+
+typedef struct {
+  ats_vec3 lo, hi;
+} sc_box;
+
+ATS_FN ats_vec3 sc_min3(ats_vec3 a, ats_vec3 b) { return ats_v3(fmin(a.x, b.x), fmin(a.y, b.y), fmin(a.z, b.z)); }
+ATS_FN ats_vec3 sc_max3(ats_vec3 a, ats_vec3 b) { return ats_v3(fmax(a.x, b.x), fmax(a.y, b.y), fmax(a.z, b.z)); }
+
+/* The box of points a, b (and c) widened by r on every side. */
+ATS_FN sc_box sc_box_widened(sc_box b, float r) {
+  b.lo = ats_v3(b.lo.x - r, b.lo.y - r, b.lo.z - r);
+  b.hi = ats_v3(b.hi.x + r, b.hi.y + r, b.hi.z + r);
+  return b;
+}
+ATS_FN sc_box sc_box_of_point(ats_vec3 p, float r) {
+  sc_box b;
+  b.lo = p;
+  b.hi = p;
+  return sc_box_widened(b, r);
+}
+ATS_FN sc_box sc_box_of_edge(ats_vec3 a, ats_vec3 b, float r) {
+  sc_box out;
+  out.lo = sc_min3(a, b);
+  out.hi = sc_max3(a, b);
+  return sc_box_widened(out, r);
+}
+ATS_FN sc_box sc_box_of_triangle(ats_vec3 a, ats_vec3 b, ats_vec3 c, float r) {
+  sc_box out;
+  out.lo = sc_min3(a, sc_min3(b, c));
+  out.hi = sc_max3(a, sc_max3(b, c));
+  return sc_box_widened(out, r);
+}
+
+ATS_FN int sc_boxes_overlap(sc_box a, sc_box b) {
+  return !(a.lo.x > b.hi.x || a.lo.y > b.hi.y || a.lo.z > b.hi.z || a.hi.x < b.lo.x || a.hi.y < b.lo.y ||
+           a.hi.z < b.lo.z);
+}
+ATS_FN int sc_box_holds(sc_box b, ats_vec3 p) {
+  return !(p.x < b.lo.x || p.y < b.lo.y || p.z < b.lo.z || p.x > b.hi.x || p.y > b.hi.y || p.z > b.hi.z);
+}
+
+ATS_FN sc_box sc_node_box(ATS_GLOBAL const ats_float4* nodes, int g) {
+  sc_box b;
+  b.lo = sc_v(nodes[2 * g]);
+  b.hi = sc_v(nodes[2 * g + 1]);
+  return b;
+}
+ATS_FN void sc_store_node(ATS_GLOBAL ats_float4* nodes, int g, sc_box b) {
+  nodes[2 * g].x = b.lo.x;
+  nodes[2 * g].y = b.lo.y;
+  nodes[2 * g].z = b.lo.z;
+  nodes[2 * g].w = 0.0f;
+  nodes[2 * g + 1].x = b.hi.x;
+  nodes[2 * g + 1].y = b.hi.y;
+  nodes[2 * g + 1].z = b.hi.z;
+  nodes[2 * g + 1].w = 0.0f;
+}
+
+/* Leaf t: the box of its triangle. */
+ATS_FN void sc_leaf_box(int t, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* tris,
+                        ATS_GLOBAL ats_float4* nodes) {
+  ATS_GLOBAL const int* f = tris + 4 * t;
+  sc_store_node(nodes, t, sc_box_of_triangle(sc_v(x[f[0]]), sc_v(x[f[1]]), sc_v(x[f[2]]), 0.0f));
+}
+
+/* Node g from children c and c + 1 (if c + 1 < children) at child_offset. */
+ATS_FN void sc_refit_node(ATS_GLOBAL ats_float4* nodes, int g, int child_offset, int c, int children) {
+  sc_box b = sc_node_box(nodes, child_offset + c);
+  if (c + 1 < children) {
+    const sc_box o = sc_node_box(nodes, child_offset + c + 1);
+    b.lo = sc_min3(b.lo, o.lo);
+    b.hi = sc_max3(b.hi, o.hi);
+  }
+  sc_store_node(nodes, g, b);
+}
+
+/* The levels from `from` to `root`, each after the one below. */
+ATS_FN void sc_refit_levels(ATS_GLOBAL ats_float4* nodes, ATS_GLOBAL const int* levels, int from, int root) {
+  for (int l = from; l <= root; ++l) {
+    const int count = levels[l + 1] - levels[l], children = levels[l] - levels[l - 1];
+    for (int j = 0; j < count; ++j) sc_refit_node(nodes, levels[l] + j, levels[l - 1], 2 * j, children);
+  }
+}
+
+/* Depth-first walk: a child is tested before it is pushed, so the stack
+ * holds only nodes whose box overlaps the query. */
+typedef struct {
+  int level[ATS_SC_STACK];
+  int index[ATS_SC_STACK];
+  int top;
+} sc_walk;
+
+ATS_FN void sc_walk_begin(sc_walk* w, ATS_GLOBAL const ats_float4* nodes, ATS_GLOBAL const int* levels, int root,
+                          sc_box q) {
+  w->top = 0;
+  if (!sc_boxes_overlap(sc_node_box(nodes, levels[root]), q)) return;
+  w->level[0] = root;
+  w->index[0] = 0;
+  w->top = 1;
+}
+
+/* The next leaf whose box overlaps q, or -1. */
+ATS_FN int sc_walk_next(sc_walk* w, ATS_GLOBAL const ats_float4* nodes, ATS_GLOBAL const int* levels, sc_box q) {
+  while (w->top > 0) {
+    --w->top;
+    const int l = w->level[w->top], j = w->index[w->top];
+    if (l == 0) return j;
+    const int children = levels[l] - levels[l - 1];
+    /* right child pushed first: the left one is walked first */
+    for (int c = 1; c >= 0; --c) {
+      const int k = 2 * j + c;
+      if (k < children && w->top < ATS_SC_STACK && sc_boxes_overlap(sc_node_box(nodes, levels[l - 1] + k), q)) {
+        w->level[w->top] = l - 1;
+        w->index[w->top] = k;
+        ++w->top;
+      }
+    }
+  }
+  return -1;
+}
+
+/* The ATS_SC_CAPACITY nearest of a query, and the nearest distance of all
+ * (the query radius when none is closer). */
+typedef struct {
+  int count;
+  float nearest;
+  int id[ATS_SC_CAPACITY];
+  float d[ATS_SC_CAPACITY];
+} sc_list;
+
+ATS_FN void sc_list_begin(sc_list* l, float radius) {
+  l->count = 0;
+  l->nearest = radius;
+}
+
+ATS_FN void sc_list_insert(sc_list* l, int id, float d) {
+  if (d < l->nearest) l->nearest = d;
+  int k;
+  if (l->count < ATS_SC_CAPACITY) {
+    k = l->count++;
+  } else {
+    if (!(d < l->d[ATS_SC_CAPACITY - 1])) return;
+    k = ATS_SC_CAPACITY - 1;
+  }
+  while (k > 0 && l->d[k - 1] > d) {
+    l->d[k] = l->d[k - 1];
+    l->id[k] = l->id[k - 1];
+    --k;
+  }
+  l->d[k] = d;
+  l->id[k] = id;
+}
+
+ATS_FN void sc_list_store(const sc_list* l, ATS_GLOBAL int* out) {
+  out[0] = l->count;
+  out[1] = sc_float_bits(l->nearest);
+  for (int k = 0; k < l->count; ++k) out[2 + k] = l->id[k];
+}
+
+/* inc: [0, n]: offsets of each particle's incident triangles, [n + 1, 2n + 1]:
+ * of its incident edges; then the lists. */
+ATS_FN int sc_is_surface(ATS_GLOBAL const int* inc, int i) { return inc[i + 1] > inc[i]; }
+
+/* Per vertex i the triangles within radius, into vt + i * ATS_SC_STRIDE. */
+ATS_FN void sc_query_vertex(int i, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* inc,
+                            ATS_GLOBAL const int* tris, ATS_GLOBAL const ats_float4* nodes,
+                            ATS_GLOBAL const int* levels, int root, float radius, ATS_GLOBAL int* vt) {
+  sc_list l;
+  sc_list_begin(&l, radius);
+  if (sc_is_surface(inc, i)) {
+    const ats_vec3 p = sc_v(x[i]);
+    const sc_box q = sc_box_of_point(p, radius);
+    sc_walk w;
+    sc_walk_begin(&w, nodes, levels, root, q);
+    int t;
+    while ((t = sc_walk_next(&w, nodes, levels, q)) >= 0) {
+      ATS_GLOBAL const int* f = tris + 4 * t;
+      if (f[0] == i || f[1] == i || f[2] == i) continue;
+      const ats_pair_geometry g = ats_point_triangle(p, sc_v(x[f[0]]), sc_v(x[f[1]]), sc_v(x[f[2]]));
+      if (g.d < radius) sc_list_insert(&l, t, g.d);
+    }
+  }
+  sc_list_store(&l, vt + i * ATS_SC_STRIDE);
+}
+
+/* Per triangle t the vertices within radius, into tv + t * ATS_SC_STRIDE. A
+ * vertex outside the triangle's widened box cannot be within radius: it is
+ * skipped before the narrow phase. */
+ATS_FN void sc_query_triangle(int t, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* tris,
+                              ATS_GLOBAL const int* leaves, ATS_GLOBAL const ats_float4* nodes,
+                              ATS_GLOBAL const int* levels, int root, float radius, ATS_GLOBAL int* tv) {
+  sc_list l;
+  sc_list_begin(&l, radius);
+  ATS_GLOBAL const int* f = tris + 4 * t;
+  const ats_vec3 a = sc_v(x[f[0]]), b = sc_v(x[f[1]]), c = sc_v(x[f[2]]);
+  const sc_box q = sc_box_of_triangle(a, b, c, radius);
+  sc_walk w;
+  sc_walk_begin(&w, nodes, levels, root, q);
+  int u;
+  while ((u = sc_walk_next(&w, nodes, levels, q)) >= 0) {
+    for (int k = 0; k < 3; ++k) {
+      const int v = leaves[8 * u + k];
+      if (v < 0 || v == f[0] || v == f[1] || v == f[2]) continue;
+      const ats_vec3 p = sc_v(x[v]);
+      if (!sc_box_holds(q, p)) continue;
+      const ats_pair_geometry g = ats_point_triangle(p, a, b, c);
+      if (g.d < radius) sc_list_insert(&l, v, g.d);
+    }
+  }
+  sc_list_store(&l, tv + t * ATS_SC_STRIDE);
+}
+
+/* Per edge e the edges within radius, into ee + e * ATS_SC_STRIDE. An edge
+ * whose box misses e's widened box cannot be within radius: skipped before
+ * the narrow phase. */
+ATS_FN void sc_query_edge(int e, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* edges,
+                          ATS_GLOBAL const int* leaves, ATS_GLOBAL const ats_float4* nodes,
+                          ATS_GLOBAL const int* levels, int root, float radius, ATS_GLOBAL int* ee) {
+  sc_list l;
+  sc_list_begin(&l, radius);
+  const int s0 = edges[2 * e], s1 = edges[2 * e + 1];
+  const ats_vec3 a = sc_v(x[s0]), b = sc_v(x[s1]);
+  const sc_box q = sc_box_of_edge(a, b, radius);
+  sc_walk w;
+  sc_walk_begin(&w, nodes, levels, root, q);
+  int u;
+  while ((u = sc_walk_next(&w, nodes, levels, q)) >= 0) {
+    for (int k = 4; k < 7; ++k) {
+      const int f = leaves[8 * u + k];
+      if (f < 0 || f == e) continue;
+      const int o0 = edges[2 * f], o1 = edges[2 * f + 1];
+      if (o0 == s0 || o0 == s1 || o1 == s0 || o1 == s1) continue;
+      const ats_vec3 c = sc_v(x[o0]), d = sc_v(x[o1]);
+      if (!sc_boxes_overlap(q, sc_box_of_edge(c, d, 0.0f))) continue;
+      const ats_pair_geometry g = ats_edge_edge(a, b, c, d);
+      if (g.d < radius) sc_list_insert(&l, f, g.d);
+    }
+  }
+  sc_list_store(&l, ee + e * ATS_SC_STRIDE);
+}
+
+/* All three queries of leaf u in one walk of the tree: the triangle's own
+ * list (per triangle the vertices), the lists of the vertices it owns (per
+ * vertex the triangles) and of the edges it owns (per edge the edges), each
+ * primitive owned by exactly one leaf (solver/layout/self_contact_layout), so
+ * every list has one writer. The walk takes the triangle's box widened by
+ * the radius, which holds every owned primitive's widened box; each
+ * candidate leaf is then tested against each owned primitive's own box, so
+ * each list sees the candidates of its own query in the same order and
+ * ends the same as the three queries above, for a third of their walks. */
+ATS_FN void sc_query_leaf(int u, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* inc, ATS_GLOBAL const int* tris,
+                          ATS_GLOBAL const int* edges, ATS_GLOBAL const int* leaves, ATS_GLOBAL const ats_float4* nodes,
+                          ATS_GLOBAL const int* levels, int root, float radius, ATS_GLOBAL int* vt, ATS_GLOBAL int* tv,
+                          ATS_GLOBAL int* ee) {
+  ATS_GLOBAL const int* f = tris + 4 * u;
+  ATS_GLOBAL const int* own = leaves + 8 * u;
+  const ats_vec3 a = sc_v(x[f[0]]), b = sc_v(x[f[1]]), c = sc_v(x[f[2]]);
+  const sc_box q = sc_box_of_triangle(a, b, c, radius);
+  sc_list tri;
+  sc_list_begin(&tri, radius);
+  /* owned vertices: id (-1: none or not a query), point, widened box */
+  int vid[3];
+  ats_vec3 vp[3];
+  sc_box vq[3];
+  sc_list vl[3];
+  for (int k = 0; k < 3; ++k) {
+    vid[k] = own[k];
+    sc_list_begin(&vl[k], radius);
+    if (vid[k] >= 0 && !sc_is_surface(inc, vid[k])) vid[k] = -1;
+    vp[k] = vid[k] >= 0 ? sc_v(x[vid[k]]) : a;
+    vq[k] = sc_box_of_point(vp[k], radius);
+  }
+  /* owned edges: id, ends, widened box */
+  int eid[3], e0[3], e1[3];
+  ats_vec3 ea[3], eb[3];
+  sc_box eq[3];
+  sc_list el[3];
+  for (int k = 0; k < 3; ++k) {
+    eid[k] = own[4 + k];
+    sc_list_begin(&el[k], radius);
+    e0[k] = eid[k] >= 0 ? edges[2 * eid[k]] : -1;
+    e1[k] = eid[k] >= 0 ? edges[2 * eid[k] + 1] : -1;
+    ea[k] = eid[k] >= 0 ? sc_v(x[e0[k]]) : a;
+    eb[k] = eid[k] >= 0 ? sc_v(x[e1[k]]) : a;
+    eq[k] = sc_box_of_edge(ea[k], eb[k], radius);
+  }
+  sc_walk w;
+  sc_walk_begin(&w, nodes, levels, root, q);
+  int o;
+  while ((o = sc_walk_next(&w, nodes, levels, q)) >= 0) {
+    ATS_GLOBAL const int* g = tris + 4 * o;
+    ATS_GLOBAL const int* theirs = leaves + 8 * o;
+    const sc_box ob = sc_node_box(nodes, o);
+    /* per triangle the vertices: the vertices leaf o owns, near triangle u */
+    for (int k = 0; k < 3; ++k) {
+      const int v = theirs[k];
+      if (v < 0 || v == f[0] || v == f[1] || v == f[2]) continue;
+      const ats_vec3 p = sc_v(x[v]);
+      if (!sc_box_holds(q, p)) continue;
+      const ats_pair_geometry pg = ats_point_triangle(p, a, b, c);
+      if (pg.d < radius) sc_list_insert(&tri, v, pg.d);
+    }
+    /* per vertex the triangles: triangle o, near each vertex u owns */
+    for (int k = 0; k < 3; ++k) {
+      const int v = vid[k];
+      if (v < 0 || g[0] == v || g[1] == v || g[2] == v || !sc_boxes_overlap(ob, vq[k])) continue;
+      const ats_pair_geometry pg = ats_point_triangle(vp[k], sc_v(x[g[0]]), sc_v(x[g[1]]), sc_v(x[g[2]]));
+      if (pg.d < radius) sc_list_insert(&vl[k], o, pg.d);
+    }
+    /* per edge the edges: the edges leaf o owns, near each edge u owns */
+    for (int k = 0; k < 3; ++k) {
+      if (eid[k] < 0 || !sc_boxes_overlap(ob, eq[k])) continue;
+      for (int m = 4; m < 7; ++m) {
+        const int h = theirs[m];
+        if (h < 0 || h == eid[k]) continue;
+        const int o0 = edges[2 * h], o1 = edges[2 * h + 1];
+        if (o0 == e0[k] || o0 == e1[k] || o1 == e0[k] || o1 == e1[k]) continue;
+        const ats_vec3 p0 = sc_v(x[o0]), p1 = sc_v(x[o1]);
+        if (!sc_boxes_overlap(eq[k], sc_box_of_edge(p0, p1, 0.0f))) continue;
+        const ats_pair_geometry pg = ats_edge_edge(ea[k], eb[k], p0, p1);
+        if (pg.d < radius) sc_list_insert(&el[k], h, pg.d);
+      }
+    }
+  }
+  sc_list_store(&tri, tv + u * ATS_SC_STRIDE);
+  for (int k = 0; k < 3; ++k) {
+    if (own[k] >= 0) sc_list_store(&vl[k], vt + own[k] * ATS_SC_STRIDE);
+    if (eid[k] >= 0) sc_list_store(&el[k], ee + eid[k] * ATS_SC_STRIDE);
+  }
+}
+
+/* VBD's conservative displacement bound of vertex i: gamma times the
+ * distance to the nearest primitive it could meet (as a point, through its
+ * triangles, through its edges). */
+ATS_FN float sc_vertex_bound(int i, ATS_GLOBAL const int* inc, int n, ATS_GLOBAL const int* vt,
+                             ATS_GLOBAL const int* tv, ATS_GLOBAL const int* ee, float gamma) {
+  if (!sc_is_surface(inc, i)) return 1e30f;
+  float d = sc_bits_float(vt[i * ATS_SC_STRIDE + 1]);
+  for (int k = inc[i]; k < inc[i + 1]; ++k) d = fmin(d, sc_bits_float(tv[inc[k] * ATS_SC_STRIDE + 1]));
+  for (int k = inc[n + 1 + i]; k < inc[n + 2 + i]; ++k) d = fmin(d, sc_bits_float(ee[inc[k] * ATS_SC_STRIDE + 1]));
+  return gamma * d;
+}
+
+#endif

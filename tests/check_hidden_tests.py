@@ -1,0 +1,30 @@
+#!/usr/bin/python3
+"""Fails when a Catch2 test is hidden ("[.]", "[.tag]" or "[!hide]", which
+ctest never runs) without a comment in the five lines above its tags naming
+the issue of the project that will un-hide it ("issue #N"). A known failure
+is an expected failure ("[!shouldfail]", run and counted), not hidden.
+
+usage: tests/check_hidden_tests.py TESTS_DIR"""
+import pathlib
+import re
+import sys
+
+HIDDEN = re.compile(r'"[^"\n]*\[(\.|!hide)[^"\n]*"')
+ISSUE = re.compile(r"issue #\d+")
+
+
+def main() -> int:
+    bad = []
+    for src in sorted(pathlib.Path(sys.argv[1]).rglob("*.cpp")):
+        lines = src.read_text(encoding="utf-8").splitlines()
+        for k, line in enumerate(lines):
+            if HIDDEN.search(line) and not any(ISSUE.search(l) for l in lines[max(0, k - 5):k + 1]):
+                bad.append(f"{src}:{k + 1}: hidden test without a comment naming the issue that will un-hide it")
+    for b in bad:
+        print(b)
+    print(f"{len(bad)} hidden tests without an issue")
+    return 1 if bad else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
