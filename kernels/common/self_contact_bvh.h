@@ -374,6 +374,37 @@ ATS_FN void sc_query_leaf(int u, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL cons
   }
 }
 
+/* The query radius tied to the substep's motion. A pair farther apart than
+ * R at x_t is not listed; VBD's bound keeps each vertex within gamma R
+ * (gamma = 0.4) of x_t, so such a pair stays at least (1 - 2 gamma) R
+ * apart: no crossing for any R. R is chosen so that the bound does not slow
+ * the predicted motion (gamma R >= 2 delta: the fastest vertex may double
+ * its step) and so that a pair closing at the predicted speed from beyond R
+ * cannot reach the thickness r within the substep (R >= r + 2.5 delta),
+ * delta the largest predicted displacement |x~ - x_t| of any surface
+ * vertex; never below 1.5 r (touching pairs stay listed) nor above r_max
+ * (contact.query_radius, 3 r by default: the radius before it was tied to
+ * the motion). */
+#define ATS_SC_MOTION_BLOCK 256
+ATS_FN float sc_block_motion(int b, ATS_GLOBAL const ats_float4* x_start, ATS_GLOBAL const ats_float4* x_guess,
+                             ATS_GLOBAL const int* inc, int n) {
+  float m = 0.0f;
+  const int end = (b + 1) * ATS_SC_MOTION_BLOCK < n ? (b + 1) * ATS_SC_MOTION_BLOCK : n;
+  for (int i = b * ATS_SC_MOTION_BLOCK; i < end; ++i) {
+    if (!sc_is_surface(inc, i)) continue;
+    const ats_vec3 d = ats_sub(sc_v(x_guess[i]), sc_v(x_start[i]));
+    m = fmax(m, ats_length(d));
+  }
+  return m;
+}
+
+ATS_FN float sc_motion_radius(ATS_GLOBAL const float* block_max, int blocks, float r, float r_max) {
+  float delta = 0.0f;
+  for (int b = 0; b < blocks; ++b) delta = fmax(delta, block_max[b]);
+  const float wanted = fmax(1.5f * r, fmax(r + 2.5f * delta, 5.0f * delta));
+  return fmin(wanted, r_max);
+}
+
 /* VBD's conservative displacement bound of vertex i: gamma times the
  * distance to the nearest primitive it could meet (as a point, through its
  * triangles, through its edges). */

@@ -39,9 +39,21 @@ ATS_TASK void sc_refit_top(int k, __global float4* nodes, __global const int* le
   if (k == 0) sc_refit_levels(nodes, levels, from, root);
 }
 
+/* The largest predicted displacement |x~ - x_t| of the surface vertices in
+ * block b of ATS_SC_MOTION_BLOCK particles. */
+ATS_TASK void sc_motion(int b, __global const float4* x_start, __global const float4* x_guess, __global const int* inc, int n, __global float* block_max) {
+  block_max[b] = sc_block_motion(b, x_start, x_guess, inc, n);
+}
+
+/* This substep's query radius from the blocks' largest displacement (one
+ * work-item; common/self_contact_bvh.h sc_motion_radius). */
+ATS_TASK void sc_radius(int k, __global const float* block_max, int blocks, float r, float r_max, __global float* radius) {
+  if (k == 0) radius[0] = sc_motion_radius(block_max, blocks, r, r_max);
+}
+
 /* The three queries of leaf u in one walk (common/self_contact_bvh.h). */
-ATS_TASK void sc_query_leaves(int u, __global const float4* x, __global const int* inc, __global const int4* tris, __global const int2* edges, __global const int* leaves, __global const float4* nodes, __global const int* levels, int root, float radius, __global int* vt, __global int* tv, __global int* ee) {
-  sc_query_leaf(u, x, inc, (__global const int*)tris, (__global const int*)edges, leaves, nodes, levels, root, radius, vt, tv, ee);
+ATS_TASK void sc_query_leaves(int u, __global const float4* x, __global const int* inc, __global const int4* tris, __global const int2* edges, __global const int* leaves, __global const float4* nodes, __global const int* levels, int root, __global const float* radius, __global int* vt, __global int* tv, __global int* ee) {
+  sc_query_leaf(u, x, inc, (__global const int*)tris, (__global const int*)edges, leaves, nodes, levels, root, radius[0], vt, tv, ee);
 }
 
 ATS_TASK void sc_bound(int i, __global const int* inc, int n, __global const int* vt, __global const int* tv, __global const int* ee, float gamma, __global float* bound) {

@@ -18,6 +18,9 @@ using plan::WriteSpan;
 constexpr int kListInts = 10;        // ATS_SC_STRIDE of kernels/contact/self_contact.cl
 constexpr int kNodeBytes = 32;       // two float4 per node
 constexpr int kTopLevelNodes = 256;  // levels this small are refitted by one work-item
+constexpr int kMotionBlock = 256;    // ATS_SC_MOTION_BLOCK of kernels/common/self_contact_bvh.h
+
+std::size_t motion_blocks(std::size_t n) { return (n + kMotionBlock - 1) / kMotionBlock; }
 
 std::vector<std::byte> zeros(std::size_t bytes) { return std::vector<std::byte>(bytes); }
 
@@ -39,6 +42,8 @@ SelfContactBuffers add_self_contact_buffers(plan::SubstepPlan& plan, const SimLa
   b.ee = plan.add_buffer("sc_ee", BufferRole::scratch, zeros(s.edges.size() * kListInts * 4));
   b.bound = plan.add_buffer("sc_bound", BufferRole::scratch, zeros(n * 4));
   b.x_out = plan.add_buffer("sc_x_out", BufferRole::scratch, zeros(n * kParticleBytes));
+  b.motion = plan.add_buffer("sc_motion", BufferRole::scratch, zeros(motion_blocks(n) * 4));
+  b.radius = plan.add_buffer("sc_radius", BufferRole::scratch, zeros(s.enabled ? 16 : 0));
   return b;
 }
 
@@ -49,6 +54,7 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
   const int n = static_cast<int>(layout.x.size());
   const int tris = static_cast<int>(s.tris.size());
   const auto detect = [](const std::string& name) { return plan::make_task(name, plan::TaskKind::detection); };
+  const sched::TaskId predicted = last;
   // BVH refit, bottom up (He et al. 2025 Fig. 2: "BVH updates").
   last = plan.add_task_after(last, detect("detect/leaves"),
                              {"sc_leaf_boxes",
@@ -74,8 +80,24 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
                              {Arg::of_buffer(b.nodes), Arg::of_buffer(b.levels), Arg::of_int(level), Arg::of_int(root)},
                              {WriteSpan::whole_buffer(b.nodes)}});
   }
-  const float radius = s.query_radius;
   const sched::TaskId refit = last;
+  // The query radius tied to the substep's predicted motion (first guess
+  // against x_t), beside the refit.
+  const int blocks = static_cast<int>(motion_blocks(static_cast<std::size_t>(n)));
+  const sched::TaskId motion =
+      plan.add_task(detect("detect/motion"), {{"sc_motion",
+                                               {0, blocks},
+                                               {Arg::of_buffer(start), Arg::of_buffer(positions),
+                                                Arg::of_buffer(b.incidence), Arg::of_int(n), Arg::of_buffer(b.motion)},
+                                               {WriteSpan::per_element(b.motion, 4)}}});
+  plan.graph.add_edge(predicted, motion);
+  const sched::TaskId radius =
+      plan.add_task_after(motion, detect("detect/radius"),
+                          {"sc_radius",
+                           {0, 1},
+                           {Arg::of_buffer(b.motion), Arg::of_int(blocks), Arg::of_float(s.thickness),
+                            Arg::of_float(s.query_radius), Arg::of_buffer(b.radius)},
+                           {WriteSpan::whole_buffer(b.radius)}});
   // One walk per leaf finds the pairs of the primitives it owns (one owner
   // each): its triangle's vertices, its vertices' triangles, its edges' edges.
   const auto owned = [&](int first) {
@@ -91,7 +113,7 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
        {0, tris},
        {Arg::of_buffer(start), Arg::of_buffer(b.incidence), Arg::of_buffer(b.tris), Arg::of_buffer(b.edges),
         Arg::of_buffer(b.leaves), Arg::of_buffer(b.nodes), Arg::of_buffer(b.levels), Arg::of_int(root),
-        Arg::of_float(radius), Arg::of_buffer(b.vt), Arg::of_buffer(b.tv), Arg::of_buffer(b.ee)},
+        Arg::of_buffer(b.radius), Arg::of_buffer(b.vt), Arg::of_buffer(b.tv), Arg::of_buffer(b.ee)},
        {WriteSpan::per_index(b.vt, kListInts * 4, 3, owned(0)), WriteSpan::per_element(b.tv, kListInts * 4),
         WriteSpan::per_index(b.ee, kListInts * 4, 3, owned(4))}});
   const sched::TaskId bound =
@@ -101,6 +123,7 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
                       {Arg::of_buffer(b.incidence), Arg::of_int(n), Arg::of_buffer(b.vt), Arg::of_buffer(b.tv),
                        Arg::of_buffer(b.ee), Arg::of_float(s.gamma), Arg::of_buffer(b.bound)},
                       {WriteSpan::per_element(b.bound, 4)}}});
+  plan.graph.add_edge(radius, pairs);
   plan.graph.add_edge(pairs, bound);
   return plan.add_task_after(bound, plan::make_task("contact/first_guess", plan::TaskKind::collision),
                              {"sc_clamp",

@@ -24,7 +24,7 @@ namespace {
 
 constexpr int kCapacity = 8, kStride = kCapacity + 2;
 
-// Two layers 1.2 cm apart (within the 3 cm query radius) and a third far away.
+// Two layers 1.2 cm apart (within the 1.5 cm query radius at rest) and a third far away.
 const char* kScene =
     "simulation: {fps: 60, substeps: 1, iterations: 1, frames: 1, gravity: [0, 0, 0]}\n"
     "objects:\n"
@@ -124,7 +124,12 @@ TEST_CASE("self-contact detection on the device finds the brute force's nearest 
   const std::vector<int> vt = ints_of(exec.read(buffer_named(plan, "sc_vt")));
   const std::vector<int> tv = ints_of(exec.read(buffer_named(plan, "sc_tv")));
   const std::vector<int> ee = ints_of(exec.read(buffer_named(plan, "sc_ee")));
-  const float radius = s.query_radius;
+  // The query radius is tied to the substep's predicted motion
+  // (common/self_contact_bvh.h sc_motion_radius): without gravity and at
+  // rest that is nothing, so the radius is its floor, 1.5 thicknesses.
+  float radius = 0.0f;
+  std::memcpy(&radius, exec.read(buffer_named(plan, "sc_radius")).data(), 4);
+  CHECK(radius == Approx(1.5f * s.thickness));
   const auto& x = layout.x;  // detection runs on x_t, the substep's start
   const int n = int(x.size());
   std::vector<char> surface(n, 0);

@@ -84,3 +84,21 @@ TEST_CASE("the spatial hash finds each pair once when many cells share a bucket"
   hash.sort();
   CHECK(same_pairs(hash, brute));
 }
+
+TEST_CASE("the query radius follows the substep's largest predicted step, between 1.5 thicknesses and the cap",
+          "[solver][contact][broad_phase]") {
+  // R = max(1.5 r, r + 2.5 delta, 5 delta), at most r_max; r = 1 mm, r_max = 3 mm.
+  const float r = 0.001f, cap = 0.003f;
+  const auto radius = [&](std::vector<float> blocks) {
+    return sc_motion_radius(blocks.data(), static_cast<int>(blocks.size()), r, cap);
+  };
+  CHECK(radius({0.0f, 0.0f}) == Approx(0.0015));         // at rest: the floor
+  CHECK(radius({0.0001f, 0.0003f}) == Approx(0.00175));  // r + 2.5 delta (delta 0.3 mm, the larger block)
+  CHECK(radius({0.0005f}) == Approx(0.0025));            // 5 delta beats r + 2.5 delta past 0.4 r
+  CHECK(radius({0.002f, 0.0f}) == Approx(0.003));        // the cap
+  // the block's largest step counts surface vertices only
+  const std::vector<Float4> start{{0, 0, 0, 1}, {0, 0, 0, 1}, {0, 0, 0, 1}};
+  const std::vector<Float4> guess{{0.0003f, 0, 0, 1}, {0, 0.0004f, 0, 1}, {0, 0, 0.9f, 1}};
+  const std::vector<int> inc{0, 1, 2, 2};  // particle 2 has no triangle (first n + 1 offsets)
+  CHECK(sc_block_motion(0, start.data(), guess.data(), inc.data(), 3) == Approx(0.0004));
+}
