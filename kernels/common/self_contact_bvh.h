@@ -345,23 +345,36 @@ ATS_FN void sc_query_leaf(int u, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL cons
       const ats_pair_geometry pg = ats_point_triangle(p, a, b, c);
       if (pg.d < radius) sc_list_insert(&tri, v, pg.d);
     }
-    /* per vertex the triangles: triangle o, near each vertex u owns */
+    /* per vertex the triangles: triangle o, near each vertex u owns (its
+     * corners read once for all of them) */
+    int near = 0;
     for (int k = 0; k < 3; ++k) {
       const int v = vid[k];
-      if (v < 0 || g[0] == v || g[1] == v || g[2] == v || !sc_boxes_overlap(ob, vq[k])) continue;
-      const ats_pair_geometry pg = ats_point_triangle(vp[k], sc_v(x[g[0]]), sc_v(x[g[1]]), sc_v(x[g[2]]));
-      if (pg.d < radius) sc_list_insert(&vl[k], o, pg.d);
+      if (v >= 0 && g[0] != v && g[1] != v && g[2] != v && sc_boxes_overlap(ob, vq[k])) near |= 1 << k;
     }
-    /* per edge the edges: the edges leaf o owns, near each edge u owns */
-    for (int k = 0; k < 3; ++k) {
-      if (eid[k] < 0 || !sc_boxes_overlap(ob, eq[k])) continue;
-      for (int m = 4; m < 7; ++m) {
-        const int h = theirs[m];
-        if (h < 0 || h == eid[k]) continue;
-        const int o0 = edges[2 * h], o1 = edges[2 * h + 1];
-        if (o0 == e0[k] || o0 == e1[k] || o1 == e0[k] || o1 == e1[k]) continue;
-        const ats_vec3 p0 = sc_v(x[o0]), p1 = sc_v(x[o1]);
-        if (!sc_boxes_overlap(eq[k], sc_box_of_edge(p0, p1, 0.0f))) continue;
+    if (near) {
+      const ats_vec3 ga = sc_v(x[g[0]]), gb = sc_v(x[g[1]]), gc = sc_v(x[g[2]]);
+      for (int k = 0; k < 3; ++k) {
+        if (!(near & (1 << k))) continue;
+        const ats_pair_geometry pg = ats_point_triangle(vp[k], ga, gb, gc);
+        if (pg.d < radius) sc_list_insert(&vl[k], o, pg.d);
+      }
+    }
+    /* per edge the edges: the edges leaf o owns, near each edge u owns (each
+     * candidate read once for all of them; a list sees its candidates in
+     * the same order either way) */
+    near = 0;
+    for (int k = 0; k < 3; ++k)
+      if (eid[k] >= 0 && sc_boxes_overlap(ob, eq[k])) near |= 1 << k;
+    for (int m = 4; near && m < 7; ++m) {
+      const int h = theirs[m];
+      if (h < 0) continue;
+      const int o0 = edges[2 * h], o1 = edges[2 * h + 1];
+      const ats_vec3 p0 = sc_v(x[o0]), p1 = sc_v(x[o1]);
+      const sc_box hb = sc_box_of_edge(p0, p1, 0.0f);
+      for (int k = 0; k < 3; ++k) {
+        if (!(near & (1 << k)) || h == eid[k]) continue;
+        if (o0 == e0[k] || o0 == e1[k] || o1 == e0[k] || o1 == e1[k] || !sc_boxes_overlap(eq[k], hb)) continue;
         const ats_pair_geometry pg = ats_edge_edge(ea[k], eb[k], p0, p1);
         if (pg.d < radius) sc_list_insert(&el[k], h, pg.d);
       }
