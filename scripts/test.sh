@@ -7,4 +7,8 @@ bash scripts/setup.sh
 export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$HOME/.cache/atssim/pocl}"
 cmake --preset release >/dev/null
 cmake --build --preset release -j "$(nproc)"
-ctest --preset release
+status=0
+ctest --preset release || status=$?
+# the known failures the suite counts: expected ([!shouldfail]) and hidden
+/usr/bin/python3 scripts/expected_failures.py build/release
+exit "$status"
