@@ -24,13 +24,17 @@ endfunction()
 function(atssim_add_test name)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPS;LABELS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
+  set_property(GLOBAL APPEND PROPERTY ATSSIM_TEST_TARGETS ${name})
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} Catch2::Catch2WithMain)
   target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests)
   set(props ENVIRONMENT "POCL_CACHE_DIR=${ATSSIM_TEST_POCL_CACHE}")
   if(ARG_LABELS)
     list(APPEND props LABELS "${ARG_LABELS}")
   endif()
+  # -w NoTests: a ctest entry whose filter matches no test case fails
+  # (Catch2 v2 otherwise exits 0 having run nothing).
   catch_discover_tests(${name}
+    EXTRA_ARGS -w NoTests
     WORKING_DIRECTORY ${PROJECT_BINARY_DIR}
     PROPERTIES ${props}
     DISCOVERY_MODE PRE_TEST)
