@@ -46,6 +46,7 @@ std::vector<float> xyz_of(const std::vector<std::byte>& raw) {
 void run_frame(device::PlanExecutor& executor, solver::KinematicColliders& colliders, int substeps, int frame,
                double frame_dt) {
   const double h = frame_dt / substeps;
+  executor.begin_frame();  // a frame depends only on the state it starts from (resume, repeats)
   for (int s = 0; s < substeps; ++s) {
     if (g_stop) throw runtime_error(fmt::format("interrupted in frame {} (substep {} of {})", frame, s, substeps));
     const double t0 = (frame - 1) * frame_dt + s * h;

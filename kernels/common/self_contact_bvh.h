@@ -9,7 +9,7 @@
  * triangle the vertices its leaves own, per edge the edges its leaves own,
  * closer than the query radius, incident pairs excluded, the
  * ATS_SC_CAPACITY nearest of each. A list is ATS_SC_STRIDE ints: [count,
- * nearest distance (float bits), ids of the nearest first].
+ * horizon (float bits, sc_list_store), ids of the nearest first].
  *
  * Host code defines ats_float4 (its 16-byte x, y, z, w struct) before the
  * first include; the scalar type is float. Topology arrays are plain ints:
@@ -164,22 +164,16 @@ ATS_FN int sc_walk_next(sc_walk* w, ATS_GLOBAL const ats_float4* nodes, ATS_GLOB
   return -1;
 }
 
-/* The ATS_SC_CAPACITY nearest of a query, and the nearest distance of all
- * (the query radius when none is closer). */
+/* The ATS_SC_CAPACITY nearest of a query. */
 typedef struct {
   int count;
-  float nearest;
   int id[ATS_SC_CAPACITY];
   float d[ATS_SC_CAPACITY];
 } sc_list;
 
-ATS_FN void sc_list_begin(sc_list* l, float radius) {
-  l->count = 0;
-  l->nearest = radius;
-}
+ATS_FN void sc_list_begin(sc_list* l) { l->count = 0; }
 
 ATS_FN void sc_list_insert(sc_list* l, int id, float d) {
-  if (d < l->nearest) l->nearest = d;
   int k;
   if (l->count < ATS_SC_CAPACITY) {
     k = l->count++;
@@ -196,9 +190,11 @@ ATS_FN void sc_list_insert(sc_list* l, int id, float d) {
   l->id[k] = id;
 }
 
-ATS_FN void sc_list_store(const sc_list* l, ATS_GLOBAL int* out) {
+/* [1]: the list's horizon, the distance every primitive it does not hold
+ * was at least at: the radius, or the farthest kept one when it is full. */
+ATS_FN void sc_list_store(const sc_list* l, float radius, ATS_GLOBAL int* out) {
   out[0] = l->count;
-  out[1] = sc_float_bits(l->nearest);
+  out[1] = sc_float_bits(l->count == ATS_SC_CAPACITY ? l->d[ATS_SC_CAPACITY - 1] : radius);
   for (int k = 0; k < l->count; ++k) out[2 + k] = l->id[k];
 }
 
@@ -211,7 +207,7 @@ ATS_FN void sc_query_vertex(int i, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL co
                             ATS_GLOBAL const int* tris, ATS_GLOBAL const ats_float4* nodes,
                             ATS_GLOBAL const int* levels, int root, float radius, ATS_GLOBAL int* vt) {
   sc_list l;
-  sc_list_begin(&l, radius);
+  sc_list_begin(&l);
   if (sc_is_surface(inc, i)) {
     const ats_vec3 p = sc_v(x[i]);
     const sc_box q = sc_box_of_point(p, radius);
@@ -225,7 +221,7 @@ ATS_FN void sc_query_vertex(int i, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL co
       if (g.d < radius) sc_list_insert(&l, t, g.d);
     }
   }
-  sc_list_store(&l, vt + i * ATS_SC_STRIDE);
+  sc_list_store(&l, radius, vt + i * ATS_SC_STRIDE);
 }
 
 /* Per triangle t the vertices within radius, into tv + t * ATS_SC_STRIDE. A
@@ -235,7 +231,7 @@ ATS_FN void sc_query_triangle(int t, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL 
                               ATS_GLOBAL const int* leaves, ATS_GLOBAL const ats_float4* nodes,
                               ATS_GLOBAL const int* levels, int root, float radius, ATS_GLOBAL int* tv) {
   sc_list l;
-  sc_list_begin(&l, radius);
+  sc_list_begin(&l);
   ATS_GLOBAL const int* f = tris + 4 * t;
   const ats_vec3 a = sc_v(x[f[0]]), b = sc_v(x[f[1]]), c = sc_v(x[f[2]]);
   const sc_box q = sc_box_of_triangle(a, b, c, radius);
@@ -252,7 +248,7 @@ ATS_FN void sc_query_triangle(int t, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL 
       if (g.d < radius) sc_list_insert(&l, v, g.d);
     }
   }
-  sc_list_store(&l, tv + t * ATS_SC_STRIDE);
+  sc_list_store(&l, radius, tv + t * ATS_SC_STRIDE);
 }
 
 /* Per edge e the edges within radius, into ee + e * ATS_SC_STRIDE. An edge
@@ -262,7 +258,7 @@ ATS_FN void sc_query_edge(int e, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL cons
                           ATS_GLOBAL const int* leaves, ATS_GLOBAL const ats_float4* nodes,
                           ATS_GLOBAL const int* levels, int root, float radius, ATS_GLOBAL int* ee) {
   sc_list l;
-  sc_list_begin(&l, radius);
+  sc_list_begin(&l);
   const int s0 = edges[2 * e], s1 = edges[2 * e + 1];
   const ats_vec3 a = sc_v(x[s0]), b = sc_v(x[s1]);
   const sc_box q = sc_box_of_edge(a, b, radius);
@@ -281,7 +277,7 @@ ATS_FN void sc_query_edge(int e, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL cons
       if (g.d < radius) sc_list_insert(&l, f, g.d);
     }
   }
-  sc_list_store(&l, ee + e * ATS_SC_STRIDE);
+  sc_list_store(&l, radius, ee + e * ATS_SC_STRIDE);
 }
 
 /* All three queries of leaf u in one walk of the tree: the triangle's own
@@ -302,7 +298,7 @@ ATS_FN void sc_query_leaf(int u, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL cons
   const ats_vec3 a = sc_v(x[f[0]]), b = sc_v(x[f[1]]), c = sc_v(x[f[2]]);
   const sc_box q = sc_box_of_triangle(a, b, c, radius);
   sc_list tri;
-  sc_list_begin(&tri, radius);
+  sc_list_begin(&tri);
   /* owned vertices: id (-1: none or not a query), point, widened box */
   int vid[3];
   ats_vec3 vp[3];
@@ -310,7 +306,7 @@ ATS_FN void sc_query_leaf(int u, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL cons
   sc_list vl[3];
   for (int k = 0; k < 3; ++k) {
     vid[k] = own[k];
-    sc_list_begin(&vl[k], radius);
+    sc_list_begin(&vl[k]);
     if (vid[k] >= 0 && !sc_is_surface(inc, vid[k])) vid[k] = -1;
     vp[k] = vid[k] >= 0 ? sc_v(x[vid[k]]) : a;
     vq[k] = sc_box_of_point(vp[k], radius);
@@ -322,7 +318,7 @@ ATS_FN void sc_query_leaf(int u, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL cons
   sc_list el[3];
   for (int k = 0; k < 3; ++k) {
     eid[k] = own[4 + k];
-    sc_list_begin(&el[k], radius);
+    sc_list_begin(&el[k]);
     e0[k] = eid[k] >= 0 ? edges[2 * eid[k]] : -1;
     e1[k] = eid[k] >= 0 ? edges[2 * eid[k] + 1] : -1;
     ea[k] = eid[k] >= 0 ? sc_v(x[e0[k]]) : a;
@@ -380,54 +376,80 @@ ATS_FN void sc_query_leaf(int u, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL cons
       }
     }
   }
-  sc_list_store(&tri, tv + u * ATS_SC_STRIDE);
+  sc_list_store(&tri, radius, tv + u * ATS_SC_STRIDE);
   for (int k = 0; k < 3; ++k) {
-    if (own[k] >= 0) sc_list_store(&vl[k], vt + own[k] * ATS_SC_STRIDE);
-    if (eid[k] >= 0) sc_list_store(&el[k], ee + eid[k] * ATS_SC_STRIDE);
+    if (own[k] >= 0) sc_list_store(&vl[k], radius, vt + own[k] * ATS_SC_STRIDE);
+    if (eid[k] >= 0) sc_list_store(&el[k], radius, ee + eid[k] * ATS_SC_STRIDE);
   }
 }
 
-/* The query radius tied to the substep's motion. A pair farther apart than
- * R at x_t is not listed; VBD's bound keeps each vertex within gamma R
- * (gamma = 0.4) of x_t, so such a pair stays at least (1 - 2 gamma) R
- * apart: no crossing for any R. R is chosen so that the bound does not slow
- * the predicted motion (gamma R >= 2 delta: the fastest vertex may double
- * its step) and so that a pair closing at the predicted speed from beyond R
- * cannot reach the thickness r within the substep (R >= r + 2.5 delta),
- * delta the largest predicted displacement |x~ - x_t| of any surface
- * vertex; never below 1.5 r (touching pairs stay listed) nor above r_max
- * (contact.query_radius, 3 r by default: the radius before it was tied to
- * the motion). */
+/* When the lists are rebuilt. A frame's first substep detects (the
+ * frame_state buffer `state` is restored then: state[0] = 0), on x_t with
+ * the radius R_det = r_max (contact.query_radius, 3 r by default), and
+ * remembers x_t as x_det. A later substep of the frame keeps the lists while
+ * they still hold every pair it needs: with D the largest displacement of
+ * any surface vertex since x_det, a pair closer than R at x_t was closer
+ * than R + 2 D at x_det, so the lists serve while R + 2 D <= R_det. R ties
+ * the substep's need to its motion: VBD's bound keeps each vertex within
+ * gamma R (gamma = 0.4) of x_t, so an unlisted pair stays at least
+ * (1 - 2 gamma) R apart (no crossing, for any R); R >= 5 delta keeps the
+ * bound from slowing the fastest predicted step (it may double), R >= r +
+ * 2.5 delta keeps a pair closing at the predicted speed from reaching the
+ * thickness r unlisted, and R >= 1.5 r keeps touching pairs listed; delta
+ * is the largest predicted step |x~ - x_t| of any surface vertex.
+ * state: [0] lists valid, [1] detect in this substep, [2] R_det (float
+ * bits), [3] D (float bits), [4] detections in this frame. */
 #define ATS_SC_MOTION_BLOCK 256
-ATS_FN float sc_block_motion(int b, ATS_GLOBAL const ats_float4* x_start, ATS_GLOBAL const ats_float4* x_guess,
-                             ATS_GLOBAL const int* inc, int n) {
-  float m = 0.0f;
+#define ATS_SC_STATE_INTS 8
+
+/* Block b of ATS_SC_MOTION_BLOCK particles: [2 b] the largest |x_t - x_det|,
+ * [2 b + 1] the largest |x~ - x_t| of its surface vertices. */
+ATS_FN void sc_block_motion(int b, ATS_GLOBAL const ats_float4* x_det, ATS_GLOBAL const ats_float4* x_start,
+                            ATS_GLOBAL const ats_float4* x_guess, ATS_GLOBAL const int* inc, int n,
+                            ATS_GLOBAL float* block_max) {
+  float moved = 0.0f, step = 0.0f;
   const int end = (b + 1) * ATS_SC_MOTION_BLOCK < n ? (b + 1) * ATS_SC_MOTION_BLOCK : n;
   for (int i = b * ATS_SC_MOTION_BLOCK; i < end; ++i) {
     if (!sc_is_surface(inc, i)) continue;
-    const ats_vec3 d = ats_sub(sc_v(x_guess[i]), sc_v(x_start[i]));
-    m = fmax(m, ats_length(d));
+    moved = fmax(moved, ats_length(ats_sub(sc_v(x_start[i]), sc_v(x_det[i]))));
+    step = fmax(step, ats_length(ats_sub(sc_v(x_guess[i]), sc_v(x_start[i]))));
   }
-  return m;
+  block_max[2 * b] = moved;
+  block_max[2 * b + 1] = step;
 }
 
-ATS_FN float sc_motion_radius(ATS_GLOBAL const float* block_max, int blocks, float r, float r_max) {
-  float delta = 0.0f;
-  for (int b = 0; b < blocks; ++b) delta = fmax(delta, block_max[b]);
-  const float wanted = fmax(1.5f * r, fmax(r + 2.5f * delta, 5.0f * delta));
-  return fmin(wanted, r_max);
+/* The radius a substep needs for its largest predicted step delta. */
+ATS_FN float sc_needed_radius(float delta, float r, float r_max) {
+  return fmin(fmax(1.5f * r, fmax(r + 2.5f * delta, 5.0f * delta)), r_max);
 }
 
-/* VBD's conservative displacement bound of vertex i: gamma times the
- * distance to the nearest primitive it could meet (as a point, through its
- * triangles, through its edges). */
-ATS_FN float sc_vertex_bound(int i, ATS_GLOBAL const int* inc, int n, ATS_GLOBAL const int* vt,
-                             ATS_GLOBAL const int* tv, ATS_GLOBAL const int* ee, float gamma) {
-  if (!sc_is_surface(inc, i)) return 1e30f;
+ATS_FN void sc_decide(ATS_GLOBAL const float* block_max, int blocks, float r, float r_max, ATS_GLOBAL int* state) {
+  float moved = 0.0f, delta = 0.0f;
+  for (int b = 0; b < blocks; ++b) {
+    moved = fmax(moved, block_max[2 * b]);
+    delta = fmax(delta, block_max[2 * b + 1]);
+  }
+  const int detect = state[0] == 0 || sc_needed_radius(delta, r, r_max) + 2.0f * moved > sc_bits_float(state[2]);
+  state[0] = 1;
+  state[1] = detect;
+  if (detect) {
+    state[2] = sc_float_bits(r_max);
+    state[3] = sc_float_bits(0.0f);
+    state[4] += 1;
+  } else {
+    state[3] = sc_float_bits(moved);
+  }
+}
+
+/* The nearest any primitive vertex i does not have listed can be: the
+ * smallest horizon of its lists (as a point, through its triangles, through
+ * its edges) less twice the displacement D since the lists were made. */
+ATS_FN float sc_unlisted_distance(int i, ATS_GLOBAL const int* inc, int n, ATS_GLOBAL const int* vt,
+                                  ATS_GLOBAL const int* tv, ATS_GLOBAL const int* ee, float moved) {
   float d = sc_bits_float(vt[i * ATS_SC_STRIDE + 1]);
   for (int k = inc[i]; k < inc[i + 1]; ++k) d = fmin(d, sc_bits_float(tv[inc[k] * ATS_SC_STRIDE + 1]));
   for (int k = inc[n + 1 + i]; k < inc[n + 2 + i]; ++k) d = fmin(d, sc_bits_float(ee[inc[k] * ATS_SC_STRIDE + 1]));
-  return gamma * d;
+  return d - 2.0f * moved;
 }
 
 #endif

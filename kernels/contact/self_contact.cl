@@ -25,39 +25,41 @@
 #include "common/self_contact_bvh.h"
 #include "common/task.h"
 
-ATS_TASK void sc_leaf_boxes(int t, __global const float4* x, __global const int4* tris, __global float4* nodes) {
-  sc_leaf_box(t, x, (__global const int*)tris, nodes);
+/* state: the frame_state of common/self_contact_bvh.h (sc_decide); the
+ * detection tasks do nothing in a substep that keeps the lists. */
+ATS_TASK void sc_leaf_boxes(int t, __global const float4* x, __global const int4* tris, __global float4* nodes, __global const int* state) {
+  if (state[1]) sc_leaf_box(t, x, (__global const int*)tris, nodes);
 }
 
 /* Node j of the level at `offset` from its children at `child_offset`. */
-ATS_TASK void sc_refit_level(int j, __global float4* nodes, int offset, int child_offset, int children) {
-  sc_refit_node(nodes, offset + j, child_offset, 2 * j, children);
+ATS_TASK void sc_refit_level(int j, __global float4* nodes, int offset, int child_offset, int children, __global const int* state) {
+  if (state[1]) sc_refit_node(nodes, offset + j, child_offset, 2 * j, children);
 }
 
 /* The levels from `from` to `root`, each after the one below (one work-item). */
-ATS_TASK void sc_refit_top(int k, __global float4* nodes, __global const int* levels, int from, int root) {
-  if (k == 0) sc_refit_levels(nodes, levels, from, root);
+ATS_TASK void sc_refit_top(int k, __global float4* nodes, __global const int* levels, int from, int root, __global const int* state) {
+  if (k == 0 && state[1]) sc_refit_levels(nodes, levels, from, root);
 }
 
-/* The largest predicted displacement |x~ - x_t| of the surface vertices in
- * block b of ATS_SC_MOTION_BLOCK particles. */
-ATS_TASK void sc_motion(int b, __global const float4* x_start, __global const float4* x_guess, __global const int* inc, int n, __global float* block_max) {
-  block_max[b] = sc_block_motion(b, x_start, x_guess, inc, n);
+/* Per block of ATS_SC_MOTION_BLOCK particles the largest displacement since
+ * the lists were made and the largest predicted step. */
+ATS_TASK void sc_motion(int b, __global const float4* x_det, __global const float4* x_start, __global const float4* x_guess, __global const int* inc, int n, __global float* block_max) {
+  sc_block_motion(b, x_det, x_start, x_guess, inc, n, block_max);
 }
 
-/* This substep's query radius from the blocks' largest displacement (one
- * work-item; common/self_contact_bvh.h sc_motion_radius). */
-ATS_TASK void sc_radius(int k, __global const float* block_max, int blocks, float r, float r_max, __global float* radius) {
-  if (k == 0) radius[0] = sc_motion_radius(block_max, blocks, r, r_max);
+/* Whether this substep rebuilds the lists (one work-item). */
+ATS_TASK void sc_decide_detection(int k, __global const float* block_max, int blocks, float r, float r_max, __global int* state) {
+  if (k == 0) sc_decide(block_max, blocks, r, r_max, state);
+}
+
+/* x_det: where the lists are made. */
+ATS_TASK void sc_snap(int i, __global const float4* x_start, __global float4* x_det, __global const int* state) {
+  if (state[1]) x_det[i] = x_start[i];
 }
 
 /* The three queries of leaf u in one walk (common/self_contact_bvh.h). */
-ATS_TASK void sc_query_leaves(int u, __global const float4* x, __global const int* inc, __global const int4* tris, __global const int2* edges, __global const int* leaves, __global const float4* nodes, __global const int* levels, int root, __global const float* radius, __global int* vt, __global int* tv, __global int* ee) {
-  sc_query_leaf(u, x, inc, (__global const int*)tris, (__global const int*)edges, leaves, nodes, levels, root, radius[0], vt, tv, ee);
-}
-
-ATS_TASK void sc_bound(int i, __global const int* inc, int n, __global const int* vt, __global const int* tv, __global const int* ee, float gamma, __global float* bound) {
-  bound[i] = sc_vertex_bound(i, inc, n, vt, tv, ee, gamma);
+ATS_TASK void sc_query_leaves(int u, __global const float4* x, __global const int* inc, __global const int4* tris, __global const int2* edges, __global const int* leaves, __global const float4* nodes, __global const int* levels, int root, __global const int* state, __global int* vt, __global int* tv, __global int* ee) {
+  if (state[1]) sc_query_leaf(u, x, inc, (__global const int*)tris, (__global const int*)edges, leaves, nodes, levels, root, as_float(state[2]), vt, tv, ee);
 }
 
 /* p held within distance b of q (VBD's truncation of a vertex's step). */
@@ -118,6 +120,20 @@ ATS_TASK void sc_clamp(int i, __global float4* x, __global const float4* x_start
       }                                                                                                            \
     }                                                                                                              \
   }
+
+/* VBD's conservative displacement bound of vertex i (§3.7): gamma times
+ * the distance to the nearest primitive it could meet, on x_t: its listed
+ * pairs' distances now, and what its lists' horizons leave for the rest
+ * (common/self_contact_bvh.h sc_unlisted_distance). */
+ATS_TASK void sc_bound(int i, __global const float4* x, __global const int4* tris, __global const int2* edges, __global const int* inc, int n, __global const int* vt, __global const int* tv, __global const int* ee, __global const int* state, float gamma, __global float* bound) {
+  if (!sc_is_surface(inc, i)) {
+    bound[i] = 1e30f;
+    return;
+  }
+  float d = sc_unlisted_distance(i, inc, n, vt, tv, ee, as_float(state[3]));
+  SC_FOR_EACH_PAIR({ d = fmin(d, g.d); })
+  bound[i] = gamma * fmax(d, 0.0f);
+}
 
 /* XPBD (Macklin et al. 2016) inequality constraint C = d - r >= 0 of every
  * pair of vertex i, zero compliance: the pair's correction of vertex i,

@@ -57,6 +57,7 @@ struct PlanExecutor::Impl {
   std::vector<std::unique_ptr<SvmArena>> arenas;  // per memory: the plan's buffers
   SvmArena sync_arena;                            // fused: counters and records (fine grain, atomics)
   PlanResources resources;
+  std::vector<std::pair<plan::BufferId, std::vector<std::byte>>> frame_states;  // and their initial contents
   std::vector<Step> steps;
   std::unique_ptr<EventRunner> events;  // created when first needed
   std::unique_ptr<FusedRunner> fused;
@@ -95,6 +96,9 @@ struct PlanExecutor::Impl {
         resources.buffers[m].push_back(ptr);
       }
       resources.sizes.push_back(spec.initial.size());
+      if (spec.role == plan::BufferRole::frame_state) {
+        frame_states.emplace_back(static_cast<plan::BufferId>(resources.sizes.size() - 1), spec.initial);
+      }
       std::vector<std::byte>().swap(spec.initial);  // the devices hold it now
     }
     resources.written = written_by_task(plan, resources.sizes);
@@ -235,6 +239,11 @@ struct PlanExecutor::Impl {
   void reset(const plan::PlanState& state) {
     write(plan.buffer(plan::BufferRole::positions), state.positions);
     if (const plan::BufferId v = plan.find_buffer(plan::BufferRole::velocities); v >= 0) write(v, state.velocities);
+    begin_frame();
+  }
+
+  void begin_frame() {
+    for (const auto& [id, initial] : frame_states) write(id, initial);
   }
 };
 
@@ -314,6 +323,7 @@ void PlanExecutor::finish() { impl_->finish(); }
 
 plan::PlanState PlanExecutor::read_state() { return impl_->read_state(); }
 void PlanExecutor::reset(const plan::PlanState& state) { impl_->reset(state); }
+void PlanExecutor::begin_frame() { impl_->begin_frame(); }
 std::vector<std::byte> PlanExecutor::read(plan::BufferId id) { return impl_->read(id); }
 void PlanExecutor::write(plan::BufferId id, std::span<const std::byte> bytes) { impl_->write(id, bytes); }
 

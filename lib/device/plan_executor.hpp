@@ -105,7 +105,12 @@ class PlanExecutor {
 
   // The state carried between substeps (waits first).
   plan::PlanState read_state();
+  // Restores the state and, as begin_frame() does, every frame_state buffer.
   void reset(const plan::PlanState& state);
+  // A frame starts: every frame_state buffer gets the plan's initial
+  // contents again (the caches it guards are rebuilt in the first substep),
+  // so a frame's result depends only on the state it starts from.
+  void begin_frame();
   std::vector<std::byte> read(plan::BufferId id);
   void write(plan::BufferId id, std::span<const std::byte> bytes);
   // Positions as xyz float triplets (from the plan's float4 positions buffer).

@@ -26,6 +26,10 @@ enum class BufferRole {
   results,          // what a plan computes for the host to read (energy terms)
   colliders,        // collider records and mesh data; never written by a task, rewritten by the host
                     // between substeps when colliders move (solver/contact/kinematic_colliders)
+  cache,            // results carried from one substep to the next within a frame (the surface
+                    // contact pair lists), valid only while a frame_state buffer says so
+  frame_state,      // small per-frame state: restored to the plan's initial contents at the start
+                    // of every frame (PlanExecutor::begin_frame) and by reset()
 };
 
 std::string_view to_string(BufferRole role);

@@ -70,6 +70,10 @@ std::string_view to_string(BufferRole role) {
       return "results";
     case BufferRole::colliders:
       return "colliders";
+    case BufferRole::cache:
+      return "cache";
+    case BufferRole::frame_state:
+      return "frame_state";
   }
   return "?";
 }

@@ -19,6 +19,7 @@ constexpr int kListInts = 10;        // ATS_SC_STRIDE of kernels/contact/self_co
 constexpr int kNodeBytes = 32;       // two float4 per node
 constexpr int kTopLevelNodes = 256;  // levels this small are refitted by one work-item
 constexpr int kMotionBlock = 256;    // ATS_SC_MOTION_BLOCK of kernels/common/self_contact_bvh.h
+constexpr int kStateInts = 8;        // ATS_SC_STATE_INTS
 
 std::size_t motion_blocks(std::size_t n) { return (n + kMotionBlock - 1) / kMotionBlock; }
 
@@ -36,14 +37,17 @@ SelfContactBuffers add_self_contact_buffers(plan::SubstepPlan& plan, const SimLa
   b.leaves = plan.add_buffer("sc_leaves", BufferRole::topology, plan::bytes_of(s.leaves));
   b.levels = plan.add_buffer("sc_levels", BufferRole::topology, plan::bytes_of(s.levels));
   b.incidence = plan.add_buffer("sc_incidence", BufferRole::topology, plan::bytes_of(s.incidence));
-  b.nodes = plan.add_buffer("sc_nodes", BufferRole::scratch, zeros(std::size_t(s.node_count()) * kNodeBytes));
-  b.vt = plan.add_buffer("sc_vt", BufferRole::scratch, zeros(n * kListInts * 4));
-  b.tv = plan.add_buffer("sc_tv", BufferRole::scratch, zeros(s.tris.size() * kListInts * 4));
-  b.ee = plan.add_buffer("sc_ee", BufferRole::scratch, zeros(s.edges.size() * kListInts * 4));
+  // The tree, the lists and where they were made are kept from one substep
+  // to the next while sc_state (restored at every frame's start) says so.
+  b.nodes = plan.add_buffer("sc_nodes", BufferRole::cache, zeros(std::size_t(s.node_count()) * kNodeBytes));
+  b.vt = plan.add_buffer("sc_vt", BufferRole::cache, zeros(n * kListInts * 4));
+  b.tv = plan.add_buffer("sc_tv", BufferRole::cache, zeros(s.tris.size() * kListInts * 4));
+  b.ee = plan.add_buffer("sc_ee", BufferRole::cache, zeros(s.edges.size() * kListInts * 4));
+  b.x_det = plan.add_buffer("sc_x_det", BufferRole::cache, zeros(n * kParticleBytes));
+  b.state = plan.add_buffer("sc_state", BufferRole::frame_state, zeros(s.enabled ? kStateInts * 4 : 0));
   b.bound = plan.add_buffer("sc_bound", BufferRole::scratch, zeros(n * 4));
   b.x_out = plan.add_buffer("sc_x_out", BufferRole::scratch, zeros(n * kParticleBytes));
-  b.motion = plan.add_buffer("sc_motion", BufferRole::scratch, zeros(motion_blocks(n) * 4));
-  b.radius = plan.add_buffer("sc_radius", BufferRole::scratch, zeros(s.enabled ? 16 : 0));
+  b.motion = plan.add_buffer("sc_motion", BufferRole::scratch, zeros(motion_blocks(n) * 8));
   return b;
 }
 
@@ -54,50 +58,59 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
   const int n = static_cast<int>(layout.x.size());
   const int tris = static_cast<int>(s.tris.size());
   const auto detect = [](const std::string& name) { return plan::make_task(name, plan::TaskKind::detection); };
-  const sched::TaskId predicted = last;
+  // Whether this substep rebuilds the lists (common/self_contact_bvh.h
+  // sc_decide): the displacement since they were made and the predicted
+  // step, per block, then one work-item decides; the rebuild's tasks do
+  // nothing in a substep that keeps them.
+  const int blocks = static_cast<int>(motion_blocks(static_cast<std::size_t>(n)));
+  const sched::TaskId motion =
+      plan.add_task_after(last, detect("detect/motion"),
+                          {"sc_motion",
+                           {0, blocks},
+                           {Arg::of_buffer(b.x_det), Arg::of_buffer(start), Arg::of_buffer(positions),
+                            Arg::of_buffer(b.incidence), Arg::of_int(n), Arg::of_buffer(b.motion)},
+                           {WriteSpan::per_element(b.motion, 8)}});
+  const sched::TaskId decide =
+      plan.add_task_after(motion, detect("detect/decide"),
+                          {"sc_decide_detection",
+                           {0, 1},
+                           {Arg::of_buffer(b.motion), Arg::of_int(blocks), Arg::of_float(s.thickness),
+                            Arg::of_float(s.query_radius), Arg::of_buffer(b.state)},
+                           {WriteSpan::whole_buffer(b.state)}});
+  const sched::TaskId snap =
+      plan.add_task_after(decide, detect("detect/snap"),
+                          {"sc_snap",
+                           {0, n},
+                           {Arg::of_buffer(start), Arg::of_buffer(b.x_det), Arg::of_buffer(b.state)},
+                           {particle_write(b.x_det)}});
   // BVH refit, bottom up (He et al. 2025 Fig. 2: "BVH updates").
-  last = plan.add_task_after(last, detect("detect/leaves"),
-                             {"sc_leaf_boxes",
-                              {0, tris},
-                              {Arg::of_buffer(start), Arg::of_buffer(b.tris), Arg::of_buffer(b.nodes)},
-                              {WriteSpan::per_element(b.nodes, kNodeBytes)}});
+  last = plan.add_task_after(
+      decide, detect("detect/leaves"),
+      {"sc_leaf_boxes",
+       {0, tris},
+       {Arg::of_buffer(start), Arg::of_buffer(b.tris), Arg::of_buffer(b.nodes), Arg::of_buffer(b.state)},
+       {WriteSpan::per_element(b.nodes, kNodeBytes)}});
   const int root = s.root();
   int level = 1;
   for (; level <= root && s.levels[level + 1] - s.levels[level] > kTopLevelNodes; ++level) {
     const int count = s.levels[level + 1] - s.levels[level];
-    last = plan.add_task_after(last, detect(fmt::format("detect/level{}", level)),
-                               {"sc_refit_level",
-                                {0, count},
-                                {Arg::of_buffer(b.nodes), Arg::of_int(s.levels[level]),
-                                 Arg::of_int(s.levels[level - 1]), Arg::of_int(s.levels[level] - s.levels[level - 1])},
-                                {WriteSpan::per_element(b.nodes, kNodeBytes, s.levels[level])}});
+    last =
+        plan.add_task_after(last, detect(fmt::format("detect/level{}", level)),
+                            {"sc_refit_level",
+                             {0, count},
+                             {Arg::of_buffer(b.nodes), Arg::of_int(s.levels[level]), Arg::of_int(s.levels[level - 1]),
+                              Arg::of_int(s.levels[level] - s.levels[level - 1]), Arg::of_buffer(b.state)},
+                             {WriteSpan::per_element(b.nodes, kNodeBytes, s.levels[level])}});
   }
   if (level <= root) {
-    last =
-        plan.add_task_after(last, detect("detect/top"),
-                            {"sc_refit_top",
-                             {0, 1},
-                             {Arg::of_buffer(b.nodes), Arg::of_buffer(b.levels), Arg::of_int(level), Arg::of_int(root)},
-                             {WriteSpan::whole_buffer(b.nodes)}});
+    last = plan.add_task_after(last, detect("detect/top"),
+                               {"sc_refit_top",
+                                {0, 1},
+                                {Arg::of_buffer(b.nodes), Arg::of_buffer(b.levels), Arg::of_int(level),
+                                 Arg::of_int(root), Arg::of_buffer(b.state)},
+                                {WriteSpan::whole_buffer(b.nodes)}});
   }
   const sched::TaskId refit = last;
-  // The query radius tied to the substep's predicted motion (first guess
-  // against x_t), beside the refit.
-  const int blocks = static_cast<int>(motion_blocks(static_cast<std::size_t>(n)));
-  const sched::TaskId motion =
-      plan.add_task(detect("detect/motion"), {{"sc_motion",
-                                               {0, blocks},
-                                               {Arg::of_buffer(start), Arg::of_buffer(positions),
-                                                Arg::of_buffer(b.incidence), Arg::of_int(n), Arg::of_buffer(b.motion)},
-                                               {WriteSpan::per_element(b.motion, 4)}}});
-  plan.graph.add_edge(predicted, motion);
-  const sched::TaskId radius =
-      plan.add_task_after(motion, detect("detect/radius"),
-                          {"sc_radius",
-                           {0, 1},
-                           {Arg::of_buffer(b.motion), Arg::of_int(blocks), Arg::of_float(s.thickness),
-                            Arg::of_float(s.query_radius), Arg::of_buffer(b.radius)},
-                           {WriteSpan::whole_buffer(b.radius)}});
   // One walk per leaf finds the pairs of the primitives it owns (one owner
   // each): its triangle's vertices, its vertices' triangles, its edges' edges.
   const auto owned = [&](int first) {
@@ -113,18 +126,19 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
        {0, tris},
        {Arg::of_buffer(start), Arg::of_buffer(b.incidence), Arg::of_buffer(b.tris), Arg::of_buffer(b.edges),
         Arg::of_buffer(b.leaves), Arg::of_buffer(b.nodes), Arg::of_buffer(b.levels), Arg::of_int(root),
-        Arg::of_buffer(b.radius), Arg::of_buffer(b.vt), Arg::of_buffer(b.tv), Arg::of_buffer(b.ee)},
+        Arg::of_buffer(b.state), Arg::of_buffer(b.vt), Arg::of_buffer(b.tv), Arg::of_buffer(b.ee)},
        {WriteSpan::per_index(b.vt, kListInts * 4, 3, owned(0)), WriteSpan::per_element(b.tv, kListInts * 4),
         WriteSpan::per_index(b.ee, kListInts * 4, 3, owned(4))}});
   const sched::TaskId bound =
       plan.add_task(detect("detect/bound"),
                     {{"sc_bound",
                       {0, n},
-                      {Arg::of_buffer(b.incidence), Arg::of_int(n), Arg::of_buffer(b.vt), Arg::of_buffer(b.tv),
-                       Arg::of_buffer(b.ee), Arg::of_float(s.gamma), Arg::of_buffer(b.bound)},
+                      {Arg::of_buffer(start), Arg::of_buffer(b.tris), Arg::of_buffer(b.edges),
+                       Arg::of_buffer(b.incidence), Arg::of_int(n), Arg::of_buffer(b.vt), Arg::of_buffer(b.tv),
+                       Arg::of_buffer(b.ee), Arg::of_buffer(b.state), Arg::of_float(s.gamma), Arg::of_buffer(b.bound)},
                       {WriteSpan::per_element(b.bound, 4)}}});
-  plan.graph.add_edge(radius, pairs);
   plan.graph.add_edge(pairs, bound);
+  plan.graph.add_edge(snap, bound);
   return plan.add_task_after(bound, plan::make_task("contact/first_guess", plan::TaskKind::collision),
                              {"sc_clamp",
                               {0, n},

@@ -18,7 +18,8 @@ namespace atssim::solver {
 struct SelfContactBuffers {
   plan::BufferId tris = -1, edges = -1, leaves = -1, nodes = -1, levels = -1, incidence = -1, vt = -1, tv = -1, ee = -1,
                  bound = -1, x_out = -1,  // x_out: XPBD's projection
-      motion = -1, radius = -1;           // per block the largest predicted step; the substep's query radius
+      motion = -1,                        // per block the largest displacement since x_det and predicted step
+      x_det = -1, state = -1;             // where the lists were made; whether they serve (common/self_contact_bvh.h)
 };
 
 SelfContactBuffers add_self_contact_buffers(plan::SubstepPlan& plan, const SimLayout& layout);

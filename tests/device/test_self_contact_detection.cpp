@@ -24,7 +24,7 @@ namespace {
 
 constexpr int kCapacity = 8, kStride = kCapacity + 2;
 
-// Two layers 1.2 cm apart (within the 1.5 cm query radius at rest) and a third far away.
+// Two layers 1.2 cm apart (within the 3 cm query radius) and a third far away.
 const char* kScene =
     "simulation: {fps: 60, substeps: 1, iterations: 1, frames: 1, gravity: [0, 0, 0]}\n"
     "objects:\n"
@@ -92,9 +92,10 @@ void check_list(const std::vector<int>& list, int e, std::vector<std::pair<doubl
   const int* l = list.data() + e * kStride;
   INFO("element " << e << ": " << expected.size() << " within the radius");
   REQUIRE(l[0] == std::min<int>(kCapacity, int(expected.size())));
-  float nearest;
-  std::memcpy(&nearest, &l[1], 4);
-  CHECK(nearest == Approx(expected.empty() ? radius : expected.front().first).margin(2e-5));
+  // [1]: the horizon, the distance every unlisted candidate is at least at
+  float horizon;
+  std::memcpy(&horizon, &l[1], 4);
+  CHECK(horizon == Approx(int(expected.size()) >= kCapacity ? expected[kCapacity - 1].first : radius).margin(2e-5));
   for (int k = 0; k < l[0]; ++k) {
     // The k-th device entry is one of the brute force's entries at (nearly) the k-th distance.
     const auto it = std::find_if(expected.begin(), expected.end(), [&](const auto& p) { return p.second == l[2 + k]; });
@@ -124,12 +125,13 @@ TEST_CASE("self-contact detection on the device finds the brute force's nearest 
   const std::vector<int> vt = ints_of(exec.read(buffer_named(plan, "sc_vt")));
   const std::vector<int> tv = ints_of(exec.read(buffer_named(plan, "sc_tv")));
   const std::vector<int> ee = ints_of(exec.read(buffer_named(plan, "sc_ee")));
-  // The query radius is tied to the substep's predicted motion
-  // (common/self_contact_bvh.h sc_motion_radius): without gravity and at
-  // rest that is nothing, so the radius is its floor, 1.5 thicknesses.
+  // A frame's first substep detects, at the largest radius
+  // (contact.query_radius; common/self_contact_bvh.h sc_decide).
+  const std::vector<int> state = ints_of(exec.read(buffer_named(plan, "sc_state")));
+  CHECK(state[1] == 1);
   float radius = 0.0f;
-  std::memcpy(&radius, exec.read(buffer_named(plan, "sc_radius")).data(), 4);
-  CHECK(radius == Approx(1.5f * s.thickness));
+  std::memcpy(&radius, &state[2], 4);
+  CHECK(radius == s.query_radius);
   const auto& x = layout.x;  // detection runs on x_t, the substep's start
   const int n = int(x.size());
   std::vector<char> surface(n, 0);
@@ -168,4 +170,74 @@ TEST_CASE("self-contact detection on the device finds the brute force's nearest 
     check_list(ee, e, expected, radius);
   }
   CHECK(pairs > 100);  // the two layers do face each other
+}
+
+TEST_CASE(
+    "within a frame the lists are kept while the motion allows, and always hold every pair closer than 1.5 "
+    "thicknesses at the substep's start",
+    "[self]") {
+  // The upper layer of the scene above falling onto the lower one, pinned,
+  // under a weak gravity, one frame of many substeps (no begin_frame between
+  // them): early substeps move little and keep the lists, later ones move
+  // more and rebuild them; the pairs change as the layers close.
+  std::string scene = kScene;
+  scene.replace(scene.find("gravity: [0, 0, 0]"), 18, "gravity: [4, -1, 0]");  // sliding over it
+  const std::string a = "material: {density: 0.2, stretch_stiffness: 100}}\n";
+  scene.replace(scene.find(a), a.size(),
+                "material: {density: 0.2, stretch_stiffness: 100},\n"
+                "     pins: {boxes: [{min: [-1, -0.01, -1], max: [1, 0.005, 1]}]}}\n");
+  const model::Model m = model::build_model(scene::parse_scene(scene, "s.yaml", "."));
+  const solver::SimLayout layout = solver::make_sim_layout(m);
+  const solver::SelfContactLayout& s = layout.self_contact;
+  const plan::SubstepPlan plan = solver::vbd::make_vbd_plan(layout, 1.0 / 60.0, 1);
+  const auto devices = device::DeviceSet::open("cpu");
+  device::PlanExecutor exec(devices, plan, {});
+  const float near = 1.5f * s.thickness;
+  const int substeps = 24;
+  int kept = 0, checked = 0;
+  for (int k = 0; k < substeps; ++k) {
+    exec.run_substeps(1);
+    const std::vector<int> state = ints_of(exec.read(buffer_named(plan, "sc_state")));
+    if (state[1] == 0) ++kept;
+    std::vector<solver::Float4> x(layout.x.size());
+    const std::vector<std::byte> raw = exec.read(buffer_named(plan, "x_prev"));  // x_t of this substep
+    std::memcpy(x.data(), raw.data(), raw.size());
+    const std::vector<int> vt = ints_of(exec.read(buffer_named(plan, "sc_vt")));
+    const std::vector<int> ee = ints_of(exec.read(buffer_named(plan, "sc_ee")));
+    for (int v = 0; v < int(x.size()); ++v) {
+      for (int t = 0; t < int(s.tris.size()); ++t) {
+        const auto& f = s.tris[t];
+        if (f[0] == v || f[1] == v || f[2] == v) continue;
+        if (pt_dist(at(x, v), at(x, f[0]), at(x, f[1]), at(x, f[2])) >= near) continue;
+        const int* l = vt.data() + v * kStride;
+        INFO("substep " << k << ": vertex " << v << ", triangle " << t);
+        // listed, or the list is full of nearer ones (the 8 nearest are kept)
+        CHECK((std::find(l + 2, l + 2 + l[0], t) != l + 2 + l[0] || l[0] == kCapacity));
+        ++checked;
+      }
+    }
+    for (int e = 0; e < int(s.edges.size()); ++e) {
+      const auto& a = s.edges[e];
+      for (int f = 0; f < int(s.edges.size()); ++f) {
+        const auto& b = s.edges[f];
+        if (f == e || a[0] == b[0] || a[0] == b[1] || a[1] == b[0] || a[1] == b[1]) continue;
+        if (ee_dist(at(x, a[0]), at(x, a[1]), at(x, b[0]), at(x, b[1])) >= near) continue;
+        const int* l = ee.data() + e * kStride;
+        INFO("substep " << k << ": edge " << e << ", edge " << f);
+        CHECK((std::find(l + 2, l + 2 + l[0], f) != l + 2 + l[0] || l[0] == kCapacity));
+        ++checked;
+      }
+    }
+    if (k + 1 == substeps) {
+      INFO(state[4] << " detections in " << substeps << " substeps, " << kept << " kept the lists");
+      CHECK(state[4] + kept == substeps);
+      CHECK(kept >= 2);      // early, slow substeps keep them
+      CHECK(state[4] >= 2);  // and the motion makes them rebuild
+    }
+  }
+  CHECK(checked > 100);
+  // A new frame rebuilds them whatever the motion.
+  exec.begin_frame();
+  exec.run_substeps(1);
+  CHECK(ints_of(exec.read(buffer_named(plan, "sc_state")))[1] == 1);
 }

@@ -85,20 +85,43 @@ TEST_CASE("the spatial hash finds each pair once when many cells share a bucket"
   CHECK(same_pairs(hash, brute));
 }
 
-TEST_CASE("the query radius follows the substep's largest predicted step, between 1.5 thicknesses and the cap",
+TEST_CASE("the radius a substep needs follows its largest predicted step, between 1.5 thicknesses and the cap",
           "[solver][contact][broad_phase]") {
-  // R = max(1.5 r, r + 2.5 delta, 5 delta), at most r_max; r = 1 mm, r_max = 3 mm.
+  // max(1.5 r, r + 2.5 delta, 5 delta), at most r_max; r = 1 mm, r_max = 3 mm.
   const float r = 0.001f, cap = 0.003f;
-  const auto radius = [&](std::vector<float> blocks) {
-    return sc_motion_radius(blocks.data(), static_cast<int>(blocks.size()), r, cap);
+  CHECK(sc_needed_radius(0.0f, r, cap) == Approx(0.0015));      // at rest: the floor
+  CHECK(sc_needed_radius(0.0003f, r, cap) == Approx(0.00175));  // r + 2.5 delta
+  CHECK(sc_needed_radius(0.0005f, r, cap) == Approx(0.0025));   // 5 delta beats r + 2.5 delta past 0.4 r
+  CHECK(sc_needed_radius(0.002f, r, cap) == Approx(0.003));     // the cap
+}
+
+TEST_CASE("the lists are rebuilt at a frame's start and when the motion since outgrows them, else kept",
+          "[solver][contact][broad_phase]") {
+  const float r = 0.001f, cap = 0.003f;
+  std::vector<int> state(ATS_SC_STATE_INTS, 0);  // as a frame starts
+  const auto decide = [&](std::vector<float> blocks) {
+    sc_decide(blocks.data(), static_cast<int>(blocks.size() / 2), r, cap, state.data());
+    return state[1];
   };
-  CHECK(radius({0.0f, 0.0f}) == Approx(0.0015));         // at rest: the floor
-  CHECK(radius({0.0001f, 0.0003f}) == Approx(0.00175));  // r + 2.5 delta (delta 0.3 mm, the larger block)
-  CHECK(radius({0.0005f}) == Approx(0.0025));            // 5 delta beats r + 2.5 delta past 0.4 r
-  CHECK(radius({0.002f, 0.0f}) == Approx(0.003));        // the cap
-  // the block's largest step counts surface vertices only
-  const std::vector<Float4> start{{0, 0, 0, 1}, {0, 0, 0, 1}, {0, 0, 0, 1}};
-  const std::vector<Float4> guess{{0.0003f, 0, 0, 1}, {0, 0.0004f, 0, 1}, {0, 0, 0.9f, 1}};
-  const std::vector<int> inc{0, 1, 2, 2};  // particle 2 has no triangle (first n + 1 offsets)
-  CHECK(sc_block_motion(0, start.data(), guess.data(), inc.data(), 3) == Approx(0.0004));
+  CHECK(decide({0.0f, 0.0f}) == 1);  // a frame's first substep detects, at the cap
+  CHECK(sc_bits_float(state[2]) == Approx(cap));
+  // kept while need + 2 D <= 3 mm: need 1.5 mm (at rest), D up to 0.75 mm
+  CHECK(decide({0.0007f, 0.0f, 0.0002f, 0.0f}) == 0);
+  CHECK(sc_bits_float(state[3]) == Approx(0.0007));  // D, the largest block's
+  CHECK(decide({0.0f, 0.0f, 0.0008f, 0.0f}) == 1);   // 1.5 + 1.6 mm > 3 mm
+  CHECK(sc_bits_float(state[3]) == 0.0f);            // made here
+  CHECK(decide({0.0001f, 0.0003f}) == 0);            // need 1.75 mm + 0.2 mm
+  CHECK(decide({0.0001f, 0.0006f}) == 1);            // need 3 mm (5 delta), + 0.2 mm
+  CHECK(state[4] == 3);                              // detections this frame
+}
+
+TEST_CASE("a block's motion counts surface vertices only", "[solver][contact][broad_phase]") {
+  const std::vector<Float4> det{{0, 0, 0, 1}, {0, 0, 0, 1}, {0, 0, 0, 1}};
+  const std::vector<Float4> start{{0.0003f, 0, 0, 1}, {0, 0.0001f, 0, 1}, {0, 0, 0.9f, 1}};
+  const std::vector<Float4> guess{{0.0003f, 0, 0, 1}, {0, 0.0005f, 0, 1}, {0, 0, 0.0f, 1}};
+  const std::vector<int> inc{0, 1, 2, 2};  // particle 2 has no triangle (the first n + 1 offsets)
+  std::vector<float> out(2);
+  sc_block_motion(0, det.data(), start.data(), guess.data(), inc.data(), 3, out.data());
+  CHECK(out[0] == Approx(0.0003));  // since the lists were made
+  CHECK(out[1] == Approx(0.0004));  // the predicted step
 }
