@@ -36,5 +36,5 @@ ATS_TASK void jpgd_step(int i, __global const float4* x, __global const float4* 
   const float3 stepped = (float3)(p.x + step.x, p.y + step.y, p.z + step.z);
   const float3 before = x_before[i].xyz;
   const float3 next = omega * (stepped - before) + before + beta * ((float3)(p.x, p.y, p.z) - before);
-  x_next[i] = (float4)(next, p.w);
+  x_next[i] = sc_out_of_colliders((float4)(next, p.w), colliders, collider_count, sc_on);
 }
