@@ -157,12 +157,26 @@ bool folded_onto_itself(const Surface& s, const std::vector<Vector3d>& x0, const
 
 }  // namespace
 
-TEST_CASE("the falling sheet does fold onto itself (hidden: XPBD and SOSD crumple it without a fold)",
-          "[.][contact][self][fold]") {
-  // Measured on this scene: VBD and JPGD fold it, XPBD and SOSD do not (no
-  // vertex comes within 2 thicknesses of a triangle 0.1 m away from it), so
-  // for those the intersection-free test above shows no fold. Not run by
-  // default until the scene folds under every method.
+// A known failure (tagged to fail until the scene folds under every
+// method). Measured on this scene at 60 frames, the smallest distance of a
+// vertex to a triangle 0.1 m or more away from it at rest (fold: < 0.02):
+// JPGD 0.010 (folds), XPBD 0.044, SOSD 0.126, VBD 0.126. Causes, measured:
+// - XPBD: the sheet does buckle into tight folds, but at the hinges 32 pairs
+//   of parallel diagonals of neighbouring quads (0.031 m apart at rest, 3.1
+//   thicknesses) are held at d = r by its zero-compliance projection; that
+//   stiffens each hinge, and the layer folded over lies 0.021 m above the
+//   one below it (2.1 thicknesses) instead of on it. Without those pairs
+//   (near-incident primitives) it would fold: a detection matter
+//   (kernels/contact/self_contact.cl's queries), not changed here.
+// - VBD and SOSD (since their solves no longer jitter: VBD's step takes the
+//   pairs it brings within r, SOSD's pair blocks are spread over the pair)
+//   tip the sheet over like a board: on the frictionless plane its bottom
+//   edge slides out and it lies down flat, sliding on (0.36 m in the last
+//   20 frames under VBD); before, VBD's normal jitter crumpled it into a
+//   fold. With friction 0.8 on the plane the bottom edge stays and all
+//   fold but XPBD (VBD 0.010, SOSD 0.016, JPGD 0.019, XPBD 0.022).
+TEST_CASE("the falling sheet does fold onto itself (known failure: only JPGD folds it)",
+          "[contact][self][fold][!shouldfail]") {
   const std::string method = GENERATE("xpbd", "vbd", "sosd", "jpgd");
   INFO(method);
   test::TempDir dir;
