@@ -174,9 +174,10 @@ static inline float4 sc_bounded_step(float4 next, int i, __global const float4* 
  * shares the overlap with it: 6 % of the thickness). Not onto the surface
  * itself: a step to the surface kept VBD off the potential's minimum
  * (`converge` on two layers stalled near y = 0.1; with the slack it
- * reaches 1e-8). SOSD and JPGD still project onto the surface after each
- * iteration (common/contact_steps.cl): with the same slack SOSD's y rose
- * from 0.35 to 2.97 on one state of those layers (0.37 -> 0.23 without). */
+ * reaches 1e-8). VBD's and JPGD's steps and SOSD's combine take it; they
+ * projected onto the surface after each iteration before (JPGD 0.28 ->
+ * 0.033, SOSD 0.26 -> 0.10 on those layers, both rising between
+ * doublings; now 2e-6 and 6.5e-4 at k = 256, docs/accuracy.md). */
 #define ATS_COLLIDER_SLACK 0.005f
 static inline float4 sc_out_of_colliders(float4 p, __global const ats_collider_c* colliders, int count, int on) {
   if (!on) return p;
