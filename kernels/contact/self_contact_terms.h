@@ -92,6 +92,7 @@ static inline vertex_system add_self_contact_terms_gs(vertex_system s, int i, __
  * the vertex's force and Hessian with the pairs active at x; `ahead`
  * evaluates the pairs inactive at x at the step dx. */
 #define SC_AHEAD_BODY                                                  \
+  int s_added = 0;                                                     \
   SC_FOR_EACH_PAIR({                                                   \
     if (!(g.d < r)) {                                                  \
       const ats_vec3 nrm = ats_pair_normal(g);                         \
@@ -101,7 +102,9 @@ static inline vertex_system add_self_contact_terms_gs(vertex_system s, int i, __
         ++s_added;                                                     \
       }                                                                \
     }                                                                  \
-  })
+  })                                                                   \
+  *added = s_added;                                                    \
+  return s;
 
 /* k w^2 n n^T whether or not the pair is within r (ats_pair_hessian's
  * block, for a pair the step brings within r). */
@@ -114,10 +117,7 @@ static inline vertex_system sc_ahead(vertex_system s, int* added, ats_vec3 dx, i
                                      __global const int4* tris, __global const int2* edges, __global const int* inc,
                                      int n, __global const int* vt, __global const int* tv, __global const int* ee,
                                      float k, float r) {
-  int s_added = 0;
   SC_AHEAD_BODY
-  *added = s_added;
-  return s;
 }
 
 #undef SC_AT
@@ -127,10 +127,7 @@ static inline vertex_system sc_ahead_gs(vertex_system s, int* added, ats_vec3 dx
                                         __global const int4* tris, __global const int2* edges, __global const int* inc,
                                         int n, __global const int* vt, __global const int* tv, __global const int* ee,
                                         float k, float r) {
-  int s_added = 0;
   SC_AHEAD_BODY
-  *added = s_added;
-  return s;
 }
 #undef SC_AT
 #define SC_AT(j) x[j]
