@@ -27,7 +27,7 @@ ATS_TASK void jpgd_step(int i, __global const float4* x, __global const float4* 
     return;
   }
   const vertex_system s = add_self_contact_terms(add_contact_terms(add_spring_damping(gather_vertex_system(i, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend, tets), i, x, x_start, inv_h, adj_offsets, adj, stretch), vs_xyz(p), p.w, inv_h2, colliders, collider_count), i, x, sc_tris, sc_edges, sc_inc, sc_n, sc_vt, sc_tv, sc_ee, sc_k, sc_r, sc_on);
-  const ats_solve3 d = ats_m3_solve(s.h, s.f);
+  const ats_solve3 d = sc_contact_step(s, i, x, 0, 0, sc_tris, sc_edges, sc_inc, sc_n, sc_vt, sc_tv, sc_ee, sc_k, sc_r, sc_on);
   ats_vec3 step = ats_scale(d.x, alpha);
   if (d.ok && has_ground && p.y + step.y < ground) {
     step = ats_scale(ats_vertex_step_above_ground(s.h, s.f, d.x, p.y, ground), alpha);
@@ -36,5 +36,5 @@ ATS_TASK void jpgd_step(int i, __global const float4* x, __global const float4* 
   const float3 stepped = (float3)(p.x + step.x, p.y + step.y, p.z + step.z);
   const float3 before = x_before[i].xyz;
   const float3 next = omega * (stepped - before) + before + beta * ((float3)(p.x, p.y, p.z) - before);
-  x_next[i] = (float4)(next, p.w);
+  x_next[i] = sc_out_of_colliders((float4)(next, p.w), colliders, collider_count, sc_on);
 }

@@ -22,7 +22,7 @@ ATS_TASK void vbd_solve(int k, __global float4* x, __global const float4* x_tild
   const int i = order[k];
   const float4 p = x[i];
   const vertex_system s = add_self_contact_terms_gs(add_contact_terms(add_spring_damping(gather_vertex_system(i, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend, tets), i, x, x_start, inv_h, adj_offsets, adj, stretch), vs_xyz(p), p.w, inv_h2, colliders, collider_count), i, x, sc_x_iter, sc_color, sc_tris, sc_edges, sc_inc, sc_n, sc_vt, sc_tv, sc_ee, sc_k, sc_r, sc_on);
-  const ats_solve3 d = ats_m3_solve(s.h, s.f);
+  const ats_solve3 d = sc_contact_step(s, i, x, sc_x_iter, sc_color, sc_tris, sc_edges, sc_inc, sc_n, sc_vt, sc_tv, sc_ee, sc_k, sc_r, sc_on);
   if (!d.ok) return;
   ats_vec3 step = d.x;
   if (has_ground && p.y + step.y < ground) step = ats_vertex_step_above_ground(s.h, s.f, step, p.y, ground);

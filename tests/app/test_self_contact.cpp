@@ -157,12 +157,26 @@ bool folded_onto_itself(const Surface& s, const std::vector<Vector3d>& x0, const
 
 }  // namespace
 
-TEST_CASE("the falling sheet does fold onto itself (hidden: XPBD and SOSD crumple it without a fold)",
-          "[.][contact][self][fold]") {
-  // Measured on this scene: VBD and JPGD fold it, XPBD and SOSD do not (no
-  // vertex comes within 2 thicknesses of a triangle 0.1 m away from it), so
-  // for those the intersection-free test above shows no fold. Not run by
-  // default until the scene folds under every method.
+// A known failure (tagged to fail until the scene folds under every
+// method). Measured on this scene at 60 frames, the smallest distance of a
+// vertex to a triangle 0.1 m or more away from it at rest (fold: < 0.02):
+// JPGD 0.010 (folds), XPBD 0.044, SOSD 0.126, VBD 0.126. Causes, measured:
+// - XPBD: the sheet does buckle into tight folds, but at the hinges 32 pairs
+//   of parallel diagonals of neighbouring quads (0.031 m apart at rest, 3.1
+//   thicknesses) are held at d = r by its zero-compliance projection; that
+//   stiffens each hinge, and the layer folded over lies 0.021 m above the
+//   one below it (2.1 thicknesses) instead of on it. Without those pairs
+//   (near-incident primitives) it would fold: a detection matter
+//   (kernels/contact/self_contact.cl's queries), not changed here.
+// - VBD and SOSD (since their solves no longer jitter: VBD's step takes the
+//   pairs it brings within r, SOSD's pair blocks are spread over the pair)
+//   tip the sheet over like a board: on the frictionless plane its bottom
+//   edge slides out and it lies down flat, sliding on (0.36 m in the last
+//   20 frames under VBD); before, VBD's normal jitter crumpled it into a
+//   fold. With friction 0.8 on the plane the bottom edge stays and all
+//   fold but XPBD (VBD 0.010, SOSD 0.016, JPGD 0.019, XPBD 0.022).
+TEST_CASE("the falling sheet does fold onto itself (known failure: only JPGD folds it)",
+          "[contact][self][fold][!shouldfail]") {
   const std::string method = GENERATE("xpbd", "vbd", "sosd", "jpgd");
   INFO(method);
   test::TempDir dir;
@@ -360,8 +374,10 @@ void pillows_rest_on_the_cloth(const std::string& method, const std::string& sch
 
 }  // namespace
 
-TEST_CASE("converge on two cloth layers resting on a sphere: y falls against the self-contact-aware Newton E*",
-          "[contact][self][converge]") {
+TEST_CASE(
+    "converge on two cloth layers resting on a sphere: y falls against the self-contact-aware Newton E*, at every "
+    "doubling from k = 4 on (every descent method)",
+    "[contact][self][converge]") {
   // 20 frames on, the layers lie on each other on the sphere; E* is the
   // minimum of the incremental potential with both contact energies in it
   // (the surface pairs found by brute force on the host). The sphere is
@@ -373,13 +389,25 @@ TEST_CASE("converge on two cloth layers resting on a sphere: y falls against the
   yaml.replace(yaml.find("frames: 40"), 10, "frames: 20");
   yaml.replace(yaml.find(", friction: 0.5"), 15, "");
   const io::ConvergenceResult r =
-      app::run_convergence(test::converge_options(dir, yaml + "solver: {method: vbd}\n", 32));
+      app::run_convergence(test::converge_options(dir, yaml + "solver: {method: vbd}\n", 64));
   test::check_ends_lower(r);
-  // Measured (k = 1 -> 32): VBD 0.35 -> 2.7e-4 (1e-8 at 256), JPGD
-  // 0.46 -> 0.24 and SOSD 0.37 -> 0.23, both not monotone. VBD stalled near
-  // 0.1 while its step out of the colliders put vertices onto the collider's
-  // surface, off the penalty's minimum; it now leaves them 0.5 % of the
-  // thickness deep (contact/self_contact_terms.h). SOSD and JPGD still
-  // project onto the surface after every iteration.
+  for (const auto& t : r.traces) {
+    INFO(t.variant);
+    for (std::size_t i = 1; i < t.iterations.size(); ++i) {
+      INFO("k = " << t.iterations[i - 1] << " -> " << t.iterations[i] << ": y = " << t.relative_error[i - 1] << " -> "
+                  << t.relative_error[i]);
+      if (t.iterations[i - 1] >= 4) CHECK(t.relative_error[i] <= t.relative_error[i - 1]);
+    }
+  }
+  // Measured (k = 1 -> 64): VBD 0.24 -> 1.8e-5, JPGD 0.28 -> 6.1e-4, SOSD
+  // 0.23 -> 3.8e-3, each falling at every doubling. Before, JPGD stalled at
+  // 0.03 (Chebyshev's rho 0.9 with the pairs switching, now 0.7 with
+  // surface contact; solver/jpgd/jpgd_method.cpp) and SOSD near 0.1, rising
+  // between doublings (its pair blocks let both sides close the whole gap,
+  // and its projection onto the colliders' surfaces after every iteration
+  // kept it off the minimum; contact/self_contact_terms.h).
+  REQUIRE(r.traces[0].variant.rfind("vbd", 0) == 0);
   CHECK(r.traces[0].relative_error.back() < 1e-3);
+  CHECK(r.traces[1].relative_error.back() < 1e-2);
+  CHECK(r.traces[2].relative_error.back() < 1e-2);
 }

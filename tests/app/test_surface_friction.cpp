@@ -147,22 +147,22 @@ TEST_CASE("without friction a patch on a cloth tilted by 20 degrees slides with 
   slides_with_coulomb(GENERATE("xpbd", "vbd", "sosd", "jpgd"), 0.0);
 }
 
-TEST_CASE("a patch on a cloth tilted by 20 degrees slides with g (sin - mu_k cos) when mu_k < tan 20 (XPBD, SOSD)",
+// Before the vertex solves of VBD and JPGD took the pairs that their step
+// brings within the thickness (contact/self_contact_terms.h,
+// sc_contact_step), they measured 0.90 (VBD) and 0.37 m/s² (JPGD) against
+// 1.51: a vertex just outside the thickness dived through it, the next
+// iteration pushed it out, and the contacts jittered along the normal (up
+// to 2 mm under VBD), so that the clipped normal displacement dn that
+// Coulomb scales overstated the load; under JPGD the vertices, left 1e-5 m
+// deep, were pushed off the base's edges, and the patch slid diagonally.
+TEST_CASE("a patch on a cloth tilted by 20 degrees slides with g (sin - mu_k cos) when mu_k < tan 20 (every method)",
           "[contact][self][friction]") {
-  slides_with_coulomb(GENERATE("xpbd", "sosd"), 0.2);
-}
-
-// Measured: 0.90 (VBD) and 0.37 m/s² (JPGD) against 1.51 -- too much
-// friction: the normal displacement dn that Coulomb scales is read from the
-// positions, and their contacts jitter along the normal (up to 2 mm under
-// VBD), so that the clipped dn > 0 overstates the load.
-TEST_CASE("surface friction under VBD and JPGD: g (sin - mu_k cos) (hidden: fails)", "[.][contact][self][friction]") {
-  slides_with_coulomb(GENERATE("vbd", "jpgd"), 0.2);
+  slides_with_coulomb(GENERATE("xpbd", "vbd", "sosd", "jpgd"), 0.2);
 }
 
 // Per material: the patch 0.4, the base 0; the mean 0.2 (the larger side
 // alone, 0.4 > tan 20, would hold it; the smaller would give g sin 20).
-TEST_CASE("friction per material: the patch slides with the mean coefficient (XPBD, SOSD)",
+TEST_CASE("friction per material: the patch slides with the mean coefficient (every method)",
           "[contact][self][friction]") {
-  slides_with_coulomb(GENERATE("xpbd", "sosd"), 0.2, patch_on_tilted_cloth_materials(0.0, 0.4));
+  slides_with_coulomb(GENERATE("xpbd", "vbd", "sosd", "jpgd"), 0.2, patch_on_tilted_cloth_materials(0.0, 0.4));
 }

@@ -66,7 +66,7 @@ plan::SubstepPlan make_jpgd_plan(const SimLayout& layout, const JpgdSettings& se
         plan.add_task_after(last, plan::make_task(fmt::format("it{}/jacobi", it + 1), plan::TaskKind::jacobi, it, 0),
                             {"jpgd_step", {0, n}, std::move(args), {particle_write(next)}});
     last = add_ground_task(plan, add_self_contact_clamp(plan, t, layout, sc, b.x_prev, next, it), layout, next, it);
-    last = add_contact_task(plan, last, layout, b.colliders, next, it);
+    if (!layout.self_contact.enabled) last = add_contact_task(plan, last, layout, b.colliders, next, it);
   }
   const plan::BufferId result = rotation[settings.iterations % 3];
   if (result != b.x) {

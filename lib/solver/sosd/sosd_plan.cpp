@@ -119,13 +119,12 @@ plan::SubstepPlan make_sosd_plan(const SimLayout& layout, double substep_dt, int
           {Arg::of_buffer(b.x), Arg::of_buffer(b.adjacency_offsets), Arg::of_buffer(b.adjacency), Arg::of_buffer(d[0]),
            Arg::of_buffer(d[1]), Arg::of_buffer(d[2]), Arg::of_buffer(systems), Arg::of_int(main.kind),
            Arg::of_int(main.first), Arg::of_int(main.end), Arg::of_float(static_cast<float>(step)),
-           Arg::of_int(layout.has_ground ? 1 : 0), Arg::of_float(layout.ground_y)},
+           Arg::of_int(layout.has_ground ? 1 : 0), Arg::of_float(layout.ground_y), Arg::of_buffer(b.colliders),
+           Arg::of_int(layout.collider_count), Arg::of_int(layout.self_contact.enabled ? 1 : 0)},
           {particle_write(b.x)}}});
     for (sched::TaskId t : stencil_tasks) plan.graph.add_edge(t, combine);
     if (stencil_tasks.empty()) plan.graph.add_edge(systems_task, combine);
     last = add_ground_task(plan, add_self_contact_clamp(plan, combine, layout, sc, b.x_prev, b.x, it), layout, b.x, it);
-    if (layout.self_contact.enabled)
-      last = add_contact_task(plan, last, layout, b.colliders, b.x, it);  // obstacles win
   }
   last = add_self_contact_friction(plan, last, layout, sc, b.x_prev, b.x, b.v, b.friction, substep_dt);
   vertex::end_vertex_plan(plan, layout, last, b, substep_dt);
