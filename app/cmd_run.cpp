@@ -72,7 +72,7 @@ Action add_run_command(CLI::App& cli, const std::string& command_line) {
                   "through the host)")
       ->check(CLI::IsMember({"shared", "separate"}));
   cmd->add_option("--set", args->sets, "Override a scene key, e.g. --set simulation.substeps=32 (repeatable)");
-  cmd->add_flag("-q,--quiet", args->quiet, "Print nothing but errors");
+  cmd->add_flag("-q,--quiet", args->quiet, "Print nothing but errors and warnings");
   cmd->add_flag("--json", args->json,
                 "Print one JSON object on stdout summarising the run, also when it fails (docs/run-json.md)");
   cmd->add_option("--svm", args->svm, "Shared virtual memory: auto (fine grain when offered) or coarse")
@@ -101,10 +101,13 @@ Action add_run_command(CLI::App& cli, const std::string& command_line) {
     if (!args->executor.empty()) options.overrides.push_back("solver.executor=" + args->executor);
     if (!args->memory.empty()) options.overrides.push_back("memory=" + args->memory);
 
+    const bool show_progress = !args->quiet && isatty(STDERR_FILENO);
+    options.warn = [show_progress](const std::string& text) {
+      fmt::print(stderr, "{}atssim: warning: {}\n", show_progress ? "\n" : "", text);
+    };
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
     const auto start = std::chrono::steady_clock::now();
-    const bool show_progress = !args->quiet && isatty(STDERR_FILENO);
     RunResult r;
     RunSummaryInput summary;
     summary.scene_path = args->scene;

@@ -48,6 +48,40 @@ std::string devices_json(const RunResult& r) {
 
 std::string string_or_null(const std::string& s) { return s.empty() ? "null" : json_string(s); }
 
+std::string surface_frame_json(const RunResult::ContactRecord& c) {
+  return fmt::format(
+      "{{\"frame\": {}, \"surface_pairs\": {}, \"surface_max_penetration\": {}, \"surface_crossings\": {}}}", c.frame,
+      c.values.surface_pairs, json_number(c.values.surface_max_penetration), c.values.surface_crossings);
+}
+
+// Whether a's surfaces are in a worse state than b's: more crossings, then
+// a deeper penetration, then more pairs.
+bool worse(const io::ContactFrame& a, const io::ContactFrame& b) {
+  if (a.surface_crossings != b.surface_crossings) return a.surface_crossings > b.surface_crossings;
+  if (a.surface_max_penetration != b.surface_max_penetration)
+    return a.surface_max_penetration > b.surface_max_penetration;
+  return a.surface_pairs > b.surface_pairs;
+}
+
+// The surfaces over the written frames (null without a contact surface).
+std::string contact_json(const RunResult& r) {
+  if (!r.surface_contact) return "null";
+  const RunResult::ContactRecord* worst = nullptr;
+  const RunResult::ContactRecord* first_crossing = nullptr;
+  int crossed = 0;
+  for (const RunResult::ContactRecord& c : r.contact) {
+    if (worst == nullptr || worse(c.values, worst->values)) worst = &c;
+    if (c.values.surface_crossings > 0) {
+      ++crossed;
+      if (first_crossing == nullptr) first_crossing = &c;
+    }
+  }
+  return fmt::format("{{\"frames\": {}, \"crossed_frames\": {}, \"first_crossing\": {}, \"last\": {}, \"worst\": {}}}",
+                     r.contact.size(), crossed, first_crossing ? std::to_string(first_crossing->frame) : "null",
+                     r.contact.empty() ? "null" : surface_frame_json(r.contact.back()),
+                     worst ? surface_frame_json(*worst) : "null");
+}
+
 }  // namespace
 
 std::string to_string(RunStatus status) {
@@ -107,6 +141,7 @@ std::string run_summary_json(const RunResult& r, const RunSummaryInput& in) {
   j += fmt::format("  \"prediction_error\": {{\"frames\": {}, \"median\": {}, \"p95\": {}, \"max\": {}}},\n",
                    errors.size(), json_number(percentile(errors, 0.5)), json_number(percentile(errors, 0.95)),
                    json_number(percentile(errors, 1.0)));
+  j += fmt::format("  \"contact\": {},\n", contact_json(r));
   j += fmt::format("  \"wall_s\": {}\n}}\n", json_number(in.wall_s));
   return j;
 }

@@ -5,7 +5,10 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <future>
 #include <limits>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -20,6 +23,7 @@
 #include "scene/scene_loader.hpp"
 #include "scene/scene_yaml.hpp"
 #include "solver/contact/contact_summary.hpp"
+#include "solver/contact/surface_contacts.hpp"
 #include "solver/method_registry.hpp"
 #include "util/error.hpp"
 
@@ -110,10 +114,71 @@ io::RunInfo run_info(const RunOptions& options, const scene::SceneDesc& scene, c
   return info;
 }
 
-io::ContactFrame contact_frame(const solver::KinematicColliders& colliders, const std::vector<float>& xyz) {
+// A frame's /contact record: the colliders measured here, the surfaces
+// (when the scene has a contact surface) as `surfaces` measured them.
+io::ContactFrame contact_frame(const solver::KinematicColliders& colliders, const std::vector<float>& xyz,
+                               const std::optional<solver::SurfaceContacts>& surfaces) {
   const solver::ContactSummary s = solver::summarize_contacts(colliders.current(), xyz, colliders.count());
-  return {s.active, s.min_distance, s.max_penetration};
+  io::ContactFrame c{s.active, s.min_distance, s.max_penetration};
+  if (surfaces) {
+    c.surface_pairs = surfaces->pairs();
+    c.surface_max_penetration = surfaces->max_penetration;
+    c.surface_crossings = surfaces->crossings;
+  }
+  return c;
 }
+
+// The surface figures of a frame, measured on another thread while the host
+// does the rest of its work on the frame (refit, blow-up check, state read);
+// nothing when the scene has no contact surface. `xyz` must stay as it is
+// until get().
+class SurfaceMeasurement {
+ public:
+  SurfaceMeasurement() = default;
+  SurfaceMeasurement(const std::optional<solver::SurfaceContactCheck>& check, const std::vector<float>& xyz) {
+    if (check) pending_ = std::async(std::launch::async, [&check, &xyz] { return check->measure(xyz); });
+  }
+  std::optional<solver::SurfaceContacts> get() {
+    if (!pending_.valid()) return std::nullopt;
+    return pending_.get();
+  }
+
+ private:
+  std::future<solver::SurfaceContacts> pending_;
+};
+
+// Once per run, the first written frame whose surfaces crossed: a warning,
+// or with contact.strict the run's failure (after the frame is written).
+class CrossingReport {
+ public:
+  CrossingReport(bool strict, std::function<void(const std::string&)> warn) : strict_(strict), warn_(std::move(warn)) {}
+  void check(int frame, const io::ContactFrame& c) {
+    if (c.surface_crossings <= 0 || reported_) return;
+    const std::string what =
+        fmt::format("{} edge-triangle crossing{}", c.surface_crossings, c.surface_crossings == 1 ? "" : "s");
+    if (strict_) {
+      throw runtime_error(
+          fmt::format("frame {}: surfaces crossed ({}) and contact.strict is true; use more substeps, a larger "
+                      "contact.thickness or contact.stiffness",
+                      frame, what));
+    }
+    reported_ = true;
+    const std::string text = fmt::format(
+        "surfaces crossed in frame {} ({}); the contact did not keep them apart (more substeps, a larger "
+        "contact.thickness or contact.stiffness may; contact.strict: true makes this an error)",
+        frame, what);
+    if (warn_) {
+      warn_(text);
+    } else {
+      fmt::print(stderr, "atssim: warning: {}\n", text);
+    }
+  }
+
+ private:
+  bool strict_ = false;
+  std::function<void(const std::string&)> warn_;
+  bool reported_ = false;
+};
 
 // Keeps only what output needs (object topology and rest shape).
 void release_simulation_state(model::Model& model) {
@@ -166,6 +231,8 @@ void run_simulation(const RunOptions& options, RunResult& result,
   const std::size_t particles = model.particles.size();
   solver::SimLayout layout = solver::make_sim_layout(model);
   solver::KinematicColliders colliders(model.colliders);  // posed per substep; the per-frame contact record
+  std::optional<solver::SurfaceContactCheck> surfaces;    // the per-frame surface record
+  if (model.contact_surface) surfaces.emplace(model.contact_surface->triangles, model.contact_surface->thickness);
   release_simulation_state(model);
   plan::SubstepPlan plan = with_stiffness_line(scene, [&] { return method.build(layout, settings); });
   layout = {};
@@ -188,6 +255,12 @@ void run_simulation(const RunOptions& options, RunResult& result,
   result.executor = info.schedule.executor;
   result.memory = info.schedule.memory;
   result.devices = info.devices;
+  result.surface_contact = surfaces.has_value();
+  CrossingReport crossings(scene.contact.strict, options.warn);
+  const auto record_contact = [&](int frame, const io::ContactFrame& c) {
+    result.contact.push_back({frame, c});
+    crossings.check(frame, c);
+  };
   int first_frame = 1;
   if (options.resume) {
     const plan::PlanState fresh = executor.read_state();
@@ -206,27 +279,36 @@ void run_simulation(const RunOptions& options, RunResult& result,
     }
     executor.reset({resumed.positions, resumed.velocities});
     first_frame = static_cast<int>(resumed.frame) + 1;
+    // The frames kept: in the summary, not reported again.
+    const auto& kept = writer.resumed_contact();
+    for (std::size_t row = 0; row < kept.size(); ++row)
+      result.contact.push_back({static_cast<int>(row) * scene.output.stride, kept[row]});
   }
   plan::PlanState state = executor.read_state();
   std::vector<float> xyz = xyz_of(state.positions);
   const BlowUpBounds bounds =
       blow_up_bounds(xyz, xyz_of(state.velocities), std::hypot(sim.gravity[0], sim.gravity[1], sim.gravity[2]),
                      sim.frame_dt, sim.substeps);
+  std::optional<io::ContactFrame> first_contact;
   if (!options.resume) {
     writer.set_checkpoint(0, state.positions, state.velocities);
-    writer.append_frame(0.0, xyz, 0.0, 0.0, contact_frame(colliders, xyz));
+    first_contact = contact_frame(colliders, xyz, SurfaceMeasurement(surfaces, xyz).get());
+    writer.append_frame(0.0, xyz, 0.0, 0.0, *first_contact);
   }
   result.frames_written = writer.frames_written();
 
   double total_ms = 0.0;
   std::vector<float> before;
   try {
+    if (first_contact) record_contact(0, *first_contact);
     for (int frame = first_frame; frame <= sim.frames; ++frame) {
       if (g_stop) throw runtime_error(fmt::format("interrupted before frame {}", frame));
       const auto start = std::chrono::steady_clock::now();
       run_frame(executor, colliders, sim.substeps, frame, sim.frame_dt);
       before.swap(xyz);
       executor.read_positions(xyz);
+      const bool written = frame % scene.output.stride == 0;
+      SurfaceMeasurement surface_measurement = written ? SurfaceMeasurement(surfaces, xyz) : SurfaceMeasurement();
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
       // Costs from this frame's profiling events refit the table; the
       // schedule follows (paper §5: re-profiled every frame with smoothing).
@@ -248,13 +330,16 @@ void run_simulation(const RunOptions& options, RunResult& result,
       result.frame_ms.push_back(ms);
       result.bytes_moved.push_back(static_cast<double>(measured.bytes_moved));
       result.mean_frame_ms = total_ms / done;
-      if (frame % scene.output.stride == 0) {
+      if (written) {
         record_schedule(writer, frame, used, used_waits, measured);
         state = executor.read_state();
         writer.set_checkpoint(frame, state.positions, state.velocities);
-        writer.append_frame(frame * sim.frame_dt, xyz, ms, schedule_ms, contact_frame(colliders, xyz));
+        const io::ContactFrame contact = contact_frame(colliders, xyz, surface_measurement.get());
+        writer.append_frame(frame * sim.frame_dt, xyz, ms, schedule_ms, contact);
         result.predicted_makespan_ms.push_back(used.makespan_ms);
         result.measured_makespan_ms.push_back(measured.makespan_ms);
+        result.frames_written = writer.frames_written();
+        record_contact(frame, contact);
       }
       result.frames_written = writer.frames_written();
       if (progress) progress({frame, sim.frames, ms, total_ms / done});

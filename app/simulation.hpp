@@ -19,6 +19,9 @@ struct RunOptions {
   // Continue the run a killed or stopped run left at the output path from
   // its last checkpoint (the same positions as an uninterrupted run).
   bool resume = false;
+  // Called with a warning's text (no prefix, no newline), e.g. that surfaces
+  // crossed; unset: printed on stderr as "atssim: warning: TEXT".
+  std::function<void(const std::string&)> warn;
 };
 
 struct RunProgress {
@@ -46,6 +49,15 @@ struct RunResult {
   // one measured (ms).
   std::vector<double> predicted_makespan_ms, measured_makespan_ms;
   std::vector<double> bytes_moved;  // per simulated frame: bytes copied between memories
+  // Per written frame (resumed ones included): its simulated frame and its
+  // /contact record; the surface figures are measured only when the scene
+  // has a contact surface (`contact: {self: true}`).
+  struct ContactRecord {
+    int frame = 0;
+    io::ContactFrame values;
+  };
+  bool surface_contact = false;
+  std::vector<ContactRecord> contact;
 };
 
 // Throws atssim::Error: input errors before anything is written; runtime

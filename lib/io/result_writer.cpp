@@ -82,6 +82,9 @@ const ResultWriter::SeriesSpec ResultWriter::kSeries[] = {
     {"contact/active", false, 0, SeriesKind::i32, &ResultWriter::contact_active_},
     {"contact/min_distance", false, 0, SeriesKind::f64, &ResultWriter::contact_min_distance_},
     {"contact/max_penetration", false, 0, SeriesKind::f64, &ResultWriter::contact_max_penetration_},
+    {"contact/surface_pairs", false, 0, SeriesKind::i32, &ResultWriter::surface_pairs_},
+    {"contact/surface_max_penetration", false, 0, SeriesKind::f64, &ResultWriter::surface_max_penetration_},
+    {"contact/surface_crossings", false, 0, SeriesKind::i32, &ResultWriter::surface_crossings_},
 };
 
 ResultWriter::ResultWriter(const std::string& path, const RunInfo& info, std::span<const model::ObjectRange> objects,
@@ -159,8 +162,10 @@ void ResultWriter::reopen(const RunInfo& info, Checkpoint& resume) {
   checkpoint_ = std::move(*slots);
   frames_ = static_cast<int>(point->frames_written);
   for (hid_t set : {positions_.get(), time_.get(), frame_ms_.get(), schedule_ms_.get(), contact_active_.get(),
-                    contact_min_distance_.get(), contact_max_penetration_.get()})
+                    contact_min_distance_.get(), contact_max_penetration_.get(), surface_pairs_.get(),
+                    surface_max_penetration_.get(), surface_crossings_.get()})
     truncate_rows(set, frames_);
+  read_contact_rows();
   sched_rows_ = static_cast<hsize_t>(point->schedule_rows);
   wait_rows_ = static_cast<hsize_t>(point->wait_rows);
   makespan_rows_ = static_cast<hsize_t>(point->makespan_rows);
@@ -191,6 +196,10 @@ void ResultWriter::open_series(bool create_them) {
     if (create_them) {
       this->*s.member = create_series(file_, s.path, s.per_particle ? particles_ : 0, s.cols, file_type(s.kind));
     } else {
+      if (H5Lexists(file_, s.path, H5P_DEFAULT) <= 0) {
+        throw input_error(fmt::format(
+            "--resume: '{}' has no /{} (it was written by an older atssim); run without --resume", writing_, s.path));
+      }
       this->*s.member = h5_check(H5Dopen2(file_, s.path, H5P_DEFAULT), H5Dclose, fmt::format("opening /{}", s.path));
     }
   }
@@ -202,6 +211,28 @@ void ResultWriter::open_series(bool create_them) {
       throw input_error(
           fmt::format("--resume: '{}' holds {} particles per frame, the scene has {}", writing_, dims[1], particles_));
     }
+  }
+}
+
+// The first frames_ rows of the /contact series, for the run's summary.
+void ResultWriter::read_contact_rows() {
+  const auto rows = [&](hid_t set) {
+    std::vector<double> v(static_cast<std::size_t>(frames_));
+    if (frames_ == 0) return v;
+    H5Handle file_space = h5_check(H5Dget_space(set), H5Sclose, "contact space");
+    const hsize_t start[1] = {0}, count[1] = {static_cast<hsize_t>(frames_)};
+    h5_check(H5Sselect_hyperslab(file_space, H5S_SELECT_SET, start, nullptr, count, nullptr), "selecting rows");
+    H5Handle mem = h5_check(H5Screate_simple(1, count, nullptr), H5Sclose, "memory space");
+    h5_check(H5Dread(set, H5T_NATIVE_DOUBLE, mem, file_space, H5P_DEFAULT, v.data()), "reading /contact");
+    return v;
+  };
+  const std::vector<double> active = rows(contact_active_), min_distance = rows(contact_min_distance_),
+                            depth = rows(contact_max_penetration_), pairs = rows(surface_pairs_),
+                            surface_depth = rows(surface_max_penetration_), crossings = rows(surface_crossings_);
+  resumed_contact_.resize(static_cast<std::size_t>(frames_));
+  for (std::size_t f = 0; f < resumed_contact_.size(); ++f) {
+    resumed_contact_[f] = {static_cast<int>(active[f]), min_distance[f],  depth[f],
+                           static_cast<int>(pairs[f]),  surface_depth[f], static_cast<int>(crossings[f])};
   }
 }
 
@@ -300,6 +331,10 @@ void ResultWriter::append_frame(double time, std::span<const float> xyz, double 
     append_series_rows<std::int32_t>(contact_active_, active, H5T_NATIVE_INT32, static_cast<hsize_t>(frames_));
     append_scalar(contact_min_distance_, contact.min_distance);
     append_scalar(contact_max_penetration_, contact.max_penetration);
+    const std::int32_t pairs[1] = {contact.surface_pairs}, crossings[1] = {contact.surface_crossings};
+    append_series_rows<std::int32_t>(surface_pairs_, pairs, H5T_NATIVE_INT32, static_cast<hsize_t>(frames_));
+    append_scalar(surface_max_penetration_, contact.surface_max_penetration);
+    append_series_rows<std::int32_t>(surface_crossings_, crossings, H5T_NATIVE_INT32, static_cast<hsize_t>(frames_));
     if (pending_) {
       pending_->frames_written = frames_ + 1;
       pending_->schedule_rows = static_cast<long long>(sched_rows_);

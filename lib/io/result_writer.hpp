@@ -43,10 +43,18 @@ struct ScheduledTask {
 // /contact): touching particle-collider pairs, the smallest gap (distance
 // to a surface less its thickness; NaN without colliders) and the largest
 // penetration into a thickened surface (0 when none).
+// Between the simulated surfaces (a scene with `contact: {self: true}`;
+// -1, NaN, -1 without one): non-incident vertex-triangle and edge-edge
+// pairs closer than the contact thickness, the thickness less the smallest
+// of their distances (0 when none), and the edge-triangle pairs where a
+// surface edge passes through a triangle it does not touch.
 struct ContactFrame {
   int active = 0;
   double min_distance = std::numeric_limits<double>::quiet_NaN();
   double max_penetration = 0.0;
+  int surface_pairs = -1;
+  double surface_max_penetration = std::numeric_limits<double>::quiet_NaN();
+  int surface_crossings = -1;
 };
 
 class ResultWriter {
@@ -79,6 +87,8 @@ class ResultWriter {
   void append_schedule(int frame, std::span<const ScheduledTask> tasks, std::span<const sched::Wait> waits,
                        double predicted_makespan_ms, double measured_makespan_ms, std::size_t bytes_moved = 0);
   int frames_written() const { return frames_; }
+  // After a resume: the contact record of every frame kept in the file.
+  const std::vector<ContactFrame>& resumed_contact() const { return resumed_contact_; }
 
   // Closes the file, marking it complete, or failed with `error`.
   void finish();
@@ -97,6 +107,7 @@ class ResultWriter {
   void close_with(bool complete, const std::string& error);
   void abandon();
   void append_scalar(hid_t set, double value);
+  void read_contact_rows();
   void flush();
 
   struct SeriesSpec {
@@ -127,6 +138,8 @@ class ResultWriter {
   H5Handle wait_frame_, wait_producer_, wait_consumer_, wait_pdevice_, wait_cdevice_;
   H5Handle mk_frame_, mk_predicted_, mk_measured_, mk_bytes_;
   H5Handle contact_active_, contact_min_distance_, contact_max_penetration_;  // /contact, per frame
+  H5Handle surface_pairs_, surface_max_penetration_, surface_crossings_;
+  std::vector<ContactFrame> resumed_contact_;
   hsize_t sched_rows_ = 0, wait_rows_ = 0, makespan_rows_ = 0;
 };
 

@@ -131,7 +131,8 @@ std::string resumable_part(const std::string& resolved) {
   std::istringstream in(resolved);
   while (std::getline(in, line)) {
     const auto key = line.find_first_not_of(' ');
-    if (key != std::string::npos && (line.compare(key, 7, "frames:") == 0 || line.compare(key, 5, "path:") == 0))
+    if (key != std::string::npos && (line.compare(key, 7, "frames:") == 0 || line.compare(key, 5, "path:") == 0 ||
+                                     line.compare(key, 7, "strict:") == 0))
       continue;
     out += line + "\n";
   }

@@ -21,7 +21,8 @@ std::string now_iso8601();
 // empty groups the series go into.
 void write_run_header(hid_t file, const RunInfo& info, std::span<const model::ObjectRange> objects);
 
-// /scene/resolved without the keys a resumed run may change (frames, output path).
+// /scene/resolved without the keys a resumed run may change (frames, output path,
+// contact.strict: what the run does when surfaces cross, not what it simulates).
 std::string resumable_part(const std::string& resolved);
 
 std::string read_string_dataset(hid_t file, const char* name);

@@ -14,6 +14,7 @@ struct SelfContactDesc {
   double query_radius = 0.0;      // m: detection radius (≥ thickness); 0 = 3 × thickness
   double static_friction = 0.0;   // Coulomb mu_s between the surfaces (>= 0)
   double kinetic_friction = 0.0;  // Coulomb mu_k
+  bool strict = false;            // `strict: true`: a frame whose surfaces crossed ends the run (exit 1)
   std::string where;              // "file:line" of `contact:` (for errors found when the model is built)
 };
 

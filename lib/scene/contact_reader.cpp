@@ -10,7 +10,17 @@ namespace atssim::scene {
 
 namespace {
 
-constexpr std::array<std::string_view, 5> kContactKeys{"self", "thickness", "stiffness", "query_radius", "friction"};
+constexpr std::array<std::string_view, 6> kContactKeys{"self",         "thickness", "stiffness",
+                                                       "query_radius", "friction",  "strict"};
+
+// `contact.<key>`: true or false (false when absent).
+bool read_flag(const YamlReader& r, const char* key) {
+  if (!r.has(key)) return false;
+  const YamlReader s = r.child(key);
+  const std::string v = s.string();
+  if (v != "true" && v != "false") s.fail(fmt::format("'contact.{}' is '{}'", key, v), "use true or false");
+  return v == "true";
+}
 
 }  // namespace
 
@@ -20,12 +30,8 @@ SelfContactDesc read_self_contact(const YamlReader& r) {
     r.fail("'contact' should be a map of keys", "write e.g. contact: {self: true, thickness: 0.005}");
   r.expect_map(kContactKeys);
   c.where = r.where();
-  if (r.has("self")) {
-    const YamlReader s = r.child("self");
-    const std::string v = s.string();
-    if (v != "true" && v != "false") s.fail(fmt::format("'contact.self' is '{}'", v), "use true or false");
-    c.enabled = v == "true";
-  }
+  c.enabled = read_flag(r, "self");
+  c.strict = read_flag(r, "strict");
   if (r.has("thickness")) {
     c.thickness =
         r.child("thickness").number_in(0.0, 1.0, true, "a thickness in metres, 0 < thickness ≤ 1, e.g. 0.005");
@@ -62,6 +68,7 @@ void emit_self_contact(YAML::Emitter& out, const SelfContactDesc& c) {
     out << YAML::Key << "kinetic" << YAML::Value << c.kinetic_friction;
     out << YAML::EndMap;
   }
+  out << YAML::Key << "strict" << YAML::Value << c.strict;
   out << YAML::EndMap;
 }
 

@@ -13,6 +13,7 @@
 #include <hdf5.h>
 
 #include "io/result_reader.hpp"
+#include "support/cli_runs.hpp"
 #include "support/scenes.hpp"
 #include "support/temp_dir.hpp"
 
@@ -20,25 +21,9 @@ using namespace atssim;
 
 namespace {
 
-struct Outcome {
-  int code = -1;
-  std::string out, err;
-};
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// Runs atssim with `args` (a shell fragment), capturing stdout and stderr.
-Outcome run_atssim(const test::TempDir& dir, const std::string& args) {
-  const std::string cmd =
-      std::string(ATSSIM_BINARY) + " " + args + " >" + dir.file("stdout") + " 2>" + dir.file("stderr") + " </dev/null";
-  const int status = std::system(cmd.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir.file("stdout")), slurp(dir.file("stderr"))};
-}
+using test::Outcome;
+using test::run_atssim;
+using test::slurp;
 
 int lines(const std::string& text) {
   int n = 0;

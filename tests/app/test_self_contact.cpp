@@ -21,6 +21,7 @@
 #include "io/result_reader.hpp"
 #include "model/cloth_builder.hpp"
 #include "scene/scene_loader.hpp"
+#include "support/cli_runs.hpp"
 #include "support/descent_checks.hpp"
 #include "support/scene_runs.hpp"
 #include "support/temp_dir.hpp"
@@ -410,4 +411,140 @@ TEST_CASE(
   CHECK(r.traces[0].relative_error.back() < 1e-3);
   CHECK(r.traces[1].relative_error.back() < 1e-2);
   CHECK(r.traces[2].relative_error.back() < 1e-2);
+}
+
+// The surface record of /contact (solver/contact/surface_contacts) on real
+// output frames, against this file's own checker.
+namespace {
+
+// A sheet pinned where it is and a free one below it, which a rising sphere
+// pushes up through it: the sphere's projection moves the free sheet past
+// the contact, so the surfaces cross (from frame 13 under every method).
+const char* kPushThrough =
+    "simulation: {fps: 60, substeps: 8, iterations: 6, frames: 20, gravity: [0, 0, 0]}\n"
+    "objects:\n"
+    "  - {name: free, grid: {size: [0.4, 0.4], resolution: [8, 8]}, transform: {translate: [0, 0.15, 0]},\n"
+    "     material: {density: 0.2, stretch_stiffness: 1000, bend_stiffness: 0.0001}}\n"
+    "  - {name: fixed, grid: {size: [0.4, 0.4], resolution: [8, 8]},\n"
+    "     transform: {rotate: [0, 30, 0], translate: [0.01, 0.2, 0.01]},\n"
+    "     material: {density: 0.2, stretch_stiffness: 1000, bend_stiffness: 0.0001},\n"
+    "     pins: {boxes: [{min: [-1, 0, -1], max: [1, 1, 1]}]}}\n"
+    "colliders:\n"
+    "  - {type: sphere, center: [0, -0.1, 0], radius: 0.1, thickness: 0.005, velocity: [0, 1, 0]}\n"
+    "contact: {self: true, thickness: 0.01}\n";
+
+// Per frame, the edge-triangle crossings this file's checker counts.
+std::vector<int> crossings_per_frame(const Surface& s, const std::string& file, int frames) {
+  std::vector<int> out;
+  for (int f = 0; f <= frames; ++f) {
+    SurfaceCheck c;
+    check_frame(s, frame(file, f), f, c);
+    out.push_back(c.crossings);
+  }
+  return out;
+}
+
+std::vector<int> as_ints(const std::vector<double>& v) { return std::vector<int>(v.begin(), v.end()); }
+
+int count_lines(const std::string& text) { return static_cast<int>(std::count(text.begin(), text.end(), '\n')); }
+
+}  // namespace
+
+TEST_CASE(
+    "the two layers' surface record: no crossing in any frame, as the checker finds, and the pairs and depth "
+    "of its closest vertex-triangle pairs",
+    "[contact][self][surface_record]") {
+  test::TempDir dir;
+  app::run_simulation(options(dir, kLayers, "vbd", "single"));
+  const std::string out = dir.file("out.h5");
+  const Surface s = surface_of(kLayers);
+  const std::vector<int> crossings = as_ints(io::read_series(out, "/contact/surface_crossings"));
+  const std::vector<double> pairs = io::read_series(out, "/contact/surface_pairs");
+  const std::vector<double> depth = io::read_series(out, "/contact/surface_max_penetration");
+  REQUIRE(crossings.size() == 41);
+  CHECK(crossings == crossings_per_frame(s, out, 40));
+  CHECK(crossings == std::vector<int>(41, 0));
+  // The checker's vertex-triangle pairs within the thickness are some of
+  // the record's pairs (which also hold the edge-edge ones), and the
+  // deepest of them is at most as deep as the record's deepest.
+  int frames_in_contact = 0;
+  for (int f = 0; f <= 40; ++f) {
+    const std::vector<Vector3d> x = frame(out, f);
+    int within = 0;
+    double closest = std::numeric_limits<double>::infinity();
+    for (const auto& t : s.tris) {
+      for (std::size_t v = 0; v < x.size(); ++v) {
+        if (int(v) == t[0] || int(v) == t[1] || int(v) == t[2]) continue;
+        const double d = point_triangle(x[v], x[t[0]], x[t[1]], x[t[2]]);
+        if (d < kThickness) ++within, closest = std::min(closest, d);
+      }
+    }
+    INFO("frame " << f << ": checker " << within << " pairs, closest " << closest << "; record " << pairs[f]
+                  << " pairs, depth " << depth[f]);
+    CHECK(pairs[f] >= within);
+    if (within > 0) CHECK(depth[f] >= kThickness - closest - 1e-9);
+    if (pairs[f] == 0) CHECK(depth[f] == 0.0);
+    CHECK(depth[f] <= kThickness);
+    frames_in_contact += within > 0;
+  }
+  CHECK(frames_in_contact > 0);  // the layers did meet
+}
+
+TEST_CASE(
+    "surfaces pushed through each other: the record counts the checker's crossings, the run warns once on "
+    "stderr, and with contact.strict ends with exit 1 keeping its frames, then resumes",
+    "[contact][self][surface_record]") {
+  test::TempDir dir;
+  const std::string scene = dir.write("push.yaml", kPushThrough);
+  const Surface s = surface_of(kPushThrough);
+  const test::Outcome loose =
+      test::run_atssim(dir, "run " + scene + " -o " + dir.file("loose.h5") + " --devices cpu/2 --json");
+  INFO(loose.err);
+  REQUIRE(loose.code == 0);
+  const std::vector<int> crossings = as_ints(io::read_series(dir.file("loose.h5"), "/contact/surface_crossings"));
+  REQUIRE(crossings.size() == 21);
+  CHECK(crossings == crossings_per_frame(s, dir.file("loose.h5"), 20));
+  const auto first = std::find_if(crossings.begin(), crossings.end(), [](int c) { return c > 0; });
+  REQUIRE(first != crossings.end());
+  const int crossed = static_cast<int>(first - crossings.begin());
+  INFO("first crossing in frame " << crossed);
+  CHECK(crossed > 0);  // they start apart
+  // One warning line, naming that frame and its count; no error.
+  CHECK(count_lines(loose.err) == 1);
+  CHECK(loose.err.find(fmt::format("atssim: warning: surfaces crossed in frame {} ({} edge-triangle", crossed,
+                                   crossings[crossed])) == 0);
+  // The summary: the first crossing, and the last frame's record.
+  CHECK(loose.out.find(fmt::format("\"first_crossing\": {}", crossed)) != std::string::npos);
+  CHECK(loose.out.find(fmt::format("\"last\": {{\"frame\": 20, \"surface_pairs\": {}",
+                                   io::read_series(dir.file("loose.h5"), "/contact/surface_pairs").back())) !=
+        std::string::npos);
+  const int most = *std::max_element(crossings.begin(), crossings.end());
+  CHECK(loose.out.find(fmt::format("\"surface_crossings\": {}}}}}", most)) != std::string::npos);  // worst, last key
+
+  // Strict: the run ends after writing the frame that crossed.
+  const std::string strict_h5 = dir.file("strict.h5");
+  const test::Outcome strict =
+      test::run_atssim(dir, "run " + scene + " -o " + strict_h5 + " --devices cpu/2 --set contact.strict=true");
+  INFO(strict.err);
+  CHECK(strict.code == 1);
+  CHECK(count_lines(strict.err) == 1);
+  CHECK(strict.err.find(fmt::format("frame {}: surfaces crossed", crossed)) != std::string::npos);
+  CHECK(strict.err.find("contact.strict") != std::string::npos);
+  CHECK(strict.err.find(fmt::format("{} frames kept", crossed + 1)) != std::string::npos);
+  const io::ResultSummary kept = io::read_summary(strict_h5);
+  CHECK_FALSE(kept.complete);
+  REQUIRE(kept.frames == static_cast<std::size_t>(crossed + 1));
+  for (int f = 0; f <= crossed; ++f)
+    CHECK(io::read_frame_positions(strict_h5, f) == io::read_frame_positions(dir.file("loose.h5"), f));
+  // Resumed without strict (the scene's own setting): it goes on to the
+  // end, as the uninterrupted run did, and warns again on its first frame.
+  const test::Outcome resumed =
+      test::run_atssim(dir, "run " + scene + " -o " + strict_h5 + " --devices cpu/2 --resume");
+  INFO(resumed.err);
+  CHECK(resumed.code == 0);
+  CHECK(count_lines(resumed.err) == 1);
+  CHECK(resumed.err.find(fmt::format("surfaces crossed in frame {}", crossed + 1)) != std::string::npos);
+  CHECK(io::read_summary(strict_h5).complete);
+  CHECK(as_ints(io::read_series(strict_h5, "/contact/surface_crossings")) == crossings);
+  CHECK(io::read_frame_positions(strict_h5, 20) == io::read_frame_positions(dir.file("loose.h5"), 20));
 }

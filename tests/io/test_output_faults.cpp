@@ -172,6 +172,53 @@ TEST_CASE("a stopped run resumes from its last checkpoint into the same file") {
   CHECK(text.str().find("Name=\"frame5\"") == std::string::npos);
 }
 
+TEST_CASE("a resumed run keeps the contact records of its kept frames and cuts the rest") {
+  test::TempDir dir;
+  const auto m = small_model();
+  const std::size_t n = m.particles.size();
+  const std::string path = dir.file("run.h5");
+  const auto contact = [](int f) {
+    io::ContactFrame c;
+    c.active = f;
+    c.min_distance = 0.5 * f;
+    c.max_penetration = 0.25 * f;
+    c.surface_pairs = 10 + f;
+    c.surface_max_penetration = 0.001 * f;
+    c.surface_crossings = f % 2;
+    return c;
+  };
+  {
+    io::ResultWriter w(path, run_info(), m.objects);
+    for (int f = 0; f < 4; ++f) {
+      if (f < 3) w.set_checkpoint(f, bytes_of(n * 16, f), bytes_of(n * 16, 100 + f));  // frame 3: no checkpoint
+      w.append_frame(f * 0.1, frame_of(n, f), 1.0, 0.0, contact(f));
+    }
+    w.fail("interrupted");
+  }
+  io::Checkpoint c;
+  {
+    io::ResultWriter w(path, run_info(), m.objects, &c);
+    REQUIRE(c.frame == 2);
+    REQUIRE(w.resumed_contact().size() == 3);
+    for (int f = 0; f < 3; ++f) {
+      const io::ContactFrame& r = w.resumed_contact()[f];
+      CHECK(r.active == f);
+      CHECK(r.min_distance == 0.5 * f);
+      CHECK(r.max_penetration == 0.25 * f);
+      CHECK(r.surface_pairs == 10 + f);
+      CHECK(r.surface_max_penetration == 0.001 * f);
+      CHECK(r.surface_crossings == f % 2);
+    }
+    w.set_checkpoint(3, bytes_of(n * 16, 3), bytes_of(n * 16, 103));
+    w.append_frame(0.3, frame_of(n, 3), 1.0, 0.0, contact(7));
+    w.finish();
+  }
+  const std::vector<double> pairs = io::read_series(path, "/contact/surface_pairs");
+  CHECK(pairs == std::vector<double>{10, 11, 12, 17});
+  CHECK(io::read_series(path, "/contact/surface_crossings") == std::vector<double>{0, 1, 0, 1});
+  CHECK(io::read_series(path, "/contact/surface_max_penetration").size() == 4);
+}
+
 TEST_CASE("resuming is refused for a complete run and for a different scene") {
   test::TempDir dir;
   const auto m = small_model();

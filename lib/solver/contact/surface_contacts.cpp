@@ -1,0 +1,168 @@
+#include "solver/energy/element_math.hpp"  // first: the double instance of the shared math
+
+#include "solver/contact/surface_contacts.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+#include <stdexcept>
+#include <utility>
+
+#include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+#include "solver/contact/box_grid.hpp"
+
+namespace atssim::solver {
+
+namespace {
+
+using Box = BoxGrid::Box;
+using Eigen::Vector3d;
+namespace f64 = energy::f64;
+
+f64::ats_vec3 v3(const Vector3d& p) { return f64::ats_v3(p.x(), p.y(), p.z()); }
+
+// What one stretch of vertices or edges found.
+struct Tally {
+  int vertex_triangle = 0, edge_edge = 0, crossings = 0;
+  double closest = std::numeric_limits<double>::infinity();
+};
+
+Tally joined(Tally a, const Tally& b) {
+  a.vertex_triangle += b.vertex_triangle;
+  a.edge_edge += b.edge_edge;
+  a.crossings += b.crossings;
+  a.closest = std::min(a.closest, b.closest);
+  return a;
+}
+
+template <std::size_t N>
+Box box_of(const std::array<int, N>& v, const std::vector<Vector3d>& x, double widen) {
+  Box b(x[v[0]]);
+  for (std::size_t k = 1; k < N; ++k) b.extend(x[v[k]]);
+  b.min().array() -= widen;
+  b.max().array() += widen;
+  return b;
+}
+
+bool shares_vertex(const std::array<int, 2>& e, const std::array<int, 3>& t) {
+  return e[0] == t[0] || e[0] == t[1] || e[0] == t[2] || e[1] == t[0] || e[1] == t[1] || e[1] == t[2];
+}
+
+// Six times the signed volume of the tetrahedron (u, v, w, z).
+double volume(const Vector3d& u, const Vector3d& v, const Vector3d& w, const Vector3d& z) {
+  return (v - u).cross(w - u).dot(z - u);
+}
+
+// segment_crosses_triangle with the triangle's normal n = (b − a) × (c − a)
+// given (measure() computes it once per triangle).
+bool crosses(const Vector3d& p, const Vector3d& q, const Vector3d& a, const Vector3d& b, const Vector3d& c,
+             const Vector3d& n) {
+  const double vp = n.dot(p - a), vq = n.dot(q - a);
+  if (!((vp > 0 && vq < 0) || (vp < 0 && vq > 0))) return false;
+  // The line pq passes inside or on the border of abc when it turns the
+  // same way around all three of its edges.
+  const double s0 = volume(p, q, a, b), s1 = volume(p, q, b, c), s2 = volume(p, q, c, a);
+  return (s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0);
+}
+
+template <typename Body>
+Tally reduce(int count, Body&& body) {
+  return tbb::parallel_reduce(
+      tbb::blocked_range<int>(0, count, 256), Tally{},
+      [&](const tbb::blocked_range<int>& r, Tally t) {
+        for (int i = r.begin(); i != r.end(); ++i) body(i, t);
+        return t;
+      },
+      joined);
+}
+
+}  // namespace
+
+SurfaceContactCheck::SurfaceContactCheck(std::vector<std::array<int, 3>> triangles, double thickness)
+    : tris_(std::move(triangles)), thickness_(thickness) {
+  std::set<std::pair<int, int>> seen;
+  std::set<int> vertices;
+  for (const auto& t : tris_) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = t[k], b = t[(k + 1) % 3];
+      if (seen.emplace(std::min(a, b), std::max(a, b)).second) edges_.push_back({std::min(a, b), std::max(a, b)});
+      vertices.insert(a);
+    }
+  }
+  vertices_.assign(vertices.begin(), vertices.end());
+}
+
+SurfaceContacts SurfaceContactCheck::measure(std::span<const float> xyz) const {
+  SurfaceContacts out;
+  if (tris_.empty()) return out;
+  const std::size_t n = xyz.size() / 3;
+  if (static_cast<std::size_t>(vertices_.back()) >= n) {
+    throw std::logic_error(
+        fmt::format("surface contacts: the surface names particle {}, the state has {}", vertices_.back(), n));
+  }
+  std::vector<Vector3d> x(n);
+  for (std::size_t i = 0; i < n; ++i) x[i] = Vector3d(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+  const double r = thickness_;
+
+  std::vector<Box> tri_boxes(tris_.size()), edge_boxes(edges_.size());
+  for (std::size_t t = 0; t < tris_.size(); ++t) tri_boxes[t] = box_of(tris_[t], x, r);
+  for (std::size_t e = 0; e < edges_.size(); ++e) edge_boxes[e] = box_of(edges_[e], x, 0.0);
+  std::vector<Vector3d> normal(tris_.size());
+  for (std::size_t t = 0; t < tris_.size(); ++t) {
+    const auto& f = tris_[t];
+    normal[t] = (x[f[1]] - x[f[0]]).cross(x[f[2]] - x[f[0]]);
+  }
+  const BoxGrid triangles(std::move(tri_boxes));  // widened by r: a vertex within r lies in the box
+  const BoxGrid edges(std::move(edge_boxes));
+
+  const Tally per_vertex = reduce(static_cast<int>(vertices_.size()), [&](int i, Tally& t) {
+    const int v = vertices_[i];
+    triangles.query(Box(x[v]), [&](int j) {
+      const auto& f = tris_[j];
+      if (v == f[0] || v == f[1] || v == f[2]) return;
+      const double d = f64::ats_point_triangle(v3(x[v]), v3(x[f[0]]), v3(x[f[1]]), v3(x[f[2]])).d;
+      if (d < r) {
+        ++t.vertex_triangle;
+        t.closest = std::min(t.closest, d);
+      }
+    });
+  });
+  const Tally per_edge = reduce(static_cast<int>(edges_.size()), [&](int e, Tally& t) {
+    const auto& a = edges_[e];
+    const Box plain = box_of(a, x, 0.0);
+    Box wide = plain;
+    wide.min().array() -= r;
+    wide.max().array() += r;
+    edges.query(wide, [&](int f) {
+      if (f <= e) return;  // each pair once
+      const auto& b = edges_[f];
+      if (b[0] == a[0] || b[0] == a[1] || b[1] == a[0] || b[1] == a[1]) return;
+      const double d = f64::ats_edge_edge(v3(x[a[0]]), v3(x[a[1]]), v3(x[b[0]]), v3(x[b[1]])).d;
+      if (d < r) {
+        ++t.edge_edge;
+        t.closest = std::min(t.closest, d);
+      }
+    });
+    triangles.query(plain, [&](int j) {
+      const auto& f = tris_[j];
+      if (!shares_vertex(a, f) && crosses(x[a[0]], x[a[1]], x[f[0]], x[f[1]], x[f[2]], normal[j])) ++t.crossings;
+    });
+  });
+  const Tally all = joined(per_vertex, per_edge);
+  out.vertex_triangle = all.vertex_triangle;
+  out.edge_edge = all.edge_edge;
+  out.crossings = all.crossings;
+  out.max_penetration = out.pairs() > 0 ? r - all.closest : 0.0;
+  return out;
+}
+
+bool segment_crosses_triangle(const Vector3d& p, const Vector3d& q, const Vector3d& a, const Vector3d& b,
+                              const Vector3d& c) {
+  return crosses(p, q, a, b, c, (b - a).cross(c - a));
+}
+
+}  // namespace atssim::solver

@@ -1,0 +1,56 @@
+#pragma once
+// How the simulated surfaces touch, and whether any crossed another, in one
+// state: what /contact records per frame for a scene with a contact surface
+// (model::ContactSurface, `contact: {self: true}`; docs/output-format.md).
+// Measured on the host in double, independently of the device's detection
+// (which keeps only the 8 nearest pairs of each primitive, at the start of a
+// substep): every non-incident vertex-triangle and edge-edge pair closer
+// than the contact thickness, through the kernels' narrow phase
+// (common/self_contact.h), and every surface edge against every surface
+// triangle it does not touch, for a crossing. Broad phase: solver/contact/
+// box_grid (a uniform hashed grid rebuilt per call).
+#include <array>
+#include <span>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace atssim::solver {
+
+struct SurfaceContacts {
+  int vertex_triangle = 0;       // non-incident pairs closer than the thickness
+  int edge_edge = 0;             // pairs of edges that share no vertex, closer than the thickness
+  double max_penetration = 0.0;  // thickness − the smallest distance of those pairs (0: none)
+  int crossings = 0;             // (edge, triangle) pairs sharing no vertex, the edge through the triangle
+  int pairs() const { return vertex_triangle + edge_edge; }
+};
+
+class SurfaceContactCheck {
+ public:
+  // `triangles`: the contact surface (particle ids); `thickness` r in m.
+  SurfaceContactCheck(std::vector<std::array<int, 3>> triangles, double thickness);
+
+  // xyz: 3 floats per particle (every particle the triangles name). Runs
+  // its loops over the surface with oneTBB.
+  SurfaceContacts measure(std::span<const float> xyz) const;
+
+  double thickness() const { return thickness_; }
+  const std::vector<std::array<int, 3>>& triangles() const { return tris_; }
+  const std::vector<std::array<int, 2>>& edges() const { return edges_; }  // unique, (low id, high id)
+
+ private:
+  std::vector<std::array<int, 3>> tris_;
+  std::vector<std::array<int, 2>> edges_;
+  std::vector<int> vertices_;  // the particles on the surface, ascending
+  double thickness_ = 0.0;
+};
+
+// Whether segment pq passes through triangle abc: p and q strictly on either
+// side of its plane, and the line through them meeting the triangle inside or
+// on its border (signs of the tetrahedra's volumes). A segment that ends on
+// the plane, or lies in it, does not cross; nor does any segment through a
+// degenerate triangle.
+bool segment_crosses_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& a,
+                              const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+
+}  // namespace atssim::solver
