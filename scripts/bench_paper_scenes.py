@@ -29,7 +29,8 @@ run's last recorded substep (/schedule rows of the last frame), times the
 substeps, in ms per frame and as a share.
 
 usage: scripts/bench_paper_scenes.py [--small] [--frames 3] [--scenes dress,funnel]
-                                     [--setups sub,whole,split,heft] [--method xpbd] [--keep DIR]
+                                     [--setups sub,whole,split,heft] [--method xpbd] [--executor auto]
+                                     [--keep DIR]
 Build first (cmake --build --preset release). Paper-size meshes are written
 by scripts/make_meshes.py --paper when missing. Prints Markdown tables.
 """
@@ -73,7 +74,10 @@ def text(v):
 
 def run(scene, out, devices, schedule, args):
     cmd = [BIN, "run", scene, "-o", out, "--frames", str(args.frames), "--devices", devices, "--schedule", schedule,
-           "--set", f"solver.method={args.method}", "--quiet"]
+           "--set", f"solver.method={args.method}", "--executor", args.executor,
+           # a paper-size detection task on a loaded 1-CU sub-device can exceed the
+           # fused executor's default 10 s watchdog
+           "--set", "solver.wait_timeout=600", "--quiet"]
     subprocess.run(cmd, check=True)
 
 
@@ -178,6 +182,7 @@ def main() -> int:
     ap.add_argument("--scenes", default=",".join(SCENES))
     ap.add_argument("--setups", default="sub,whole,split,heft")
     ap.add_argument("--method", default="xpbd")
+    ap.add_argument("--executor", default="auto", help="auto, fused or events (CLI --executor)")
     ap.add_argument("--cores", type=int, default=os.cpu_count(), help="cores of the whole CPU device")
     ap.add_argument("--keep", help="keep the result files in this folder")
     args = ap.parse_args()

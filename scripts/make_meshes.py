@@ -17,7 +17,8 @@ scenes/paper/meshes/large/ (tens of MB, not committed: run
 does it):
 
   dress_layerK.obj   three concentric flared skirt layers (open cones,
-                     waist radius 0.20/0.215/0.23 at y = 1.0, hem at y = 0.2)
+                     waist radius 0.20 at y = 1.0, hem 0.40 at y = 0.2, the
+                     next layer 12 mm out (small) or 4 mm (paper size))
   jersey.obj         a tube shirt of elliptical section with a shoulder
                      yoke closing to a neck hole (one open mesh)
   ball.node/.ele     a voxel ball of radius 0.09, each cell cut into six
@@ -281,9 +282,9 @@ def skirt(waist, hem, top, bottom, segments, rings):
 
 def shirt(segments, body_rings, yoke_rings):
     """A tube shirt: an elliptical tube (semi-axes 0.28 along x, 0.19 along
-    z) from the hem at y = 0.95 up to the shoulders at y = 1.49, then a flat
+    z) from the hem at y = 0.95 up to the shoulders at y = 1.485, then a flat
     yoke closing to a neck hole of 0.6 times that size."""
-    a, b, hem, shoulder, neck = 0.28, 0.19, 0.95, 1.49, 0.6
+    a, b, hem, shoulder, neck = 0.28, 0.19, 0.95, 1.485, 0.6
     rings = []
     for j in range(yoke_rings):          # neck hole outwards to the shoulder line
         s = neck + (1 - neck) * j / yoke_rings
@@ -300,8 +301,8 @@ def paper_meshes():
     root = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenes", "paper",
                                          "meshes"))
     sizes = {  # small variant (committed), paper size (generated)
-        "small": dict(out=root, skirt=(32, 17), shirt=(32, 20, 8), ball=6, sub=1, depth=1),
-        "large": dict(out=os.path.join(root, "large"), skirt=(256, 136), shirt=(320, 180, 36), ball=9, sub=5,
+        "small": dict(out=root, skirt=(32, 17), gap=0.012, shirt=(32, 20, 8), ball=6, sub=1, depth=1),
+        "large": dict(out=os.path.join(root, "large"), skirt=(256, 136), gap=0.004, shirt=(320, 180, 36), ball=9, sub=5,
                       depth=6),
     }
     which = [w for w in ("small", "large") if "--small-only" not in sys.argv or w == "small"]
@@ -309,12 +310,13 @@ def paper_meshes():
         z = sizes[name]
         out = z["out"]
         os.makedirs(os.path.join(out, "letters"), exist_ok=True)
-        for k, (waist, hem) in enumerate([(0.20, 0.40), (0.215, 0.44), (0.23, 0.48)]):
+        for k in range(3):  # parallel cones, z["gap"] apart: the layers touch from the start
+            waist, hem = 0.20 + k * z["gap"], 0.40 + k * z["gap"]
             vs, fs = skirt(waist, hem, 1.0, 0.2, *z["skirt"])
             write_obj(os.path.join(out, f"dress_layer{k}.obj"), vs, fs,
                       f"dress layer {k}: open cone, waist radius {waist} at y = 1, hem radius {hem} at y = 0.2")
         vs, fs = shirt(*z["shirt"])
-        write_obj(os.path.join(out, "jersey.obj"), vs, fs, "tube shirt, shoulders at y = 1.49, hem at y = 0.95")
+        write_obj(os.path.join(out, "jersey.obj"), vs, fs, "tube shirt, shoulders at y = 1.485, hem at y = 0.95")
         vs, ts = voxel_ball(0.09, z["ball"])
         write_tetgen(os.path.join(out, "ball"), vs, ts, "voxel ball, radius 0.09, Kuhn tetrahedra")
         for ch in sorted(set(LETTERS)):
