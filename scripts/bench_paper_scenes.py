@@ -30,7 +30,7 @@ substeps, in ms per frame and as a share.
 
 usage: scripts/bench_paper_scenes.py [--small] [--frames 3] [--scenes dress,funnel]
                                      [--setups sub,whole,split,heft] [--method xpbd] [--executor auto]
-                                     [--keep DIR]
+                                     [--keep DIR [--reuse]]
 Build first (cmake --build --preset release). Paper-size meshes are written
 by scripts/make_meshes.py --paper when missing. Prints Markdown tables.
 """
@@ -79,6 +79,15 @@ def run(scene, out, devices, schedule, args):
            # fused executor's default 10 s watchdog
            "--set", "solver.wait_timeout=600", "--quiet"]
     subprocess.run(cmd, check=True)
+
+
+def complete(out, frames):
+    """Whether `out` holds a finished run of `frames` frames (for --reuse)."""
+    try:
+        with h5py.File(out, "r") as f:
+            return f["timing/frame_ms"].shape[0] == frames + 1
+    except (OSError, KeyError):
+        return False
 
 
 def frame_ms(out):
@@ -185,6 +194,7 @@ def main() -> int:
     ap.add_argument("--executor", default="auto", help="auto, fused or events (CLI --executor)")
     ap.add_argument("--cores", type=int, default=os.cpu_count(), help="cores of the whole CPU device")
     ap.add_argument("--keep", help="keep the result files in this folder")
+    ap.add_argument("--reuse", action="store_true", help="with --keep: skip runs whose result file is complete")
     args = ap.parse_args()
     if not os.path.exists(BIN):
         print(f"{BIN} is missing: build first", file=sys.stderr)
@@ -208,7 +218,8 @@ def main() -> int:
         ms = {}
         for setup in setups:
             out = os.path.join(where, f"{s}_{setup}.h5")
-            run(scene, out, *SETUPS[setup], args)
+            if not (args.reuse and complete(out, args.frames)):
+                run(scene, out, *SETUPS[setup], args)
             ms[setup] = frame_ms(out)
             print(f"{s} {setup}: {ms[setup]:.1f} ms/frame", file=sys.stderr, flush=True)
         ref = os.path.join(where, f"{s}_{'whole' if 'whole' in ms else setups[0]}.h5")
