@@ -1,7 +1,7 @@
 // Contact between simulated surfaces (scene `contact: {self: true}`), end
 // to end: every method, one device and HEFT on two sub-devices, judged by a
-// brute-force checker written here in double (its own point-triangle
-// distance and segment-triangle crossing, not the kernels' header).
+// brute-force checker in double (tests/support/surface_checks.hpp: its own
+// point-triangle distance and segment-triangle crossing, not the kernels' header).
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -24,6 +24,7 @@
 #include "support/cli_runs.hpp"
 #include "support/descent_checks.hpp"
 #include "support/scene_runs.hpp"
+#include "support/surface_checks.hpp"
 #include "support/temp_dir.hpp"
 
 using namespace atssim;
@@ -58,57 +59,12 @@ const char* kFold =
     "  - {type: plane, point: [0, 0, 0], normal: [0, 1, 0], thickness: 0.005}\n"
     "contact: {self: true, thickness: 0.01}\n";
 
-double point_segment(const Vector3d& p, const Vector3d& a, const Vector3d& b) {
-  const Vector3d ab = b - a;
-  const double len2 = ab.squaredNorm();
-  const double t = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (p - (a + t * ab)).norm();
-}
-
-// Distance to the plane when the projection falls inside (three edge-side
-// tests), else to the nearest edge.
-double point_triangle(const Vector3d& p, const Vector3d& a, const Vector3d& b, const Vector3d& c) {
-  const Vector3d n = (b - a).cross(c - a);
-  const double area2 = n.norm();
-  const double edges = std::min({point_segment(p, a, b), point_segment(p, b, c), point_segment(p, c, a)});
-  if (!(area2 > 1e-14)) return edges;
-  const Vector3d u = n / area2;
-  const Vector3d q = p - (p - a).dot(u) * u;
-  const bool inside =
-      (b - a).cross(q - a).dot(n) >= 0.0 && (c - b).cross(q - b).dot(n) >= 0.0 && (a - c).cross(q - c).dot(n) >= 0.0;
-  return inside ? std::abs((p - a).dot(u)) : edges;
-}
-
-// Whether segment pq passes through triangle abc (Möller-Trumbore, both
-// ends strictly on either side of the plane).
-bool segment_crosses(const Vector3d& p, const Vector3d& q, const Vector3d& a, const Vector3d& b, const Vector3d& c) {
-  const Vector3d n = (b - a).cross(c - a);
-  const double sp = (p - a).dot(n), sq = (q - a).dot(n);
-  if (sp * sq >= 0.0) return false;
-  const Vector3d x = p + (sp / (sp - sq)) * (q - p);
-  return (b - a).cross(x - a).dot(n) >= 0.0 && (c - b).cross(x - b).dot(n) >= 0.0 && (a - c).cross(x - c).dot(n) >= 0.0;
-}
-
-struct Surface {
-  std::vector<std::array<int, 3>> tris;
-  std::vector<std::array<int, 2>> edges;
-};
+using test::point_triangle;
+using test::segment_crosses;
+using test::Surface;
 
 Surface surface_of(const std::string& yaml) {
-  const model::Model m = model::build_model(scene::parse_scene(yaml, "scene.yaml", "."));
-  Surface s;
-  std::map<std::pair<int, int>, int> seen;
-  for (const model::ObjectRange& o : m.objects) {
-    for (const auto& t : o.triangles) {
-      const std::array<int, 3> g{t[0] + o.vertex_offset, t[1] + o.vertex_offset, t[2] + o.vertex_offset};
-      s.tris.push_back(g);
-      for (int k = 0; k < 3; ++k) {
-        const std::pair<int, int> e{std::min(g[k], g[(k + 1) % 3]), std::max(g[k], g[(k + 1) % 3])};
-        if (seen.emplace(e, 0).second) s.edges.push_back({e.first, e.second});
-      }
-    }
-  }
-  return s;
+  return test::surface_of(model::build_model(scene::parse_scene(yaml, "scene.yaml", ".")));
 }
 
 using test::frame;
