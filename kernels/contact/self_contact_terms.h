@@ -137,9 +137,9 @@ static inline vertex_system sc_ahead_gs(vertex_system s, int* added, ats_vec3 dx
  * brings within r (above). x_iter, color: VBD's (null: Jacobi). */
 static inline ats_solve3 sc_contact_step(vertex_system system, int i, __global const float4* x,
                                          __global const float4* x_iter, __global const int* color,
-                                         __global const int4* tris, __global const int2* edges,
-                                         __global const int* inc, int n, __global const int* vt,
-                                         __global const int* tv, __global const int* ee, float k, float r, int on) {
+                                         __global const int4* tris, __global const int2* edges, __global const int* inc,
+                                         int n, __global const int* vt, __global const int* tv, __global const int* ee,
+                                         float k, float r, int on) {
   ats_solve3 d = ats_m3_solve(system.h, system.f);
   if (!on || !d.ok || x[i].w == 0.0f || !sc_is_surface(inc, i)) return d;
   int last = 0;

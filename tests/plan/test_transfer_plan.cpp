@@ -35,15 +35,16 @@ TEST_CASE("element sets unite exactly, in words when element sizes differ") {
   CHECK(a.bytes() == 4 * 16 + 4);
   a.add(ElementSet{0, 4, {0, 30}});  // words 0 and 30: element 7 is words 28..31
   CHECK(a.sets()[0].element_bytes == 4);
-  CHECK(a.sets()[0].indices ==
-        std::vector<std::int32_t>{0, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 28, 29, 30, 31});
+  CHECK(a.sets()[0].indices == std::vector<std::int32_t>{0, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 28, 29, 30, 31});
   CHECK_FALSE(a.sets()[0].contiguous());
   CHECK(ElementSet{0, 4, {3, 4, 5}}.contiguous());
 }
 
 TEST_CASE("a launch writes its declared spans over its range, and writable arguments it does not declare whole") {
-  plan::KernelLaunch l{"f", {2, 3}, {plan::KernelArg::of_buffer(0), plan::KernelArg::of_buffer(1), plan::KernelArg::of_buffer(2)}, {}};
-  const auto table = std::make_shared<const std::vector<std::int32_t>>(std::vector<std::int32_t>{0, 1, 1, 2, 9, 3, 3, 4, 5, 6});
+  plan::KernelLaunch l{
+      "f", {2, 3}, {plan::KernelArg::of_buffer(0), plan::KernelArg::of_buffer(1), plan::KernelArg::of_buffer(2)}, {}};
+  const auto table =
+      std::make_shared<const std::vector<std::int32_t>>(std::vector<std::int32_t>{0, 1, 1, 2, 9, 3, 3, 4, 5, 6});
   l.writes = {plan::WriteSpan::per_index(0, 16, 2, table), plan::WriteSpan::per_element(1, 4, 10)};
   const std::vector<std::size_t> sizes{160, 64, 8};
   const std::vector<char> writable{1, 1, 1};
@@ -51,8 +52,8 @@ TEST_CASE("a launch writes its declared spans over its range, and writable argum
   REQUIRE(w.sets().size() == 3);
   // elements 2, 3, 4 of the table, two entries each: (9, 3), (3, 4), (5, 6)
   CHECK(w.sets()[0].indices == std::vector<std::int32_t>{3, 4, 5, 6, 9});
-  CHECK(w.sets()[1].indices == std::vector<std::int32_t>{12, 13, 14});          // offset 10
-  CHECK(w.sets()[2].indices == std::vector<std::int32_t>{0, 1});                // undeclared: 8 bytes, whole
+  CHECK(w.sets()[1].indices == std::vector<std::int32_t>{12, 13, 14});  // offset 10
+  CHECK(w.sets()[2].indices == std::vector<std::int32_t>{0, 1});        // undeclared: 8 bytes, whole
   const std::vector<char> read_only{1, 1, 0};
   CHECK(plan::written_elements(l, read_only, sizes).sets().size() == 2);
 }
@@ -68,7 +69,7 @@ TEST_CASE("a copy carries what the producer's device wrote up to the producer, o
   CHECK(p.within[0].before == 1);
   CHECK(indices_of(p.within[0], 0) == std::vector<std::int32_t>{0, 1});  // not t1's: it runs after t0
   CHECK(p.within[1].before == 3);
-  CHECK(indices_of(p.within[1], 0) == std::vector<std::int32_t>{2});      // t0's went already
+  CHECK(indices_of(p.within[1], 0) == std::vector<std::int32_t>{2});  // t0's went already
   // What device 1 wrote goes to device 0 at the boundary.
   REQUIRE(p.boundary.size() == 1);
   CHECK(p.boundary[0].from == 1);
