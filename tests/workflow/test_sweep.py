@@ -52,25 +52,54 @@ def session_processes(session):
     return found
 
 
-def kill_session(session):
-    """SIGKILL every process of a session: GNU parallel puts each job in a
-    process group of its own, so killing the sweep's group would leave the
-    running atssim processes behind. One pass is not enough: a process forked
-    while /proc is being read (GNU parallel starting the next point, a point
-    script starting its `mv`) escapes it and would finish a point after the
-    test has counted the complete ones, so kill until none is left."""
+def signal_session(session, sig, settled):
+    """Send `sig` to every process of a session until `settled(pid)` holds for
+    each live one. One pass is not enough: a process forked while /proc is
+    being read (GNU parallel starting the next point, a point script starting
+    its `mv`) escapes it."""
     deadline = time.time() + 30
     while time.time() < deadline:
-        alive = session_processes(session)
-        if not alive:
+        pending = [pid for pid in session_processes(session) if not settled(pid)]
+        if not pending:
             return
-        for pid in alive:
+        for pid in pending:
             try:
-                os.kill(pid, signal.SIGKILL)
+                os.kill(pid, sig)
             except ProcessLookupError:
                 pass
         time.sleep(0.01)
-    fail(f"processes of session {session} survive SIGKILL: {session_processes(session)}")
+    fail(f"processes of session {session} do not take signal {sig}: {session_processes(session)}")
+
+
+def process_state(pid):
+    try:
+        with open(f"/proc/{pid}/stat") as f:
+            return f.read().rsplit(")", 1)[1].split()[0]
+    except OSError:
+        return "X"
+
+
+def freeze_session(session):
+    """SIGSTOP the whole session, so that no point can finish while the test
+    decides whether to kill it now."""
+    signal_session(session, signal.SIGSTOP, lambda pid: process_state(pid) in "TtXZ")
+
+
+def thaw_session(session):
+    for pid in session_processes(session):
+        try:
+            os.kill(pid, signal.SIGCONT)
+        except ProcessLookupError:
+            pass
+
+
+def kill_session(session):
+    """SIGKILL every process of a session: GNU parallel puts each job in a
+    process group of its own, so killing the sweep's group would leave the
+    running atssim processes behind; kill until none is left, so that no
+    process forked meanwhile finishes a point after the test has counted the
+    complete ones."""
+    signal_session(session, signal.SIGKILL, lambda pid: False)
 
 
 def check_merged(out):
@@ -101,12 +130,20 @@ def parallel(out):
     print("$", " ".join(sweep_command(out, "parallel")), flush=True)
     proc = subprocess.Popen(sweep_command(out, "parallel"), start_new_session=True, stdout=subprocess.PIPE,
                             stderr=subprocess.STDOUT, text=True)
-    deadline = time.time() + 300
-    while proc.poll() is None and time.time() < deadline:
+    def halfway():
         done = complete_points(out)
         running = [p for p in glob.glob(os.path.join(out, "p*.h5")) if os.path.basename(p)[:-3] not in done]
-        if len(done) >= 3 and running:
-            break
+        return len(done) >= 3 and running
+
+    # A point can finish between a look at the files and the kill: freeze the
+    # sweep, look again, and kill only while the look still holds.
+    deadline = time.time() + 300
+    while proc.poll() is None and time.time() < deadline:
+        if halfway():
+            freeze_session(proc.pid)
+            if halfway():
+                break
+            thaw_session(proc.pid)
         time.sleep(0.02)
     kill_session(proc.pid)
     proc.wait()
