@@ -452,4 +452,123 @@ ATS_FN float sc_unlisted_distance(int i, ATS_GLOBAL const int* inc, int n, ATS_G
   return d - 2.0f * moved;
 }
 
+
+/* The distances of a list's entries at x, once per substep: out[2 + m]
+ * entry m's, out[0] the smallest (1e30 for an empty list). The bound and the
+ * near lists read them, so each listed pair's geometry is evaluated once
+ * here rather than by each of its vertices. Same layout as the lists. */
+ATS_FN void sc_store_distances(ATS_GLOBAL const int* list, const float* d, ATS_GLOBAL float* out) {
+  float least = 1e30f;
+  for (int m = 0; m < list[0]; ++m) {
+    out[2 + m] = d[m];
+    least = fmin(least, d[m]);
+  }
+  out[0] = least;
+}
+
+ATS_FN void sc_vertex_distances(int i, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* tris,
+                                ATS_GLOBAL const int* vt, ATS_GLOBAL float* vt_d) {
+  ATS_GLOBAL const int* l = vt + i * ATS_SC_STRIDE;
+  float d[ATS_SC_CAPACITY];
+  const ats_vec3 p = sc_v(x[i]);
+  for (int m = 0; m < l[0]; ++m) {
+    ATS_GLOBAL const int* f = tris + 4 * l[2 + m];
+    d[m] = ats_point_triangle(p, sc_v(x[f[0]]), sc_v(x[f[1]]), sc_v(x[f[2]])).d;
+  }
+  sc_store_distances(l, d, vt_d + i * ATS_SC_STRIDE);
+}
+
+ATS_FN void sc_triangle_distances(int t, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* tris,
+                                  ATS_GLOBAL const int* tv, ATS_GLOBAL float* tv_d) {
+  ATS_GLOBAL const int* l = tv + t * ATS_SC_STRIDE;
+  ATS_GLOBAL const int* f = tris + 4 * t;
+  float d[ATS_SC_CAPACITY];
+  const ats_vec3 a = sc_v(x[f[0]]), b = sc_v(x[f[1]]), c = sc_v(x[f[2]]);
+  for (int m = 0; m < l[0]; ++m) d[m] = ats_point_triangle(sc_v(x[l[2 + m]]), a, b, c).d;
+  sc_store_distances(l, d, tv_d + t * ATS_SC_STRIDE);
+}
+
+ATS_FN void sc_edge_distances(int e, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* edges,
+                              ATS_GLOBAL const int* ee, ATS_GLOBAL float* ee_d) {
+  ATS_GLOBAL const int* l = ee + e * ATS_SC_STRIDE;
+  float d[ATS_SC_CAPACITY];
+  const ats_vec3 a = sc_v(x[edges[2 * e]]), b = sc_v(x[edges[2 * e + 1]]);
+  for (int m = 0; m < l[0]; ++m) {
+    const int o = l[2 + m];
+    d[m] = ats_edge_edge(a, b, sc_v(x[edges[2 * o]]), sc_v(x[edges[2 * o + 1]])).d;
+  }
+  sc_store_distances(l, d, ee_d + e * ATS_SC_STRIDE);
+}
+
+/* VBD's conservative displacement bound of vertex i (§3.7): gamma times the
+ * distance to the nearest primitive it could meet, on x_t: its listed pairs'
+ * distances now (as a point, through its triangles, through its edges), and
+ * what its lists' horizons leave for the rest (sc_unlisted_distance). */
+ATS_FN float sc_vertex_bound(int i, ATS_GLOBAL const int* inc, int n, ATS_GLOBAL const int* vt,
+                             ATS_GLOBAL const int* tv, ATS_GLOBAL const int* ee, ATS_GLOBAL const float* vt_d,
+                             ATS_GLOBAL const float* tv_d, ATS_GLOBAL const float* ee_d, float moved, float gamma) {
+  if (!sc_is_surface(inc, i)) return 1e30f;
+  float d = fmin(sc_unlisted_distance(i, inc, n, vt, tv, ee, moved), vt_d[i * ATS_SC_STRIDE]);
+  for (int k = inc[i]; k < inc[i + 1]; ++k) d = fmin(d, tv_d[inc[k] * ATS_SC_STRIDE]);
+  for (int k = inc[n + 1 + i]; k < inc[n + 2 + i]; ++k) d = fmin(d, ee_d[inc[k] * ATS_SC_STRIDE]);
+  return gamma * fmax(d, 0.0f);
+}
+
+/* The near lists: the entries of a list that can come within the thickness
+ * r in this substep. Every vertex stays within its bound b of x_t while a
+ * substep's solve evaluates the pairs (VBD truncates each step to it, XPBD,
+ * JPGD and SOSD clamp to it before each evaluation), and a pair's distance
+ * moves by at most the largest bound on each of its two sides, so an entry
+ * with d(x_t) - b_first - b_second >= r stays out of the contact energy and
+ * the constraints the whole substep. The iterations and friction read the
+ * near lists. Same layout as the lists ([1]: the list's horizon). */
+ATS_FN float sc_side_bound(ATS_GLOBAL const float* bound, int a, int b, int c) {
+  const float m = fmax(bound[a], bound[b]);
+  return c >= 0 ? fmax(m, bound[c]) : m;
+}
+
+ATS_FN void sc_near_store(ATS_GLOBAL const int* list, const int* keep, ATS_GLOBAL int* out) {
+  int count = 0;
+  for (int m = 0; m < list[0]; ++m)
+    if (keep[m]) out[2 + count++] = list[2 + m];
+  out[0] = count;
+  out[1] = list[1];
+}
+
+ATS_FN void sc_near_vertex(int i, ATS_GLOBAL const int* tris, ATS_GLOBAL const int* vt, ATS_GLOBAL const float* vt_d,
+                           ATS_GLOBAL const float* bound, float r, ATS_GLOBAL int* vt_near) {
+  ATS_GLOBAL const int* l = vt + i * ATS_SC_STRIDE;
+  ATS_GLOBAL const float* d = vt_d + i * ATS_SC_STRIDE;
+  int keep[ATS_SC_CAPACITY];
+  for (int m = 0; m < l[0]; ++m) {
+    ATS_GLOBAL const int* f = tris + 4 * l[2 + m];
+    keep[m] = d[2 + m] - bound[i] - sc_side_bound(bound, f[0], f[1], f[2]) < r;
+  }
+  sc_near_store(l, keep, vt_near + i * ATS_SC_STRIDE);
+}
+
+ATS_FN void sc_near_triangle(int t, ATS_GLOBAL const int* tris, ATS_GLOBAL const int* tv, ATS_GLOBAL const float* tv_d,
+                             ATS_GLOBAL const float* bound, float r, ATS_GLOBAL int* tv_near) {
+  ATS_GLOBAL const int* l = tv + t * ATS_SC_STRIDE;
+  ATS_GLOBAL const float* d = tv_d + t * ATS_SC_STRIDE;
+  ATS_GLOBAL const int* f = tris + 4 * t;
+  int keep[ATS_SC_CAPACITY];
+  const float reach = sc_side_bound(bound, f[0], f[1], f[2]);
+  for (int m = 0; m < l[0]; ++m) keep[m] = d[2 + m] - reach - bound[l[2 + m]] < r;
+  sc_near_store(l, keep, tv_near + t * ATS_SC_STRIDE);
+}
+
+ATS_FN void sc_near_edge(int e, ATS_GLOBAL const int* edges, ATS_GLOBAL const int* ee, ATS_GLOBAL const float* ee_d,
+                         ATS_GLOBAL const float* bound, float r, ATS_GLOBAL int* ee_near) {
+  ATS_GLOBAL const int* l = ee + e * ATS_SC_STRIDE;
+  ATS_GLOBAL const float* d = ee_d + e * ATS_SC_STRIDE;
+  int keep[ATS_SC_CAPACITY];
+  const float reach = sc_side_bound(bound, edges[2 * e], edges[2 * e + 1], -1);
+  for (int m = 0; m < l[0]; ++m) {
+    const int o = l[2 + m];
+    keep[m] = d[2 + m] - reach - sc_side_bound(bound, edges[2 * o], edges[2 * o + 1], -1) < r;
+  }
+  sc_near_store(l, keep, ee_near + e * ATS_SC_STRIDE);
+}
+
 #endif

@@ -62,6 +62,28 @@ ATS_TASK void sc_query_leaves(int u, __global const float4* x, __global const in
   if (state[1]) sc_query_leaf(u, x, inc, (__global const int*)tris, (__global const int*)edges, leaves, nodes, levels, root, as_float(state[2]), vt, tv, ee);
 }
 
+/* Once per substep, after the lists (common/self_contact_bvh.h): every
+ * listed pair's distance at x_t, per vertex, triangle and edge list; then
+ * the bound (below) and the near lists the iterations and friction read. */
+ATS_TASK void sc_vertex_distances_task(int i, __global const float4* x, __global const int4* tris, __global const int* vt, __global float* vt_d) {
+  sc_vertex_distances(i, x, (__global const int*)tris, vt, vt_d);
+}
+ATS_TASK void sc_triangle_distances_task(int t, __global const float4* x, __global const int4* tris, __global const int* tv, __global float* tv_d) {
+  sc_triangle_distances(t, x, (__global const int*)tris, tv, tv_d);
+}
+ATS_TASK void sc_edge_distances_task(int e, __global const float4* x, __global const int2* edges, __global const int* ee, __global float* ee_d) {
+  sc_edge_distances(e, x, (__global const int*)edges, ee, ee_d);
+}
+ATS_TASK void sc_near_vertices(int i, __global const int4* tris, __global const int* vt, __global const float* vt_d, __global const float* bound, float r, __global int* vt_near) {
+  sc_near_vertex(i, (__global const int*)tris, vt, vt_d, bound, r, vt_near);
+}
+ATS_TASK void sc_near_triangles(int t, __global const int4* tris, __global const int* tv, __global const float* tv_d, __global const float* bound, float r, __global int* tv_near) {
+  sc_near_triangle(t, (__global const int*)tris, tv, tv_d, bound, r, tv_near);
+}
+ATS_TASK void sc_near_edges(int e, __global const int2* edges, __global const int* ee, __global const float* ee_d, __global const float* bound, float r, __global int* ee_near) {
+  sc_near_edge(e, (__global const int*)edges, ee, ee_d, bound, r, ee_near);
+}
+
 /* p held within distance b of q (VBD's truncation of a vertex's step). */
 static inline float4 sc_bounded(float4 p, float4 q, float b) {
   const float4 d = (float4)(p.x - q.x, p.y - q.y, p.z - q.z, 0.0f);
@@ -121,18 +143,10 @@ ATS_TASK void sc_clamp(int i, __global float4* x, __global const float4* x_start
     }                                                                                                              \
   }
 
-/* VBD's conservative displacement bound of vertex i (§3.7): gamma times
- * the distance to the nearest primitive it could meet, on x_t: its listed
- * pairs' distances now, and what its lists' horizons leave for the rest
- * (common/self_contact_bvh.h sc_unlisted_distance). */
-ATS_TASK void sc_bound(int i, __global const float4* x, __global const int4* tris, __global const int2* edges, __global const int* inc, int n, __global const int* vt, __global const int* tv, __global const int* ee, __global const int* state, float gamma, __global float* bound) {
-  if (!sc_is_surface(inc, i)) {
-    bound[i] = 1e30f;
-    return;
-  }
-  float d = sc_unlisted_distance(i, inc, n, vt, tv, ee, as_float(state[3]));
-  SC_FOR_EACH_PAIR({ d = fmin(d, g.d); })
-  bound[i] = gamma * fmax(d, 0.0f);
+/* VBD's conservative displacement bound of vertex i (§3.7), from the
+ * distances above (common/self_contact_bvh.h sc_vertex_bound). */
+ATS_TASK void sc_bound(int i, __global const int* inc, int n, __global const int* vt, __global const int* tv, __global const int* ee, __global const float* vt_d, __global const float* tv_d, __global const float* ee_d, __global const int* state, float gamma, __global float* bound) {
+  bound[i] = sc_vertex_bound(i, inc, n, vt, tv, ee, vt_d, tv_d, ee_d, as_float(state[3]), gamma);
 }
 
 /* XPBD (Macklin et al. 2016) inequality constraint C = d - r >= 0 of every

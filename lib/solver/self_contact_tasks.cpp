@@ -48,6 +48,12 @@ SelfContactBuffers add_self_contact_buffers(plan::SubstepPlan& plan, const SimLa
   b.bound = plan.add_buffer("sc_bound", BufferRole::scratch, zeros(n * 4));
   b.x_out = plan.add_buffer("sc_x_out", BufferRole::scratch, zeros(n * kParticleBytes));
   b.motion = plan.add_buffer("sc_motion", BufferRole::scratch, zeros(motion_blocks(n) * 8));
+  b.vt_d = plan.add_buffer("sc_vt_d", BufferRole::scratch, zeros(n * kListInts * 4));
+  b.tv_d = plan.add_buffer("sc_tv_d", BufferRole::scratch, zeros(s.tris.size() * kListInts * 4));
+  b.ee_d = plan.add_buffer("sc_ee_d", BufferRole::scratch, zeros(s.edges.size() * kListInts * 4));
+  b.vt_near = plan.add_buffer("sc_vt_near", BufferRole::scratch, zeros(n * kListInts * 4));
+  b.tv_near = plan.add_buffer("sc_tv_near", BufferRole::scratch, zeros(s.tris.size() * kListInts * 4));
+  b.ee_near = plan.add_buffer("sc_ee_near", BufferRole::scratch, zeros(s.edges.size() * kListInts * 4));
   return b;
 }
 
@@ -129,17 +135,48 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
         Arg::of_buffer(b.state), Arg::of_buffer(b.vt), Arg::of_buffer(b.tv), Arg::of_buffer(b.ee)},
        {WriteSpan::per_index(b.vt, kListInts * 4, 3, owned(0)), WriteSpan::per_element(b.tv, kListInts * 4),
         WriteSpan::per_index(b.ee, kListInts * 4, 3, owned(4))}});
-  const sched::TaskId bound =
-      plan.add_task(detect("detect/bound"),
-                    {{"sc_bound",
-                      {0, n},
-                      {Arg::of_buffer(start), Arg::of_buffer(b.tris), Arg::of_buffer(b.edges),
-                       Arg::of_buffer(b.incidence), Arg::of_int(n), Arg::of_buffer(b.vt), Arg::of_buffer(b.tv),
-                       Arg::of_buffer(b.ee), Arg::of_buffer(b.state), Arg::of_float(s.gamma), Arg::of_buffer(b.bound)},
-                      {WriteSpan::per_element(b.bound, 4)}}});
-  plan.graph.add_edge(pairs, bound);
+  // Every listed pair's distance at x_t once (each list's entries), then
+  // the bound per vertex from them, then the entries the iterations can meet
+  // (common/self_contact_bvh.h sc_near_vertex): a list holds up to 8 pairs
+  // within the query radius, a few of which come within the thickness in one
+  // substep.
+  const int edges = static_cast<int>(s.edges.size());
+  const auto per_list = [&](const std::string& name, const char* function, int count, std::vector<Arg> args,
+                            plan::BufferId out) {
+    last = plan.add_task_after(last, detect(name),
+                               {function, {0, count}, std::move(args), {WriteSpan::per_element(out, kListInts * 4)}});
+  };
+  last = pairs;
+  per_list("detect/distances_vertices", "sc_vertex_distances_task", n,
+           {Arg::of_buffer(start), Arg::of_buffer(b.tris), Arg::of_buffer(b.vt), Arg::of_buffer(b.vt_d)}, b.vt_d);
+  per_list("detect/distances_triangles", "sc_triangle_distances_task", tris,
+           {Arg::of_buffer(start), Arg::of_buffer(b.tris), Arg::of_buffer(b.tv), Arg::of_buffer(b.tv_d)}, b.tv_d);
+  per_list("detect/distances_edges", "sc_edge_distances_task", edges,
+           {Arg::of_buffer(start), Arg::of_buffer(b.edges), Arg::of_buffer(b.ee), Arg::of_buffer(b.ee_d)}, b.ee_d);
+  const sched::TaskId bound = plan.add_task_after(
+      last, detect("detect/bound"),
+      {"sc_bound",
+       {0, n},
+       {Arg::of_buffer(b.incidence), Arg::of_int(n), Arg::of_buffer(b.vt), Arg::of_buffer(b.tv), Arg::of_buffer(b.ee),
+        Arg::of_buffer(b.vt_d), Arg::of_buffer(b.tv_d), Arg::of_buffer(b.ee_d), Arg::of_buffer(b.state),
+        Arg::of_float(s.gamma), Arg::of_buffer(b.bound)},
+       {WriteSpan::per_element(b.bound, 4)}});
   plan.graph.add_edge(snap, bound);
-  return plan.add_task_after(bound, plan::make_task("contact/first_guess", plan::TaskKind::collision),
+  last = bound;
+  const float r = s.thickness;
+  per_list("detect/near_vertices", "sc_near_vertices", n,
+           {Arg::of_buffer(b.tris), Arg::of_buffer(b.vt), Arg::of_buffer(b.vt_d), Arg::of_buffer(b.bound),
+            Arg::of_float(r), Arg::of_buffer(b.vt_near)},
+           b.vt_near);
+  per_list("detect/near_triangles", "sc_near_triangles", tris,
+           {Arg::of_buffer(b.tris), Arg::of_buffer(b.tv), Arg::of_buffer(b.tv_d), Arg::of_buffer(b.bound),
+            Arg::of_float(r), Arg::of_buffer(b.tv_near)},
+           b.tv_near);
+  per_list("detect/near_edges", "sc_near_edges", edges,
+           {Arg::of_buffer(b.edges), Arg::of_buffer(b.ee), Arg::of_buffer(b.ee_d), Arg::of_buffer(b.bound),
+            Arg::of_float(r), Arg::of_buffer(b.ee_near)},
+           b.ee_near);
+  return plan.add_task_after(last, plan::make_task("contact/first_guess", plan::TaskKind::collision),
                              {"sc_clamp",
                               {0, n},
                               {Arg::of_buffer(positions), Arg::of_buffer(start), Arg::of_buffer(b.bound)},
@@ -151,9 +188,9 @@ std::vector<plan::KernelArg> self_contact_args(const SimLayout& layout, const Se
   return {Arg::of_buffer(b.tris),
           Arg::of_buffer(b.edges),
           Arg::of_buffer(b.incidence),
-          Arg::of_buffer(b.vt),
-          Arg::of_buffer(b.tv),
-          Arg::of_buffer(b.ee),
+          Arg::of_buffer(b.vt_near),
+          Arg::of_buffer(b.tv_near),
+          Arg::of_buffer(b.ee_near),
           Arg::of_buffer(b.bound),
           Arg::of_int(static_cast<int>(layout.x.size())),
           Arg::of_float(static_cast<float>(self_contact_k(s, inertia_h))),
@@ -194,8 +231,8 @@ sched::TaskId add_self_contact_projection(plan::SubstepPlan& plan, sched::TaskId
       {"sc_project",
        {0, n},
        {Arg::of_buffer(positions), Arg::of_buffer(scratch), Arg::of_buffer(b.tris), Arg::of_buffer(b.edges),
-        Arg::of_buffer(b.incidence), Arg::of_int(n), Arg::of_buffer(b.vt), Arg::of_buffer(b.tv), Arg::of_buffer(b.ee),
-        Arg::of_float(s.thickness)},
+        Arg::of_buffer(b.incidence), Arg::of_int(n), Arg::of_buffer(b.vt_near), Arg::of_buffer(b.tv_near),
+        Arg::of_buffer(b.ee_near), Arg::of_float(s.thickness)},
        {particle_write(scratch)}});
   return plan.add_task_after(
       last,
@@ -218,8 +255,9 @@ sched::TaskId add_self_contact_friction(plan::SubstepPlan& plan, sched::TaskId l
        {0, n},
        {Arg::of_buffer(positions), Arg::of_buffer(b.x_out), Arg::of_buffer(start), Arg::of_buffer(velocities),
         Arg::of_float(static_cast<float>(h)), Arg::of_buffer(b.tris), Arg::of_buffer(b.edges),
-        Arg::of_buffer(b.incidence), Arg::of_int(n), Arg::of_buffer(b.vt), Arg::of_buffer(b.tv), Arg::of_buffer(b.ee),
-        Arg::of_float(s.thickness), Arg::of_float(s.mu_s), Arg::of_float(s.mu_k), Arg::of_buffer(friction)},
+        Arg::of_buffer(b.incidence), Arg::of_int(n), Arg::of_buffer(b.vt_near), Arg::of_buffer(b.tv_near),
+        Arg::of_buffer(b.ee_near), Arg::of_float(s.thickness), Arg::of_float(s.mu_s), Arg::of_float(s.mu_k),
+        Arg::of_buffer(friction)},
        {particle_write(b.x_out)}});
   return plan.add_task_after(
       last, plan::make_task("contact/friction_apply", plan::TaskKind::copy),

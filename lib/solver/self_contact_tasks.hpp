@@ -19,7 +19,9 @@ struct SelfContactBuffers {
   plan::BufferId tris = -1, edges = -1, leaves = -1, nodes = -1, levels = -1, incidence = -1, vt = -1, tv = -1, ee = -1,
                  bound = -1, x_out = -1,  // x_out: XPBD's projection
       motion = -1,                        // per block the largest displacement since x_det and predicted step
-      x_det = -1, state = -1;             // where the lists were made; whether they serve (common/self_contact_bvh.h)
+      x_det = -1, state = -1,             // where the lists were made; whether they serve (common/self_contact_bvh.h)
+      vt_d = -1, tv_d = -1, ee_d = -1,    // the listed pairs' distances at x_t
+      vt_near = -1, tv_near = -1, ee_near = -1;  // the entries that can come within the thickness this substep
 };
 
 SelfContactBuffers add_self_contact_buffers(plan::SubstepPlan& plan, const SimLayout& layout);
@@ -30,8 +32,8 @@ SelfContactBuffers add_self_contact_buffers(plan::SubstepPlan& plan, const SimLa
 sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId last, const SimLayout& layout,
                                          const SelfContactBuffers& b, plan::BufferId start, plan::BufferId positions);
 
-// A vertex kernel's self-contact parameters: tris, edges, incidence, vt,
-// tv, ee, bound, n, k (for the inertia step `inertia_h`), r, on. They follow
+// A vertex kernel's self-contact parameters: tris, edges, incidence, the
+// near lists (vt, tv, ee), bound, n, k (for the inertia step `inertia_h`), r, on. They follow
 // the kernel's x_start and inv_h (vertex::damping_args), which the bound and
 // the damping share.
 std::vector<plan::KernelArg> self_contact_args(const SimLayout& layout, const SelfContactBuffers& b, double inertia_h);
