@@ -148,29 +148,17 @@ void bvh_step(const Scene& sc, std::vector<Float4>& nodes, const Runner& run, Ti
       });
 }
 
-// One substep of the device's own detection: refit, then the kernels' three
-// queries (8 nearest per primitive), as the device runs them.
-void kernel_step(const Scene& sc, std::vector<Float4>& nodes, KernelLists& lists, const Runner& run, Timing& t) {
-  run.clear();
-  bvh_refit_timed(sc, nodes, run, t);
-  const auto& s = sc.layout;
-  const auto kind = [&](int k, int count) {
-    return [&, k, count] {
-      run.each_item(count, [&](int b, int e) { bvh_kernel_lists(s, sc.xf, nodes, sc.r, k, b, e, lists); });
-    };
-  };
-  timed_queries(t, kind(0, sc.n()), kind(1, sc.tris()), kind(2, sc.edges()));
-}
-
-// The same lists from one walk per leaf (sc_query_leaves), timed as one
-// query (its time stands in the per-triangle column).
+// The kernels' lists (8 nearest per primitive) from one walk per group of
+// leaves (sc_query_groups), timed as one query (its time stands in the
+// per-triangle column).
 void leaf_step(const Scene& sc, std::vector<Float4>& nodes, KernelLists& lists, const Runner& run, Timing& t) {
   run.clear();
   bvh_refit_timed(sc, nodes, run, t);
   timed_queries(
       t, [] {},
       [&] {
-        run.each_item(sc.tris(), [&](int b, int e) { bvh_leaf_lists(sc.layout, sc.xf, nodes, sc.r, b, e, lists); });
+        run.each_item(bvh_group_count(sc.layout),
+                      [&](int b, int e) { bvh_group_lists(sc.layout, sc.xf, nodes, sc.r, b, e, lists); });
       },
       [] {});
 }
@@ -236,16 +224,15 @@ int main(int argc, char** argv) {
     sc.r = sc.layout.query_radius;
 
     std::vector<Float4> nodes(2 * std::size_t(sc.layout.node_count()));
-    KernelLists kernel_lists, leaf_lists;
-    kernel_lists.resize(sc.layout, sc.x.size());
+    KernelLists leaf_lists;
     leaf_lists.resize(sc.layout, sc.x.size());
     std::vector<SurfaceHash> hashes(cells.size());
     for (std::size_t c = 0; c < cells.size(); ++c) hash_resize(hashes[c], sc.layout, sc.n(), cells[c] * sc.r);
 
-    // Methods: 0 = BVH, 1 = the three queries keeping the 8 nearest, 2 = the
-    // kernels' one walk per leaf (1 and 2: lists, compared with each other,
-    // not pair for pair), 3 + c = hash with cells[c]; per thread count.
-    constexpr int kKernel = 1, kLeaf = 2, kFirstHash = 3;
+    // Methods: 0 = BVH, 1 = the kernels' one walk per leaf (lists of the 8
+    // nearest, not compared pair for pair), 2 + c = hash with cells[c]; per
+    // thread count.
+    constexpr int kLeaf = 1, kFirstHash = 2;
     const int methods = kFirstHash + static_cast<int>(cells.size());
     std::vector<std::vector<Timing>> timing(thread_counts.size(), std::vector<Timing>(methods));
     std::vector<std::vector<PairLists>> found(thread_counts.size(), std::vector<PairLists>(methods));
@@ -259,8 +246,6 @@ int main(int argc, char** argv) {
           Timing& t = timing[ti][method];
           if (method == 0) {
             bvh_step(sc, nodes, run, t);
-          } else if (method == kKernel) {
-            kernel_step(sc, nodes, kernel_lists, run, t);
           } else if (method == kLeaf) {
             leaf_step(sc, nodes, leaf_lists, run, t);
           } else {
@@ -277,17 +262,13 @@ int main(int argc, char** argv) {
     const PairLists& bvh = found[0][0];
     for (std::size_t ti = 0; ti < thread_counts.size(); ++ti) {
       for (int method = 0; method < methods; ++method) {
-        if (method == kKernel || method == kLeaf) continue;
+        if (method == kLeaf) continue;
         if (!same_pairs(found[ti][method], bvh)) {
           std::printf("FAIL: %d x %d, %d threads, method %d: pairs differ from the 1-thread BVH's\n", size, size,
                       thread_counts[ti], method);
           ok = false;
         }
       }
-    }
-    if (kernel_lists.vt != leaf_lists.vt || kernel_lists.tv != leaf_lists.tv || kernel_lists.ee != leaf_lists.ee) {
-      std::printf("FAIL: %d x %d: one walk per leaf left other lists than the three queries\n", size, size);
-      ok = false;
     }
     if (!transposes_agree(bvh)) {
       std::printf("FAIL: %d x %d: per-triangle pairs are not the per-vertex pairs transposed\n", size, size);
@@ -325,11 +306,10 @@ int main(int argc, char** argv) {
         std::vector<double> total(t.build.size());
         for (std::size_t k = 0; k < total.size(); ++k) total[k] = t.build[k] + t.query[k];
         const PairLists& f = found[ti][method];
-        const std::string name = method == 0         ? "BVH refit"
-                                 : method == kKernel ? "BVH refit, three queries, 8 nearest (before)"
-                                 : method == kLeaf   ? "BVH refit, one walk per leaf, 8 nearest (the kernels)"
-                                                     : fmt::format("hash, cell {:g} r", cells[method - kFirstHash]);
-        const double per_pair = method == kKernel || method == kLeaf ? 0.0 : double(f.tested) / double(f.found());
+        const std::string name = method == 0       ? "BVH refit"
+                                 : method == kLeaf ? "BVH refit, one walk per group of leaves, 8 nearest (the kernels)"
+                                                   : fmt::format("hash, cell {:g} r", cells[method - kFirstHash]);
+        const double per_pair = method == kLeaf ? 0.0 : double(f.tested) / double(f.found());
         const double tot = median(total);
         rows.push_back(fmt::format("| {} | {} | {} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {:.2f} |", sc.n(),
                                    thread_counts[ti], name, median(t.build), median(t.query), tot, per_pair,

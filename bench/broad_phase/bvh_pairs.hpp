@@ -84,9 +84,7 @@ inline void bvh_query_edges(const SelfContactLayout& s, const std::vector<ats_ve
   }
 }
 
-// The three queries, one walk each (sc_query_vertex / _triangle / _edge:
-// the 8 nearest of each primitive), for [begin, end) of one kind (0: per
-// vertex, 1: per triangle, 2: per edge), into lists of ATS_SC_STRIDE ints.
+// The kernels' lists, ATS_SC_STRIDE ints per primitive.
 struct KernelLists {
   std::vector<int> vt, tv, ee;
   void resize(const SelfContactLayout& s, std::size_t n) {
@@ -96,27 +94,17 @@ struct KernelLists {
   }
 };
 
-inline void bvh_kernel_lists(const SelfContactLayout& s, const std::vector<Float4>& x, const std::vector<Float4>& nodes,
-                             float r, int kind, int begin, int end, KernelLists& out) {
-  const int* tris = s.tris[0].data();
-  const int* edges = s.edges[0].data();
-  const int* leaves = s.leaves[0].data();
-  for (int k = begin; k < end; ++k) {
-    if (kind == 0)
-      sc_query_vertex(k, x.data(), s.incidence.data(), tris, nodes.data(), s.levels.data(), s.root(), r, out.vt.data());
-    if (kind == 1)
-      sc_query_triangle(k, x.data(), tris, leaves, nodes.data(), s.levels.data(), s.root(), r, out.tv.data());
-    if (kind == 2) sc_query_edge(k, x.data(), edges, leaves, nodes.data(), s.levels.data(), s.root(), r, out.ee.data());
-  }
+// The kernels' detection as the device runs it (sc_query_groups): the
+// three queries of groups [begin, end) of ATS_SC_GROUP leaves, one walk each.
+inline int bvh_group_count(const SelfContactLayout& s) {
+  return (static_cast<int>(s.tris.size()) + ATS_SC_GROUP - 1) / ATS_SC_GROUP;
 }
-
-// The kernels' detection as the device runs it (sc_query_leaves): all three
-// queries of leaves [begin, end) in one walk each.
-inline void bvh_leaf_lists(const SelfContactLayout& s, const std::vector<Float4>& x, const std::vector<Float4>& nodes,
-                           float r, int begin, int end, KernelLists& out) {
-  for (int u = begin; u < end; ++u)
-    sc_query_leaf(u, x.data(), s.incidence.data(), s.tris[0].data(), s.edges[0].data(), s.leaves[0].data(),
-                  nodes.data(), s.levels.data(), s.root(), r, out.vt.data(), out.tv.data(), out.ee.data());
+inline void bvh_group_lists(const SelfContactLayout& s, const std::vector<Float4>& x, const std::vector<Float4>& nodes,
+                            float r, int begin, int end, KernelLists& out) {
+  for (int g = begin; g < end; ++g)
+    sc_query_group(g, static_cast<int>(s.tris.size()), x.data(), s.incidence.data(), s.tris[0].data(),
+                   s.edges[0].data(), s.leaves[0].data(), nodes.data(), s.levels.data(), s.root(), r, out.vt.data(),
+                   out.tv.data(), out.ee.data());
 }
 
 // One substep's detection, single-threaded: refit, then the three queries.

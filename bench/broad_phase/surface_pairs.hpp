@@ -1,6 +1,6 @@
 #pragma once
 // What the self-contact queries find (kernels/contact/self_contact.cl
-// sc_query_leaves), on the host in float through the
+// sc_query_groups), on the host in float through the
 // kernels' own narrow phase (common/self_contact.h): every vertex-triangle
 // and edge-edge pair closer than the query radius, incident pairs excluded.
 // Unlike the kernels, which keep the 8 nearest per primitive, all pairs are

@@ -5,10 +5,10 @@
  * solver/layout/self_contact_layout (level 0: the triangles in leaf order;
  * node j of level l has children 2j, 2j + 1 of level l - 1; nodes[2 g],
  * nodes[2 g + 1] are the box of node g = levels[l] + j), its depth-first walk,
- * and the three queries that fill the lists: per vertex the triangles, per
- * triangle the vertices its leaves own, per edge the edges its leaves own,
- * closer than the query radius, incident pairs excluded, the
- * ATS_SC_CAPACITY nearest of each. A list is ATS_SC_STRIDE ints: [count,
+ * and the walk per leaf that fills the lists: per vertex the triangles, per
+ * triangle the vertices, per edge the edges, closer than the query radius,
+ * incident pairs (a shared vertex) excluded, the ATS_SC_CAPACITY nearest of
+ * each. A list is ATS_SC_STRIDE ints: [count,
  * horizon (float bits, sc_list_store), ids of the nearest first].
  *
  * Host code defines ats_float4 (its 16-byte x, y, z, w struct) before the
@@ -202,233 +202,271 @@ ATS_FN void sc_list_store(const sc_list* l, float radius, ATS_GLOBAL int* out) {
  * of its incident edges; then the lists. */
 ATS_FN int sc_is_surface(ATS_GLOBAL const int* inc, int i) { return inc[i + 1] > inc[i]; }
 
-/* Per vertex i the triangles within radius, into vt + i * ATS_SC_STRIDE. */
-ATS_FN void sc_query_vertex(int i, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* inc,
-                            ATS_GLOBAL const int* tris, ATS_GLOBAL const ats_float4* nodes,
-                            ATS_GLOBAL const int* levels, int root, float radius, ATS_GLOBAL int* vt) {
-  sc_list l;
-  sc_list_begin(&l);
-  if (sc_is_surface(inc, i)) {
-    const ats_vec3 p = sc_v(x[i]);
-    const sc_box q = sc_box_of_point(p, radius);
-    sc_walk w;
-    sc_walk_begin(&w, nodes, levels, root, q);
-    int t;
-    while ((t = sc_walk_next(&w, nodes, levels, q)) >= 0) {
-      ATS_GLOBAL const int* f = tris + 4 * t;
-      if (f[0] == i || f[1] == i || f[2] == i) continue;
-      const ats_pair_geometry g = ats_point_triangle(p, sc_v(x[f[0]]), sc_v(x[f[1]]), sc_v(x[f[2]]));
-      if (g.d < radius) sc_list_insert(&l, t, g.d);
-    }
+/* The three queries of leaf u: the triangle's own list (per triangle the
+ * vertices), the lists of the vertices it owns (per vertex the triangles)
+ * and of the edges it owns (per edge the edges), each primitive owned by
+ * exactly one leaf (solver/layout/self_contact_layout), so every list has
+ * one writer. Its candidates are the leaves whose box overlaps the
+ * triangle's box widened by the radius (q), which holds every owned
+ * primitive's widened box; each candidate is then tested against each owned
+ * primitive's own box, so each list sees the candidates of its own query in
+ * leaf order, as a walk of its own would. */
+typedef struct {
+  int u;
+  int f[3];
+  ats_vec3 a, b, c;
+  sc_box q;
+  sc_list tri;
+  int vid[3]; /* owned vertices: id (-1: none or not a query), point, widened box */
+  ats_vec3 vp[3];
+  sc_box vq[3];
+  sc_list vl[3];
+  int eid[3], e0[3], e1[3]; /* owned edges: id, ends, widened box */
+  ats_vec3 ea[3], eb[3];
+  sc_box eq[3];
+  sc_list el[3];
+} sc_leaf_query;
+
+ATS_FN void sc_leaf_begin(sc_leaf_query* lq, int u, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* inc,
+                          ATS_GLOBAL const int* tris, ATS_GLOBAL const int* edges, ATS_GLOBAL const int* leaves,
+                          float radius) {
+  ATS_GLOBAL const int* f = tris + 4 * u;
+  ATS_GLOBAL const int* own = leaves + 8 * u;
+  lq->u = u;
+  for (int k = 0; k < 3; ++k) lq->f[k] = f[k];
+  lq->a = sc_v(x[f[0]]);
+  lq->b = sc_v(x[f[1]]);
+  lq->c = sc_v(x[f[2]]);
+  lq->q = sc_box_of_triangle(lq->a, lq->b, lq->c, radius);
+  sc_list_begin(&lq->tri);
+  for (int k = 0; k < 3; ++k) {
+    int v = own[k];
+    sc_list_begin(&lq->vl[k]);
+    if (v >= 0 && !sc_is_surface(inc, v)) v = -1;
+    lq->vid[k] = v;
+    lq->vp[k] = v >= 0 ? sc_v(x[v]) : lq->a;
+    lq->vq[k] = sc_box_of_point(lq->vp[k], radius);
   }
-  sc_list_store(&l, radius, vt + i * ATS_SC_STRIDE);
+  for (int k = 0; k < 3; ++k) {
+    const int e = own[4 + k];
+    lq->eid[k] = e;
+    sc_list_begin(&lq->el[k]);
+    lq->e0[k] = e >= 0 ? edges[2 * e] : -1;
+    lq->e1[k] = e >= 0 ? edges[2 * e + 1] : -1;
+    lq->ea[k] = e >= 0 ? sc_v(x[lq->e0[k]]) : lq->a;
+    lq->eb[k] = e >= 0 ? sc_v(x[lq->e1[k]]) : lq->a;
+    lq->eq[k] = sc_box_of_edge(lq->ea[k], lq->eb[k], radius);
+  }
 }
 
-/* Per triangle t the vertices within radius, into tv + t * ATS_SC_STRIDE. A
- * vertex outside the triangle's widened box cannot be within radius: it is
- * skipped before the narrow phase. */
-ATS_FN void sc_query_triangle(int t, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* tris,
-                              ATS_GLOBAL const int* leaves, ATS_GLOBAL const ats_float4* nodes,
-                              ATS_GLOBAL const int* levels, int root, float radius, ATS_GLOBAL int* tv) {
-  sc_list l;
-  sc_list_begin(&l);
-  ATS_GLOBAL const int* f = tris + 4 * t;
-  const ats_vec3 a = sc_v(x[f[0]]), b = sc_v(x[f[1]]), c = sc_v(x[f[2]]);
-  const sc_box q = sc_box_of_triangle(a, b, c, radius);
-  sc_walk w;
-  sc_walk_begin(&w, nodes, levels, root, q);
-  int u;
-  while ((u = sc_walk_next(&w, nodes, levels, q)) >= 0) {
+/* Candidate leaf o (its box overlaps q). */
+ATS_FN void sc_leaf_candidate(sc_leaf_query* lq, int o, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* tris,
+                              ATS_GLOBAL const int* edges, ATS_GLOBAL const int* leaves,
+                              ATS_GLOBAL const ats_float4* nodes, float radius) {
+  ATS_GLOBAL const int* g = tris + 4 * o;
+  ATS_GLOBAL const int* theirs = leaves + 8 * o;
+  const sc_box ob = sc_node_box(nodes, o);
+  /* per triangle the vertices: the vertices leaf o owns, near triangle u */
+  for (int k = 0; k < 3; ++k) {
+    const int v = theirs[k];
+    if (v < 0 || v == lq->f[0] || v == lq->f[1] || v == lq->f[2]) continue;
+    const ats_vec3 p = sc_v(x[v]);
+    if (!sc_box_holds(lq->q, p)) continue;
+    const ats_pair_geometry pg = ats_point_triangle(p, lq->a, lq->b, lq->c);
+    if (pg.d < radius) sc_list_insert(&lq->tri, v, pg.d);
+  }
+  /* per vertex the triangles: triangle o, near each vertex u owns (its
+   * corners read once for all of them) */
+  int near = 0;
+  for (int k = 0; k < 3; ++k) {
+    const int v = lq->vid[k];
+    if (v >= 0 && g[0] != v && g[1] != v && g[2] != v && sc_boxes_overlap(ob, lq->vq[k])) near |= 1 << k;
+  }
+  if (near) {
+    const ats_vec3 ga = sc_v(x[g[0]]), gb = sc_v(x[g[1]]), gc = sc_v(x[g[2]]);
     for (int k = 0; k < 3; ++k) {
-      const int v = leaves[8 * u + k];
-      if (v < 0 || v == f[0] || v == f[1] || v == f[2]) continue;
-      const ats_vec3 p = sc_v(x[v]);
-      if (!sc_box_holds(q, p)) continue;
-      const ats_pair_geometry g = ats_point_triangle(p, a, b, c);
-      if (g.d < radius) sc_list_insert(&l, v, g.d);
+      if (!(near & (1 << k))) continue;
+      const ats_pair_geometry pg = ats_point_triangle(lq->vp[k], ga, gb, gc);
+      if (pg.d < radius) sc_list_insert(&lq->vl[k], o, pg.d);
     }
   }
-  sc_list_store(&l, radius, tv + t * ATS_SC_STRIDE);
-}
-
-/* Per edge e the edges within radius, into ee + e * ATS_SC_STRIDE. An edge
- * whose box misses e's widened box cannot be within radius: skipped before
- * the narrow phase. */
-ATS_FN void sc_query_edge(int e, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* edges,
-                          ATS_GLOBAL const int* leaves, ATS_GLOBAL const ats_float4* nodes,
-                          ATS_GLOBAL const int* levels, int root, float radius, ATS_GLOBAL int* ee) {
-  sc_list l;
-  sc_list_begin(&l);
-  const int s0 = edges[2 * e], s1 = edges[2 * e + 1];
-  const ats_vec3 a = sc_v(x[s0]), b = sc_v(x[s1]);
-  const sc_box q = sc_box_of_edge(a, b, radius);
-  sc_walk w;
-  sc_walk_begin(&w, nodes, levels, root, q);
-  int u;
-  while ((u = sc_walk_next(&w, nodes, levels, q)) >= 0) {
-    for (int k = 4; k < 7; ++k) {
-      const int f = leaves[8 * u + k];
-      if (f < 0 || f == e) continue;
-      const int o0 = edges[2 * f], o1 = edges[2 * f + 1];
-      if (o0 == s0 || o0 == s1 || o1 == s0 || o1 == s1) continue;
-      const ats_vec3 c = sc_v(x[o0]), d = sc_v(x[o1]);
-      if (!sc_boxes_overlap(q, sc_box_of_edge(c, d, 0.0f))) continue;
-      const ats_pair_geometry g = ats_edge_edge(a, b, c, d);
-      if (g.d < radius) sc_list_insert(&l, f, g.d);
+  /* per edge the edges: the edges leaf o owns, near each edge u owns (each
+   * candidate read once for all of them; a list sees its candidates in the
+   * same order either way) */
+  near = 0;
+  for (int k = 0; k < 3; ++k)
+    if (lq->eid[k] >= 0 && sc_boxes_overlap(ob, lq->eq[k])) near |= 1 << k;
+  for (int m = 4; near && m < 7; ++m) {
+    const int h = theirs[m];
+    if (h < 0) continue;
+    const int o0 = edges[2 * h], o1 = edges[2 * h + 1];
+    const ats_vec3 p0 = sc_v(x[o0]), p1 = sc_v(x[o1]);
+    const sc_box hb = sc_box_of_edge(p0, p1, 0.0f);
+    for (int k = 0; k < 3; ++k) {
+      if (!(near & (1 << k)) || h == lq->eid[k]) continue;
+      if (o0 == lq->e0[k] || o0 == lq->e1[k] || o1 == lq->e0[k] || o1 == lq->e1[k] || !sc_boxes_overlap(lq->eq[k], hb))
+        continue;
+      const ats_pair_geometry pg = ats_edge_edge(lq->ea[k], lq->eb[k], p0, p1);
+      if (pg.d < radius) sc_list_insert(&lq->el[k], h, pg.d);
     }
   }
-  sc_list_store(&l, radius, ee + e * ATS_SC_STRIDE);
 }
 
-/* All three queries of leaf u in one walk of the tree: the triangle's own
- * list (per triangle the vertices), the lists of the vertices it owns (per
- * vertex the triangles) and of the edges it owns (per edge the edges), each
- * primitive owned by exactly one leaf (solver/layout/self_contact_layout), so
- * every list has one writer. The walk takes the triangle's box widened by
- * the radius, which holds every owned primitive's widened box; each
- * candidate leaf is then tested against each owned primitive's own box, so
- * each list sees the candidates of its own query in the same order and
- * ends the same as the three queries above, for a third of their walks. */
+ATS_FN void sc_leaf_end(const sc_leaf_query* lq, float radius, ATS_GLOBAL const int* leaves, ATS_GLOBAL int* vt,
+                        ATS_GLOBAL int* tv, ATS_GLOBAL int* ee) {
+  ATS_GLOBAL const int* own = leaves + 8 * lq->u;
+  sc_list_store(&lq->tri, radius, tv + lq->u * ATS_SC_STRIDE);
+  for (int k = 0; k < 3; ++k) {
+    if (own[k] >= 0) sc_list_store(&lq->vl[k], radius, vt + own[k] * ATS_SC_STRIDE);
+    if (lq->eid[k] >= 0) sc_list_store(&lq->el[k], radius, ee + lq->eid[k] * ATS_SC_STRIDE);
+  }
+}
+
+/* Leaf u's lists by a walk of its own. */
 ATS_FN void sc_query_leaf(int u, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* inc, ATS_GLOBAL const int* tris,
                           ATS_GLOBAL const int* edges, ATS_GLOBAL const int* leaves, ATS_GLOBAL const ats_float4* nodes,
                           ATS_GLOBAL const int* levels, int root, float radius, ATS_GLOBAL int* vt, ATS_GLOBAL int* tv,
                           ATS_GLOBAL int* ee) {
-  ATS_GLOBAL const int* f = tris + 4 * u;
-  ATS_GLOBAL const int* own = leaves + 8 * u;
-  const ats_vec3 a = sc_v(x[f[0]]), b = sc_v(x[f[1]]), c = sc_v(x[f[2]]);
-  const sc_box q = sc_box_of_triangle(a, b, c, radius);
-  sc_list tri;
-  sc_list_begin(&tri);
-  /* owned vertices: id (-1: none or not a query), point, widened box */
-  int vid[3];
-  ats_vec3 vp[3];
-  sc_box vq[3];
-  sc_list vl[3];
-  for (int k = 0; k < 3; ++k) {
-    vid[k] = own[k];
-    sc_list_begin(&vl[k]);
-    if (vid[k] >= 0 && !sc_is_surface(inc, vid[k])) vid[k] = -1;
-    vp[k] = vid[k] >= 0 ? sc_v(x[vid[k]]) : a;
-    vq[k] = sc_box_of_point(vp[k], radius);
+  sc_leaf_query lq;
+  sc_leaf_begin(&lq, u, x, inc, tris, edges, leaves, radius);
+  sc_walk w;
+  sc_walk_begin(&w, nodes, levels, root, lq.q);
+  int o;
+  while ((o = sc_walk_next(&w, nodes, levels, lq.q)) >= 0)
+    sc_leaf_candidate(&lq, o, x, tris, edges, leaves, nodes, radius);
+  sc_leaf_end(&lq, radius, leaves, vt, tv, ee);
+}
+
+/* The lists of the ATS_SC_GROUP leaves of group g (leaves [g G, g G + G)):
+ * one walk with their joint box widened by the radius gathers the candidate
+ * leaves (in leaf order), and each leaf takes those whose box overlaps its
+ * own query box, which are the leaves its own walk would meet, in the same
+ * order: the same lists for an eighth of the walks. When the candidates
+ * outgrow ATS_SC_GROUP_CANDIDATES, each leaf walks on its own. */
+#define ATS_SC_GROUP 8
+#define ATS_SC_GROUP_CANDIDATES 192
+ATS_FN void sc_query_group(int g, int leaf_count, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* inc,
+                           ATS_GLOBAL const int* tris, ATS_GLOBAL const int* edges, ATS_GLOBAL const int* leaves,
+                           ATS_GLOBAL const ats_float4* nodes, ATS_GLOBAL const int* levels, int root, float radius,
+                           ATS_GLOBAL int* vt, ATS_GLOBAL int* tv, ATS_GLOBAL int* ee) {
+  const int first = g * ATS_SC_GROUP;
+  const int end = first + ATS_SC_GROUP < leaf_count ? first + ATS_SC_GROUP : leaf_count;
+  sc_box q = sc_node_box(nodes, first);
+  for (int u = first + 1; u < end; ++u) {
+    const sc_box b = sc_node_box(nodes, u);
+    q.lo = sc_min3(q.lo, b.lo);
+    q.hi = sc_max3(q.hi, b.hi);
   }
-  /* owned edges: id, ends, widened box */
-  int eid[3], e0[3], e1[3];
-  ats_vec3 ea[3], eb[3];
-  sc_box eq[3];
-  sc_list el[3];
-  for (int k = 0; k < 3; ++k) {
-    eid[k] = own[4 + k];
-    sc_list_begin(&el[k]);
-    e0[k] = eid[k] >= 0 ? edges[2 * eid[k]] : -1;
-    e1[k] = eid[k] >= 0 ? edges[2 * eid[k] + 1] : -1;
-    ea[k] = eid[k] >= 0 ? sc_v(x[e0[k]]) : a;
-    eb[k] = eid[k] >= 0 ? sc_v(x[e1[k]]) : a;
-    eq[k] = sc_box_of_edge(ea[k], eb[k], radius);
-  }
+  q = sc_box_widened(q, radius);
+  int cand[ATS_SC_GROUP_CANDIDATES];
+  int count = 0, overflow = 0;
   sc_walk w;
   sc_walk_begin(&w, nodes, levels, root, q);
   int o;
-  while ((o = sc_walk_next(&w, nodes, levels, q)) >= 0) {
-    ATS_GLOBAL const int* g = tris + 4 * o;
-    ATS_GLOBAL const int* theirs = leaves + 8 * o;
-    const sc_box ob = sc_node_box(nodes, o);
-    /* per triangle the vertices: the vertices leaf o owns, near triangle u */
-    for (int k = 0; k < 3; ++k) {
-      const int v = theirs[k];
-      if (v < 0 || v == f[0] || v == f[1] || v == f[2]) continue;
-      const ats_vec3 p = sc_v(x[v]);
-      if (!sc_box_holds(q, p)) continue;
-      const ats_pair_geometry pg = ats_point_triangle(p, a, b, c);
-      if (pg.d < radius) sc_list_insert(&tri, v, pg.d);
-    }
-    /* per vertex the triangles: triangle o, near each vertex u owns (its
-     * corners read once for all of them) */
-    int near = 0;
-    for (int k = 0; k < 3; ++k) {
-      const int v = vid[k];
-      if (v >= 0 && g[0] != v && g[1] != v && g[2] != v && sc_boxes_overlap(ob, vq[k])) near |= 1 << k;
-    }
-    if (near) {
-      const ats_vec3 ga = sc_v(x[g[0]]), gb = sc_v(x[g[1]]), gc = sc_v(x[g[2]]);
-      for (int k = 0; k < 3; ++k) {
-        if (!(near & (1 << k))) continue;
-        const ats_pair_geometry pg = ats_point_triangle(vp[k], ga, gb, gc);
-        if (pg.d < radius) sc_list_insert(&vl[k], o, pg.d);
-      }
-    }
-    /* per edge the edges: the edges leaf o owns, near each edge u owns (each
-     * candidate read once for all of them; a list sees its candidates in
-     * the same order either way) */
-    near = 0;
-    for (int k = 0; k < 3; ++k)
-      if (eid[k] >= 0 && sc_boxes_overlap(ob, eq[k])) near |= 1 << k;
-    for (int m = 4; near && m < 7; ++m) {
-      const int h = theirs[m];
-      if (h < 0) continue;
-      const int o0 = edges[2 * h], o1 = edges[2 * h + 1];
-      const ats_vec3 p0 = sc_v(x[o0]), p1 = sc_v(x[o1]);
-      const sc_box hb = sc_box_of_edge(p0, p1, 0.0f);
-      for (int k = 0; k < 3; ++k) {
-        if (!(near & (1 << k)) || h == eid[k]) continue;
-        if (o0 == e0[k] || o0 == e1[k] || o1 == e0[k] || o1 == e1[k] || !sc_boxes_overlap(eq[k], hb)) continue;
-        const ats_pair_geometry pg = ats_edge_edge(ea[k], eb[k], p0, p1);
-        if (pg.d < radius) sc_list_insert(&el[k], h, pg.d);
-      }
-    }
+  while (!overflow && (o = sc_walk_next(&w, nodes, levels, q)) >= 0) {
+    if (count < ATS_SC_GROUP_CANDIDATES)
+      cand[count++] = o;
+    else
+      overflow = 1;
   }
-  sc_list_store(&tri, radius, tv + u * ATS_SC_STRIDE);
-  for (int k = 0; k < 3; ++k) {
-    if (own[k] >= 0) sc_list_store(&vl[k], radius, vt + own[k] * ATS_SC_STRIDE);
-    if (eid[k] >= 0) sc_list_store(&el[k], radius, ee + eid[k] * ATS_SC_STRIDE);
+  for (int u = first; u < end; ++u) {
+    if (overflow) {
+      sc_query_leaf(u, x, inc, tris, edges, leaves, nodes, levels, root, radius, vt, tv, ee);
+      continue;
+    }
+    sc_leaf_query lq;
+    sc_leaf_begin(&lq, u, x, inc, tris, edges, leaves, radius);
+    for (int k = 0; k < count; ++k)
+      if (sc_boxes_overlap(sc_node_box(nodes, cand[k]), lq.q))
+        sc_leaf_candidate(&lq, cand[k], x, tris, edges, leaves, nodes, radius);
+    sc_leaf_end(&lq, radius, leaves, vt, tv, ee);
   }
 }
 
 /* When the lists are rebuilt. A frame's first substep detects (the
  * frame_state buffer `state` is restored then: state[0] = 0), on x_t with
  * the radius R_det = r_max (contact.query_radius, 3 r by default), and
- * remembers x_t as x_det. A later substep of the frame keeps the lists while
- * they still hold every pair it needs: with D the largest displacement of
- * any surface vertex since x_det, a pair closer than R at x_t was closer
- * than R + 2 D at x_det, so the lists serve while R + 2 D <= R_det. R ties
- * the substep's need to its motion: VBD's bound keeps each vertex within
- * gamma R (gamma = 0.4) of x_t, so an unlisted pair stays at least
- * (1 - 2 gamma) R apart (no crossing, for any R); R >= 5 delta keeps the
- * bound from slowing the fastest predicted step (it may double), R >= r +
- * 2.5 delta keeps a pair closing at the predicted speed from reaching the
- * thickness r unlisted, and R >= 1.5 r keeps touching pairs listed; delta
- * is the largest predicted step |x~ - x_t| of any surface vertex.
+ * remembers x_t as x_det. Distances between primitives do not change when
+ * every vertex moves by one common vector, so motion is measured relative
+ * to one: with u_i = x_t - x_det (since the lists were made) and s_i = x~ -
+ * x_t (this substep's predicted step) over the surface vertices, D and
+ * delta are the half diagonals of the boxes holding every u_i and every s_i
+ * (each u_i is within D of its box's centre, so any two differ by at most
+ * 2 D). A later substep of the frame keeps the lists while they still hold
+ * every pair it needs: a pair closer than R at x_t was closer than R + 2 D
+ * at x_det, so the lists serve while R + 2 D <= R_det. R ties the
+ * substep's need to its relative motion: VBD's bound keeps each vertex
+ * within gamma R of x_t, so an unlisted pair stays at least (1 - 2 gamma) R
+ * apart (no crossing, for any R); R >= 5 delta keeps the bound from slowing
+ * the relative predicted step (it may double), R >= r + 2.5 delta keeps a
+ * pair closing at the predicted speed from reaching the thickness r
+ * unlisted, and R >= 1.5 r keeps touching pairs listed. A cloth falling or
+ * carried as a whole keeps its lists.
  * state: [0] lists valid, [1] detect in this substep, [2] R_det (float
  * bits), [3] D (float bits), [4] detections in this frame. */
 #define ATS_SC_MOTION_BLOCK 256
+#define ATS_SC_MOTION_FLOATS 12
 #define ATS_SC_STATE_INTS 8
 
-/* Block b of ATS_SC_MOTION_BLOCK particles: [2 b] the largest |x_t - x_det|,
- * [2 b + 1] the largest |x~ - x_t| of its surface vertices. */
+ATS_FN void sc_box_add(sc_box* b, ats_vec3 p) {
+  b->lo = sc_min3(b->lo, p);
+  b->hi = sc_max3(b->hi, p);
+}
+ATS_FN sc_box sc_box_empty(void) {
+  sc_box b;
+  b.lo = ats_v3(1e30f, 1e30f, 1e30f);
+  b.hi = ats_v3(-1e30f, -1e30f, -1e30f);
+  return b;
+}
+ATS_FN void sc_store_box(ATS_GLOBAL float* out, sc_box b) {
+  out[0] = b.lo.x;
+  out[1] = b.lo.y;
+  out[2] = b.lo.z;
+  out[3] = b.hi.x;
+  out[4] = b.hi.y;
+  out[5] = b.hi.z;
+}
+ATS_FN sc_box sc_load_box(ATS_GLOBAL const float* in) {
+  sc_box b;
+  b.lo = ats_v3(in[0], in[1], in[2]);
+  b.hi = ats_v3(in[3], in[4], in[5]);
+  return b;
+}
+/* Half the diagonal of a box (0 for an empty one). */
+ATS_FN float sc_half_diagonal(sc_box b) { return b.hi.x < b.lo.x ? 0.0f : 0.5f * ats_length(ats_sub(b.hi, b.lo)); }
+
+/* Block b of ATS_SC_MOTION_BLOCK particles: block_max[12 b ..]: the box of
+ * x_t - x_det, then the box of x~ - x_t, over its surface vertices. */
 ATS_FN void sc_block_motion(int b, ATS_GLOBAL const ats_float4* x_det, ATS_GLOBAL const ats_float4* x_start,
                             ATS_GLOBAL const ats_float4* x_guess, ATS_GLOBAL const int* inc, int n,
                             ATS_GLOBAL float* block_max) {
-  float moved = 0.0f, step = 0.0f;
+  sc_box moved = sc_box_empty(), step = sc_box_empty();
   const int end = (b + 1) * ATS_SC_MOTION_BLOCK < n ? (b + 1) * ATS_SC_MOTION_BLOCK : n;
   for (int i = b * ATS_SC_MOTION_BLOCK; i < end; ++i) {
     if (!sc_is_surface(inc, i)) continue;
-    moved = fmax(moved, ats_length(ats_sub(sc_v(x_start[i]), sc_v(x_det[i]))));
-    step = fmax(step, ats_length(ats_sub(sc_v(x_guess[i]), sc_v(x_start[i]))));
+    sc_box_add(&moved, ats_sub(sc_v(x_start[i]), sc_v(x_det[i])));
+    sc_box_add(&step, ats_sub(sc_v(x_guess[i]), sc_v(x_start[i])));
   }
-  block_max[2 * b] = moved;
-  block_max[2 * b + 1] = step;
+  sc_store_box(block_max + ATS_SC_MOTION_FLOATS * b, moved);
+  sc_store_box(block_max + ATS_SC_MOTION_FLOATS * b + 6, step);
 }
 
-/* The radius a substep needs for its largest predicted step delta. */
+/* The radius a substep needs for its largest relative predicted step delta. */
 ATS_FN float sc_needed_radius(float delta, float r, float r_max) {
   return fmin(fmax(1.5f * r, fmax(r + 2.5f * delta, 5.0f * delta)), r_max);
 }
 
 ATS_FN void sc_decide(ATS_GLOBAL const float* block_max, int blocks, float r, float r_max, ATS_GLOBAL int* state) {
-  float moved = 0.0f, delta = 0.0f;
+  sc_box moved_box = sc_box_empty(), step_box = sc_box_empty();
   for (int b = 0; b < blocks; ++b) {
-    moved = fmax(moved, block_max[2 * b]);
-    delta = fmax(delta, block_max[2 * b + 1]);
+    const sc_box m = sc_load_box(block_max + ATS_SC_MOTION_FLOATS * b);
+    const sc_box s = sc_load_box(block_max + ATS_SC_MOTION_FLOATS * b + 6);
+    moved_box.lo = sc_min3(moved_box.lo, m.lo);
+    moved_box.hi = sc_max3(moved_box.hi, m.hi);
+    step_box.lo = sc_min3(step_box.lo, s.lo);
+    step_box.hi = sc_max3(step_box.hi, s.hi);
   }
+  const float moved = sc_half_diagonal(moved_box), delta = sc_half_diagonal(step_box);
   const int detect = state[0] == 0 || sc_needed_radius(delta, r, r_max) + 2.0f * moved > sc_bits_float(state[2]);
   state[0] = 1;
   state[1] = detect;
@@ -451,7 +489,6 @@ ATS_FN float sc_unlisted_distance(int i, ATS_GLOBAL const int* inc, int n, ATS_G
   for (int k = inc[n + 1 + i]; k < inc[n + 2 + i]; ++k) d = fmin(d, sc_bits_float(ee[inc[k] * ATS_SC_STRIDE + 1]));
   return d - 2.0f * moved;
 }
-
 
 /* The distances of a list's entries at x, once per substep: out[2 + m]
  * entry m's, out[0] the smallest (1e30 for an empty list). The bound and the
@@ -521,22 +558,30 @@ ATS_FN float sc_vertex_bound(int i, ATS_GLOBAL const int* inc, int n, ATS_GLOBAL
  * moves by at most the largest bound on each of its two sides, so an entry
  * with d(x_t) - b_first - b_second >= r stays out of the contact energy and
  * the constraints the whole substep. The iterations and friction read the
- * near lists. Same layout as the lists ([1]: the list's horizon). */
+ * near lists. Same layout as the lists ([1]: the list's horizon, but see
+ * sc_near_vertex). */
 ATS_FN float sc_side_bound(ATS_GLOBAL const float* bound, int a, int b, int c) {
   const float m = fmax(bound[a], bound[b]);
   return c >= 0 ? fmax(m, bound[c]) : m;
 }
 
-ATS_FN void sc_near_store(ATS_GLOBAL const int* list, const int* keep, ATS_GLOBAL int* out) {
+ATS_FN int sc_near_store(ATS_GLOBAL const int* list, const int* keep, ATS_GLOBAL int* out) {
   int count = 0;
   for (int m = 0; m < list[0]; ++m)
     if (keep[m]) out[2 + count++] = list[2 + m];
   out[0] = count;
   out[1] = list[1];
+  return count;
 }
 
-ATS_FN void sc_near_vertex(int i, ATS_GLOBAL const int* tris, ATS_GLOBAL const int* vt, ATS_GLOBAL const float* vt_d,
-                           ATS_GLOBAL const float* bound, float r, ATS_GLOBAL int* vt_near) {
+/* Vertex i's near list, after its triangles' and edges' (sc_near_triangle,
+ * sc_near_edge): [1] holds how many near entries vertex i is in, as a point,
+ * through its triangles and through its edges, so that a vertex without any
+ * skips the gathers (contact/self_contact.cl SC_FOR_EACH_PAIR). */
+ATS_FN void sc_near_vertex(int i, ATS_GLOBAL const int* inc, int n, ATS_GLOBAL const int* tris,
+                           ATS_GLOBAL const int* vt, ATS_GLOBAL const float* vt_d, ATS_GLOBAL const float* bound,
+                           float r, ATS_GLOBAL const int* tv_near, ATS_GLOBAL const int* ee_near,
+                           ATS_GLOBAL int* vt_near) {
   ATS_GLOBAL const int* l = vt + i * ATS_SC_STRIDE;
   ATS_GLOBAL const float* d = vt_d + i * ATS_SC_STRIDE;
   int keep[ATS_SC_CAPACITY];
@@ -544,7 +589,10 @@ ATS_FN void sc_near_vertex(int i, ATS_GLOBAL const int* tris, ATS_GLOBAL const i
     ATS_GLOBAL const int* f = tris + 4 * l[2 + m];
     keep[m] = d[2 + m] - bound[i] - sc_side_bound(bound, f[0], f[1], f[2]) < r;
   }
-  sc_near_store(l, keep, vt_near + i * ATS_SC_STRIDE);
+  int total = sc_near_store(l, keep, vt_near + i * ATS_SC_STRIDE);
+  for (int k = inc[i]; k < inc[i + 1]; ++k) total += tv_near[inc[k] * ATS_SC_STRIDE];
+  for (int k = inc[n + 1 + i]; k < inc[n + 2 + i]; ++k) total += ee_near[inc[k] * ATS_SC_STRIDE];
+  vt_near[i * ATS_SC_STRIDE + 1] = total;
 }
 
 ATS_FN void sc_near_triangle(int t, ATS_GLOBAL const int* tris, ATS_GLOBAL const int* tv, ATS_GLOBAL const float* tv_d,

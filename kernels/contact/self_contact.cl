@@ -1,26 +1,33 @@
 /* Contact between simulated surfaces (scene `contact: {self: true}`):
  * collision detection at the start of every substep, on x_t (Chen et al.
  * 2024, VBD §3.7), as tasks that range over independent elements:
+ *   sc_motion, sc_decide_detection: whether the lists made earlier still
+ *     serve (relative motion, common/self_contact_bvh.h sc_decide);
  *   sc_leaf_boxes, sc_refit_level, sc_refit_top: refit the BVH over the
  *     surface triangles (built once on the host, solver/layout/
  *     self_contact_layout), one task per level up to the small top levels;
- *   sc_query_leaves: per vertex the triangles, per triangle the vertices and
- *     per edge the edges within the query radius (incident pairs excluded),
- *     the ATS_SC_CAPACITY nearest of each, and the nearest distance, in one
- *     walk per leaf for the primitives it owns;
+ *   sc_query_groups: per vertex the triangles, per triangle the vertices and
+ *     per edge the edges within the query radius (incident pairs
+ *     excluded), the ATS_SC_CAPACITY nearest of each, for the primitives
+ *     each leaf owns, one walk per group of leaves (these three only when the
+ *     lists are rebuilt);
+ *   sc_*_distances_task: every listed pair's distance at x_t, once;
  *   sc_bound: per vertex the conservative displacement bound of VBD:
  *     gamma times the distance to the nearest primitive it could meet
  *     (as a point, through its triangles, through its edges), so that no
  *     vertex passes through a triangle within the substep;
+ *   sc_near_*: the near lists, the entries that can come within the
+ *     thickness in this substep, which the iterations and friction read;
  *   sc_clamp: a position held within its bound of x_t (the first guess;
  *     every solve step of the vertex methods does the same);
- *   sc_project, sc_apply: XPBD's inequality constraints d >= r of every pair
- *     of a vertex, Jacobi-averaged, into a scratch copy and back (bounded);
+ *   sc_project, then a copy: XPBD's inequality constraints d >= r of every
+ *     pair of a vertex, Jacobi-averaged, into a scratch copy and back;
  *   sc_friction (then sc_apply): Coulomb friction between the surfaces,
  *     after the iterations, every method.
- * The pair lists: per primitive ATS_SC_STRIDE ints, [count, nearest distance
- * (float bits), ids of the nearest first]. */
+ * The pair lists: per primitive ATS_SC_STRIDE ints, [count, horizon (float
+ * bits), ids of the nearest first]. */
 #include "common/ats_math.h"
+#include "common/collider_distance.h"
 #include "common/self_contact.h"
 #include "common/self_contact_bvh.h"
 #include "common/task.h"
@@ -41,8 +48,8 @@ ATS_TASK void sc_refit_top(int k, __global float4* nodes, __global const int* le
   if (k == 0 && state[1]) sc_refit_levels(nodes, levels, from, root);
 }
 
-/* Per block of ATS_SC_MOTION_BLOCK particles the largest displacement since
- * the lists were made and the largest predicted step. */
+/* Per block of ATS_SC_MOTION_BLOCK particles the boxes of the displacements
+ * since the lists were made and of the predicted steps. */
 ATS_TASK void sc_motion(int b, __global const float4* x_det, __global const float4* x_start, __global const float4* x_guess, __global const int* inc, int n, __global float* block_max) {
   sc_block_motion(b, x_det, x_start, x_guess, inc, n, block_max);
 }
@@ -57,9 +64,10 @@ ATS_TASK void sc_snap(int i, __global const float4* x_start, __global float4* x_
   if (state[1]) x_det[i] = x_start[i];
 }
 
-/* The three queries of leaf u in one walk (common/self_contact_bvh.h). */
-ATS_TASK void sc_query_leaves(int u, __global const float4* x, __global const int* inc, __global const int4* tris, __global const int2* edges, __global const int* leaves, __global const float4* nodes, __global const int* levels, int root, __global const int* state, __global int* vt, __global int* tv, __global int* ee) {
-  if (state[1]) sc_query_leaf(u, x, inc, (__global const int*)tris, (__global const int*)edges, leaves, nodes, levels, root, as_float(state[2]), vt, tv, ee);
+/* The lists of the leaves of group g, one walk per group
+ * (common/self_contact_bvh.h sc_query_group). */
+ATS_TASK void sc_query_groups(int g, __global const float4* x, __global const int* inc, __global const int4* tris, __global const int2* edges, __global const int* leaves, __global const float4* nodes, __global const int* levels, int root, int leaf_count, __global const int* state, __global int* vt, __global int* tv, __global int* ee) {
+  if (state[1]) sc_query_group(g, leaf_count, x, inc, (__global const int*)tris, (__global const int*)edges, leaves, nodes, levels, root, as_float(state[2]), vt, tv, ee);
 }
 
 /* Once per substep, after the lists (common/self_contact_bvh.h): every
@@ -74,8 +82,8 @@ ATS_TASK void sc_triangle_distances_task(int t, __global const float4* x, __glob
 ATS_TASK void sc_edge_distances_task(int e, __global const float4* x, __global const int2* edges, __global const int* ee, __global float* ee_d) {
   sc_edge_distances(e, x, (__global const int*)edges, ee, ee_d);
 }
-ATS_TASK void sc_near_vertices(int i, __global const int4* tris, __global const int* vt, __global const float* vt_d, __global const float* bound, float r, __global int* vt_near) {
-  sc_near_vertex(i, (__global const int*)tris, vt, vt_d, bound, r, vt_near);
+ATS_TASK void sc_near_vertices(int i, __global const int* inc, int n, __global const int4* tris, __global const int* vt, __global const float* vt_d, __global const float* bound, float r, __global const int* tv_near, __global const int* ee_near, __global int* vt_near) {
+  sc_near_vertex(i, inc, n, (__global const int*)tris, vt, vt_d, bound, r, tv_near, ee_near, vt_near);
 }
 ATS_TASK void sc_near_triangles(int t, __global const int4* tris, __global const int* tv, __global const float* tv_d, __global const float* bound, float r, __global int* tv_near) {
   sc_near_triangle(t, (__global const int*)tris, tv, tv_d, bound, r, tv_near);
@@ -85,6 +93,31 @@ ATS_TASK void sc_near_edges(int e, __global const int2* edges, __global const in
 }
 
 /* p held within distance b of q (VBD's truncation of a vertex's step). */
+/* With surface contact on, a vertex step that ends deeper than
+ * ATS_COLLIDER_SLACK of the thickness inside a collider's thickened surface
+ * is put back to that depth: the surfaces' penalty pushing a layer into an
+ * obstacle must not win over the obstacle (the collider penalty alone
+ * shares the overlap with it: 6 % of the thickness). Not onto the surface
+ * itself: a step to the surface kept VBD off the potential's minimum
+ * (`converge` on two layers stalled near y = 0.1; with the slack it
+ * reaches 1e-8). VBD's and JPGD's steps and SOSD's combine take it, and so do the clamps below; they
+ * projected onto the surface after each iteration before (JPGD 0.28 ->
+ * 0.033, SOSD 0.26 -> 0.10 on those layers, both rising between
+ * doublings; now 2e-6 and 6.5e-4 at k = 256, docs/accuracy.md). */
+#define ATS_COLLIDER_SLACK 0.005f
+static inline float4 sc_out_of_colliders(float4 p, __global const ats_collider_c* colliders, int count, int on) {
+  if (!on) return p;
+  for (int c = 0; c < count; ++c) {
+    const ats_surface_distance s = ats_collider_gap(colliders + c, ats_v3(p.x, p.y, p.z));
+    const float deepest = -ATS_COLLIDER_SLACK * colliders[c].thickness;
+    if (s.phi < deepest) {
+      const float push = deepest - s.phi;
+      p = (float4)(p.x + push * s.n.x, p.y + push * s.n.y, p.z + push * s.n.z, p.w);
+    }
+  }
+  return p;
+}
+
 static inline float4 sc_bounded(float4 p, float4 q, float b) {
   const float4 d = (float4)(p.x - q.x, p.y - q.y, p.z - q.z, 0.0f);
   const float len = length(d);
@@ -93,8 +126,11 @@ static inline float4 sc_bounded(float4 p, float4 q, float b) {
   return (float4)(q.x + s * d.x, q.y + s * d.y, q.z + s * d.z, p.w);
 }
 
-ATS_TASK void sc_clamp(int i, __global float4* x, __global const float4* x_start, __global const float* bound) {
-  x[i] = sc_bounded(x[i], x_start[i], bound[i]);
+/* x[i] held within its bound of x_t, then out of the colliders: an obstacle
+ * moving into the surface (a rising box) carries a vertex further than its
+ * bound, which only limits how fast surfaces close on each other. */
+ATS_TASK void sc_clamp(int i, __global float4* x, __global const float4* x_start, __global const float* bound, __global const ats_collider_c* colliders, int collider_count) {
+  x[i] = sc_out_of_colliders(sc_bounded(x[i], x_start[i], bound[i]), colliders, collider_count, 1);
 }
 
 /* A pair's other vertices are read through SC_AT(j): x[j] here; VBD's solve
@@ -105,9 +141,10 @@ ATS_TASK void sc_clamp(int i, __global float4* x, __global const float4* x_start
 /* Every pair vertex i belongs to, with the pair's geometry g at x, its slot
  * in the pair and the four vertex ids pv[4]: as the point of a
  * vertex-triangle pair, as a corner of one, as an end of an edge-edge pair.
- * Reads the caller's i, x, tris, edges, inc, n, vt, tv and ee. */
+ * Reads the caller's i, x, tris, edges, inc, n and the near lists vt, tv and
+ * ee (vt[i][1]: how many; none, nothing to read). */
 #define SC_FOR_EACH_PAIR(BODY)                                              \
-  {                                                                                                                \
+  if (vt[(i) * ATS_SC_STRIDE + 1] > 0) {                                                                           \
     const float4 sc_p = x[i];                                                                                      \
     __global const int* sc_l = vt + (i) * ATS_SC_STRIDE;                                                           \
     for (int sc_m = 0; sc_m < sc_l[0]; ++sc_m) {                                                                   \
@@ -175,8 +212,8 @@ ATS_TASK void sc_project(int i, __global const float4* x, __global float4* x_out
   x_out[i] = (float4)(p.x + s * sum.x, p.y + s * sum.y, p.z + s * sum.z, p.w);
 }
 
-ATS_TASK void sc_apply(int i, __global float4* x, __global const float4* x_out, __global const float4* x_start, __global const float* bound) {
-  x[i] = sc_bounded(x_out[i], x_start[i], bound[i]);
+ATS_TASK void sc_apply(int i, __global float4* x, __global const float4* x_out, __global const float4* x_start, __global const float* bound, __global const ats_collider_c* colliders, int collider_count) {
+  x[i] = sc_out_of_colliders(sc_bounded(x_out[i], x_start[i], bound[i]), colliders, collider_count, 1);
 }
 
 /* Coulomb friction of every pair of vertex i in contact (d < 1.01 r), after

@@ -6,7 +6,6 @@
 #ifndef ATS_SELF_CONTACT_TERMS_H
 #define ATS_SELF_CONTACT_TERMS_H
 
-#include "common/collider_distance.h"
 
 /* A pair's Hessian block of vertex i in its solve: k w_i^2 n n^T, times
  * SC_SPREAD (1 but in SOSD's, below). */
@@ -162,31 +161,6 @@ static inline ats_solve3 sc_contact_step(vertex_system system, int i, __global c
 static inline float4 sc_bounded_step(float4 next, int i, __global const float4* x_start, __global const float* bound,
                                      int on) {
   return on ? sc_bounded(next, x_start[i], bound[i]) : next;
-}
-
-/* With surface contact on, a vertex step that ends deeper than
- * ATS_COLLIDER_SLACK of the thickness inside a collider's thickened surface
- * is put back to that depth: the surfaces' penalty pushing a layer into an
- * obstacle must not win over the obstacle (the collider penalty alone
- * shares the overlap with it: 6 % of the thickness). Not onto the surface
- * itself: a step to the surface kept VBD off the potential's minimum
- * (`converge` on two layers stalled near y = 0.1; with the slack it
- * reaches 1e-8). VBD's and JPGD's steps and SOSD's combine take it; they
- * projected onto the surface after each iteration before (JPGD 0.28 ->
- * 0.033, SOSD 0.26 -> 0.10 on those layers, both rising between
- * doublings; now 2e-6 and 6.5e-4 at k = 256, docs/accuracy.md). */
-#define ATS_COLLIDER_SLACK 0.005f
-static inline float4 sc_out_of_colliders(float4 p, __global const ats_collider_c* colliders, int count, int on) {
-  if (!on) return p;
-  for (int c = 0; c < count; ++c) {
-    const ats_surface_distance s = ats_collider_gap(colliders + c, ats_v3(p.x, p.y, p.z));
-    const float deepest = -ATS_COLLIDER_SLACK * colliders[c].thickness;
-    if (s.phi < deepest) {
-      const float push = deepest - s.phi;
-      p = (float4)(p.x + push * s.n.x, p.y + push * s.n.y, p.z + push * s.n.z, p.w);
-    }
-  }
-  return p;
 }
 
 #endif

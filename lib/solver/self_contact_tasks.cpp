@@ -6,7 +6,11 @@
 
 #include <fmt/format.h>
 
+#include "solver/collision_tasks.hpp"
 #include "solver/layout/particle_tables.hpp"
+
+#define ats_float4 ::atssim::solver::Float4
+#include "common/self_contact_bvh.h"
 
 namespace atssim::solver {
 
@@ -15,11 +19,12 @@ namespace {
 using Arg = plan::KernelArg;
 using plan::WriteSpan;
 
-constexpr int kListInts = 10;        // ATS_SC_STRIDE of kernels/contact/self_contact.cl
+constexpr int kListInts = ATS_SC_STRIDE;
 constexpr int kNodeBytes = 32;       // two float4 per node
 constexpr int kTopLevelNodes = 256;  // levels this small are refitted by one work-item
-constexpr int kMotionBlock = 256;    // ATS_SC_MOTION_BLOCK of kernels/common/self_contact_bvh.h
-constexpr int kStateInts = 8;        // ATS_SC_STATE_INTS
+constexpr int kMotionBlock = ATS_SC_MOTION_BLOCK;
+constexpr int kMotionBytes = ATS_SC_MOTION_FLOATS * 4;
+constexpr int kStateInts = ATS_SC_STATE_INTS;
 
 std::size_t motion_blocks(std::size_t n) { return (n + kMotionBlock - 1) / kMotionBlock; }
 
@@ -27,7 +32,8 @@ std::vector<std::byte> zeros(std::size_t bytes) { return std::vector<std::byte>(
 
 }  // namespace
 
-SelfContactBuffers add_self_contact_buffers(plan::SubstepPlan& plan, const SimLayout& layout) {
+SelfContactBuffers add_self_contact_buffers(plan::SubstepPlan& plan, const SimLayout& layout,
+                                            plan::BufferId colliders) {
   const SelfContactLayout& s = layout.self_contact;
   using plan::BufferRole;
   SelfContactBuffers b;
@@ -47,7 +53,8 @@ SelfContactBuffers add_self_contact_buffers(plan::SubstepPlan& plan, const SimLa
   b.state = plan.add_buffer("sc_state", BufferRole::frame_state, zeros(s.enabled ? kStateInts * 4 : 0));
   b.bound = plan.add_buffer("sc_bound", BufferRole::scratch, zeros(n * 4));
   b.x_out = plan.add_buffer("sc_x_out", BufferRole::scratch, zeros(n * kParticleBytes));
-  b.motion = plan.add_buffer("sc_motion", BufferRole::scratch, zeros(motion_blocks(n) * 8));
+  b.motion = plan.add_buffer("sc_motion", BufferRole::scratch, zeros(motion_blocks(n) * kMotionBytes));
+  b.colliders = colliders >= 0 || !s.enabled ? colliders : add_collider_buffer(plan, layout);
   b.vt_d = plan.add_buffer("sc_vt_d", BufferRole::scratch, zeros(n * kListInts * 4));
   b.tv_d = plan.add_buffer("sc_tv_d", BufferRole::scratch, zeros(s.tris.size() * kListInts * 4));
   b.ee_d = plan.add_buffer("sc_ee_d", BufferRole::scratch, zeros(s.edges.size() * kListInts * 4));
@@ -75,7 +82,7 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
                            {0, blocks},
                            {Arg::of_buffer(b.x_det), Arg::of_buffer(start), Arg::of_buffer(positions),
                             Arg::of_buffer(b.incidence), Arg::of_int(n), Arg::of_buffer(b.motion)},
-                           {WriteSpan::per_element(b.motion, 8)}});
+                           {WriteSpan::per_element(b.motion, kMotionBytes)}});
   const sched::TaskId decide =
       plan.add_task_after(motion, detect("detect/decide"),
                           {"sc_decide_detection",
@@ -117,24 +124,28 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
                                 {WriteSpan::whole_buffer(b.nodes)}});
   }
   const sched::TaskId refit = last;
-  // One walk per leaf finds the pairs of the primitives it owns (one owner
-  // each): its triangle's vertices, its vertices' triangles, its edges' edges.
-  const auto owned = [&](int first) {
+  // The pairs of the primitives each leaf owns (one owner each): its
+  // triangle's vertices, its vertices' triangles, its edges' edges; one walk
+  // per group of ATS_SC_GROUP leaves (common/self_contact_bvh.h
+  // sc_query_group), which writes the lists of its leaves' primitives.
+  const int groups = (tris + ATS_SC_GROUP - 1) / ATS_SC_GROUP;
+  const auto owned = [&](int first, int arity) {
     auto table = std::make_shared<std::vector<std::int32_t>>();
-    table->reserve(3 * s.leaves.size());
-    for (const auto& l : s.leaves)
-      for (int k = first; k < first + 3; ++k) table->push_back(l[k]);
+    table->reserve(std::size_t(groups) * ATS_SC_GROUP * arity);
+    for (int u = 0; u < groups * ATS_SC_GROUP; ++u)
+      for (int k = 0; k < arity; ++k) table->push_back(u >= tris ? -1 : (first < 0 ? u : s.leaves[u][first + k]));
     return table;
   };
   const sched::TaskId pairs = plan.add_task_after(
       refit, detect("detect/pairs"),
-      {"sc_query_leaves",
-       {0, tris},
+      {"sc_query_groups",
+       {0, groups},
        {Arg::of_buffer(start), Arg::of_buffer(b.incidence), Arg::of_buffer(b.tris), Arg::of_buffer(b.edges),
         Arg::of_buffer(b.leaves), Arg::of_buffer(b.nodes), Arg::of_buffer(b.levels), Arg::of_int(root),
-        Arg::of_buffer(b.state), Arg::of_buffer(b.vt), Arg::of_buffer(b.tv), Arg::of_buffer(b.ee)},
-       {WriteSpan::per_index(b.vt, kListInts * 4, 3, owned(0)), WriteSpan::per_element(b.tv, kListInts * 4),
-        WriteSpan::per_index(b.ee, kListInts * 4, 3, owned(4))}});
+        Arg::of_int(tris), Arg::of_buffer(b.state), Arg::of_buffer(b.vt), Arg::of_buffer(b.tv), Arg::of_buffer(b.ee)},
+       {WriteSpan::per_index(b.vt, kListInts * 4, 3 * ATS_SC_GROUP, owned(0, 3)),
+        WriteSpan::per_index(b.tv, kListInts * 4, ATS_SC_GROUP, owned(-1, 1)),
+        WriteSpan::per_index(b.ee, kListInts * 4, 3 * ATS_SC_GROUP, owned(4, 3))}});
   // Every listed pair's distance at x_t once (each list's entries), then
   // the bound per vertex from them, then the entries the iterations can meet
   // (common/self_contact_bvh.h sc_near_vertex): a list holds up to 8 pairs
@@ -164,10 +175,6 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
   plan.graph.add_edge(snap, bound);
   last = bound;
   const float r = s.thickness;
-  per_list("detect/near_vertices", "sc_near_vertices", n,
-           {Arg::of_buffer(b.tris), Arg::of_buffer(b.vt), Arg::of_buffer(b.vt_d), Arg::of_buffer(b.bound),
-            Arg::of_float(r), Arg::of_buffer(b.vt_near)},
-           b.vt_near);
   per_list("detect/near_triangles", "sc_near_triangles", tris,
            {Arg::of_buffer(b.tris), Arg::of_buffer(b.tv), Arg::of_buffer(b.tv_d), Arg::of_buffer(b.bound),
             Arg::of_float(r), Arg::of_buffer(b.tv_near)},
@@ -176,10 +183,17 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
            {Arg::of_buffer(b.edges), Arg::of_buffer(b.ee), Arg::of_buffer(b.ee_d), Arg::of_buffer(b.bound),
             Arg::of_float(r), Arg::of_buffer(b.ee_near)},
            b.ee_near);
+  // last: it counts the near entries of each vertex's triangles and edges
+  per_list("detect/near_vertices", "sc_near_vertices", n,
+           {Arg::of_buffer(b.incidence), Arg::of_int(n), Arg::of_buffer(b.tris), Arg::of_buffer(b.vt),
+            Arg::of_buffer(b.vt_d), Arg::of_buffer(b.bound), Arg::of_float(r), Arg::of_buffer(b.tv_near),
+            Arg::of_buffer(b.ee_near), Arg::of_buffer(b.vt_near)},
+           b.vt_near);
   return plan.add_task_after(last, plan::make_task("contact/first_guess", plan::TaskKind::collision),
                              {"sc_clamp",
                               {0, n},
-                              {Arg::of_buffer(positions), Arg::of_buffer(start), Arg::of_buffer(b.bound)},
+                              {Arg::of_buffer(positions), Arg::of_buffer(start), Arg::of_buffer(b.bound),
+                               Arg::of_buffer(b.colliders), Arg::of_int(layout.collider_count)},
                               {particle_write(positions)}});
 }
 
@@ -208,7 +222,8 @@ sched::TaskId add_self_contact_clamp(plan::SubstepPlan& plan, sched::TaskId last
       plan::make_task(fmt::format("it{}/collision/bound", iteration + 1), plan::TaskKind::collision, iteration, 2),
       {"sc_clamp",
        {0, n},
-       {Arg::of_buffer(positions), Arg::of_buffer(start), Arg::of_buffer(b.bound)},
+       {Arg::of_buffer(positions), Arg::of_buffer(start), Arg::of_buffer(b.bound), Arg::of_buffer(b.colliders),
+        Arg::of_int(layout.collider_count)},
        {particle_write(positions)}});
 }
 
@@ -263,7 +278,8 @@ sched::TaskId add_self_contact_friction(plan::SubstepPlan& plan, sched::TaskId l
       last, plan::make_task("contact/friction_apply", plan::TaskKind::copy),
       {"sc_apply",
        {0, n},
-       {Arg::of_buffer(positions), Arg::of_buffer(b.x_out), Arg::of_buffer(start), Arg::of_buffer(b.bound)},
+       {Arg::of_buffer(positions), Arg::of_buffer(b.x_out), Arg::of_buffer(start), Arg::of_buffer(b.bound),
+        Arg::of_buffer(b.colliders), Arg::of_int(layout.collider_count)},
        {particle_write(positions)}});
 }
 

@@ -59,6 +59,18 @@ const char* kFold =
     "  - {type: plane, point: [0, 0, 0], normal: [0, 1, 0], thickness: 0.005}\n"
     "contact: {self: true, thickness: 0.01}\n";
 
+// The same sheet onto a floor with friction (its bottom edge stays where it
+// lands, so the sheet buckles instead of tipping over and sliding away).
+const char* kFoldOnFriction =
+    "simulation: {fps: 60, substeps: 8, iterations: 6, frames: 60}\n"
+    "objects:\n"
+    "  - {name: sheet, grid: {size: [0.4, 0.4], resolution: [10, 10]}, transform: {rotate: [84, 0, 0], translate: [0, "
+    "0.22, 0]},\n"
+    "     material: {density: 0.2, stretch_stiffness: 1000, bend_stiffness: 0.00001}}\n"
+    "colliders:\n"
+    "  - {type: plane, point: [0, 0, 0], normal: [0, 1, 0], thickness: 0.005, friction: 0.8}\n"
+    "contact: {self: true, thickness: 0.01}\n";
+
 using test::point_triangle;
 using test::segment_crosses;
 using test::Surface;
@@ -102,44 +114,55 @@ using test::options;
 
 // Whether the sheet folded onto itself: some vertex within 2 thicknesses of
 // a triangle that started more than 0.1 m away from it.
-bool folded_onto_itself(const Surface& s, const std::vector<Vector3d>& x0, const std::vector<Vector3d>& x) {
+// The smallest distance of a vertex to a triangle 0.1 m or more away from it at rest.
+double closest_far_pair(const Surface& s, const std::vector<Vector3d>& x0, const std::vector<Vector3d>& x) {
+  double closest = std::numeric_limits<double>::infinity();
   for (const auto& t : s.tris) {
     for (std::size_t v = 0; v < x.size(); ++v) {
       if (point_triangle(x0[v], x0[t[0]], x0[t[1]], x0[t[2]]) < 0.1) continue;
-      if (point_triangle(x[v], x[t[0]], x[t[1]], x[t[2]]) < 2 * kThickness) return true;
+      closest = std::min(closest, point_triangle(x[v], x[t[0]], x[t[1]], x[t[2]]));
     }
   }
-  return false;
+  return closest;
+}
+
+bool folded_onto_itself(const Surface& s, const std::vector<Vector3d>& x0, const std::vector<Vector3d>& x) {
+  return closest_far_pair(s, x0, x) < 2 * kThickness;
 }
 
 }  // namespace
 
-// A known failure (tagged to fail until the scene folds under every
-// method). Measured on this scene at 60 frames, the smallest distance of a
-// vertex to a triangle 0.1 m or more away from it at rest (fold: < 0.02):
-// JPGD 0.010 (folds), XPBD 0.044, SOSD 0.126, VBD 0.126. Causes, measured:
-// - XPBD: the sheet does buckle into tight folds, but at the hinges 32 pairs
-//   of parallel diagonals of neighbouring quads (0.031 m apart at rest, 3.1
-//   thicknesses) are held at d = r by its zero-compliance projection; that
-//   stiffens each hinge, and the layer folded over lies 0.021 m above the
-//   one below it (2.1 thicknesses) instead of on it. Without those pairs
-//   (near-incident primitives) it would fold: a detection matter
-//   (kernels/contact/self_contact.cl's queries), not changed here.
-// - VBD and SOSD (since their solves no longer jitter: VBD's step takes the
-//   pairs it brings within r, SOSD's pair blocks are spread over the pair)
-//   tip the sheet over like a board: on the frictionless plane its bottom
-//   edge slides out and it lies down flat, sliding on (0.36 m in the last
-//   20 frames under VBD); before, VBD's normal jitter crumpled it into a
-//   fold. With friction 0.8 on the plane the bottom edge stays and all
-//   fold but XPBD (VBD 0.010, SOSD 0.016, JPGD 0.019, XPBD 0.022).
-TEST_CASE("the falling sheet does fold onto itself (known failure: only JPGD folds it)",
-          "[contact][self][fold][!shouldfail]") {
-  const std::string method = GENERATE("xpbd", "vbd", "sosd", "jpgd");
+// The sheet falls on its edge onto a floor with friction and buckles; the
+// fold is judged by the smallest distance of a vertex to a triangle 0.1 m or
+// more away from it at rest (folded: < 2 thicknesses = 0.02 m). On a
+// frictionless floor a sheet may as well tip over and slide away flat, which
+// VBD and SOSD did (0.126): no fold to test there.
+void check_folds(const std::string& method) {
   INFO(method);
   test::TempDir dir;
-  app::run_simulation(options(dir, kFold, method, "single"));
+  app::run_simulation(options(dir, kFoldOnFriction, method, "single"));
   const std::string out = dir.file("out.h5");
-  CHECK(folded_onto_itself(surface_of(kFold), frame(out, 0), frame(out, 60)));
+  const Surface s = surface_of(kFoldOnFriction);
+  INFO("closest far pair " << closest_far_pair(s, frame(out, 0), frame(out, 60)) << " m");
+  CHECK(folded_onto_itself(s, frame(out, 0), frame(out, 60)));
+}
+
+TEST_CASE("the falling sheet folds onto itself (VBD, JPGD)", "[contact][self][fold]") {
+  check_folds(GENERATE("vbd", "jpgd"));
+}
+
+// An expected failure, counted by the suite. Measured at commit time: XPBD
+// 0.046 m, SOSD 0.035 m (VBD and JPGD fold, above). XPBD: the sheet buckles
+// into tight folds, but at the hinges pairs of parallel diagonals of
+// neighbouring quads (0.031 m apart at rest, 3.1 thicknesses) are held at
+// d = r by its zero-compliance projection, which stiffens each hinge so the
+// folded-over layer stays above the one below. Excluding such near-incident
+// pairs from the lists was tried and let surfaces cross (the sheet test
+// below: 37 crossings under VBD, 36 SOSD), so it was not kept. SOSD: its
+// sheet buckles into a wave that does not close; not isolated.
+TEST_CASE("the falling sheet folds onto itself (XPBD, SOSD: known failure, hinges held open)",
+          "[contact][self][fold][!shouldfail]") {
+  check_folds(GENERATE("xpbd", "sosd"));
 }
 
 TEST_CASE("the surface checker of these tests finds a crossing and a close pair it is shown", "[contact][self]") {

@@ -95,33 +95,63 @@ TEST_CASE("the radius a substep needs follows its largest predicted step, betwee
   CHECK(sc_needed_radius(0.002f, r, cap) == Approx(0.003));     // the cap
 }
 
-TEST_CASE("the lists are rebuilt at a frame's start and when the motion since outgrows them, else kept",
+// One motion block (common/self_contact_bvh.h sc_block_motion): the box of the
+// displacements since the lists were made, then the box of the predicted steps.
+namespace {
+std::vector<float> block(ats_vec3 moved_lo, ats_vec3 moved_hi, ats_vec3 step_lo, ats_vec3 step_hi) {
+  return {moved_lo.x, moved_lo.y, moved_lo.z, moved_hi.x, moved_hi.y, moved_hi.z,
+          step_lo.x,  step_lo.y,  step_lo.z,  step_hi.x,  step_hi.y,  step_hi.z};
+}
+}  // namespace
+
+TEST_CASE("the lists are rebuilt at a frame's start and when the relative motion since outgrows them, else kept",
           "[solver][contact][broad_phase]") {
   const float r = 0.001f, cap = 0.003f;
+  const ats_vec3 o = ats_v3(0, 0, 0);
   std::vector<int> state(ATS_SC_STATE_INTS, 0);  // as a frame starts
-  const auto decide = [&](std::vector<float> blocks) {
-    sc_decide(blocks.data(), static_cast<int>(blocks.size() / 2), r, cap, state.data());
+  const auto decide = [&](const std::vector<float>& blocks) {
+    sc_decide(blocks.data(), static_cast<int>(blocks.size() / ATS_SC_MOTION_FLOATS), r, cap, state.data());
     return state[1];
   };
-  CHECK(decide({0.0f, 0.0f}) == 1);  // a frame's first substep detects, at the cap
+  CHECK(decide(block(o, o, o, o)) == 1);  // a frame's first substep detects, at the cap
   CHECK(sc_bits_float(state[2]) == Approx(cap));
-  // kept while need + 2 D <= 3 mm: need 1.5 mm (at rest), D up to 0.75 mm
-  CHECK(decide({0.0007f, 0.0f, 0.0002f, 0.0f}) == 0);
-  CHECK(sc_bits_float(state[3]) == Approx(0.0007));  // D, the largest block's
-  CHECK(decide({0.0f, 0.0f, 0.0008f, 0.0f}) == 1);   // 1.5 + 1.6 mm > 3 mm
-  CHECK(sc_bits_float(state[3]) == 0.0f);            // made here
-  CHECK(decide({0.0001f, 0.0003f}) == 0);            // need 1.75 mm + 0.2 mm
-  CHECK(decide({0.0001f, 0.0006f}) == 1);            // need 3 mm (5 delta), + 0.2 mm
-  CHECK(state[4] == 3);                              // detections this frame
+  // kept while need + 2 D <= 3 mm: need 1.5 mm (at rest), D (half the box's
+  // diagonal) up to 0.75 mm
+  CHECK(decide(block(o, ats_v3(0.0014f, 0, 0), o, o)) == 0);
+  CHECK(sc_bits_float(state[3]) == Approx(0.0007));           // D
+  CHECK(decide(block(o, ats_v3(0.0016f, 0, 0), o, o)) == 1);  // 1.5 + 1.6 mm > 3 mm
+  CHECK(sc_bits_float(state[3]) == 0.0f);                     // made here
+  // Two blocks: their boxes join (D = half of |(1.2, 0.9, 0) mm| = 0.75 mm).
+  std::vector<float> two = block(o, ats_v3(0.0012f, 0, 0), o, o);
+  const std::vector<float> other = block(ats_v3(0, 0.0009f, 0), ats_v3(0, 0.0009f, 0), o, o);
+  two.insert(two.end(), other.begin(), other.end());
+  CHECK(decide(two) == 0);
+  CHECK(sc_bits_float(state[3]) == Approx(0.00075));
+  // Everything moved 1 m and steps 2 cm down: no relative motion, kept.
+  const ats_vec3 far = ats_v3(1, 0, 0), down = ats_v3(0, -0.02f, 0);
+  CHECK(decide(block(far, far, down, down)) == 0);
+  CHECK(sc_bits_float(state[3]) == 0.0f);
+  // Steps spread over 0.6 mm: delta 0.3 mm, need r + 2.5 delta = 1.75 mm.
+  CHECK(decide(block(o, ats_v3(0.0002f, 0, 0), ats_v3(0, -0.0006f, 0), o)) == 0);  // 1.75 + 0.2 mm
+  CHECK(decide(block(o, ats_v3(0.0002f, 0, 0), ats_v3(0, -0.0012f, 0), o)) == 1);  // need 3 mm (5 delta)
+  CHECK(state[4] == 3);                                                            // detections this frame
 }
 
-TEST_CASE("a block's motion counts surface vertices only", "[solver][contact][broad_phase]") {
+TEST_CASE("a block's motion is the box of its surface vertices' displacements and steps",
+          "[solver][contact][broad_phase]") {
   const std::vector<Float4> det{{0, 0, 0, 1}, {0, 0, 0, 1}, {0, 0, 0, 1}};
   const std::vector<Float4> start{{0.0003f, 0, 0, 1}, {0, 0.0001f, 0, 1}, {0, 0, 0.9f, 1}};
   const std::vector<Float4> guess{{0.0003f, 0, 0, 1}, {0, 0.0005f, 0, 1}, {0, 0, 0.0f, 1}};
   const std::vector<int> inc{0, 1, 2, 2};  // particle 2 has no triangle (the first n + 1 offsets)
-  std::vector<float> out(2);
+  std::vector<float> out(ATS_SC_MOTION_FLOATS);
   sc_block_motion(0, det.data(), start.data(), guess.data(), inc.data(), 3, out.data());
-  CHECK(out[0] == Approx(0.0003));  // since the lists were made
-  CHECK(out[1] == Approx(0.0004));  // the predicted step
+  // since the lists were made: (0.3, 0, 0) and (0, 0.1, 0) mm
+  CHECK(out[0] == 0.0f);
+  CHECK(out[3] == Approx(0.0003));
+  CHECK(out[4] == Approx(0.0001));
+  CHECK((out[2] == 0.0f && out[5] == 0.0f));  // particle 2's 0.9 m is not a surface's
+  // the predicted steps: (0, 0, 0) and (0, 0.4, 0) mm
+  CHECK((out[6] == 0.0f && out[7] == 0.0f && out[9] == 0.0f));
+  CHECK(out[10] == Approx(0.0004));
+  CHECK((out[8] == 0.0f && out[11] == 0.0f));
 }
