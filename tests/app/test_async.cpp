@@ -8,6 +8,7 @@
 #include "device/device_set.hpp"
 #include "io/result_reader.hpp"
 #include "scene/scene_loader.hpp"
+#include "solver/method_registry.hpp"
 #include "support/scenes.hpp"
 #include "support/temp_dir.hpp"
 
@@ -15,9 +16,19 @@ using namespace atssim;
 
 namespace {
 
-plan::SubstepPlan cloth_plan(int resolution, int iterations) {
-  return app::substep_plan_for(
-      scene::parse_scene(test::hanging_cloth_yaml(resolution, 1e4, 1e-3, iterations), "s.yaml", "."));
+// The Gauss-Seidel methods: the ones that run `async` (README).
+std::vector<std::string> gauss_seidel_methods() {
+  std::vector<std::string> names;
+  for (const solver::MethodDescription* m : solver::methods()) {
+    if (m->gauss_seidel) names.emplace_back(m->name);
+  }
+  return names;
+}
+
+plan::SubstepPlan cloth_plan(int resolution, int iterations, const std::string& method) {
+  return app::substep_plan_for(scene::parse_scene(
+      test::hanging_cloth_yaml(resolution, 1e4, 1e-3, iterations) + "solver: {method: " + method + "}\n", "s.yaml",
+      "."));
 }
 
 std::vector<float> positions_after(app::Execution& e, const plan::PlanState& start, int substeps) {
@@ -35,12 +46,12 @@ double max_difference(const std::vector<float>& a, const std::vector<float>& b) 
   return worst;
 }
 
-std::string run_cloth(const test::TempDir& dir, const std::vector<std::string>& extra) {
+std::string run_cloth(const test::TempDir& dir, const std::string& method, const std::vector<std::string>& extra) {
   const std::string scene = dir.write("cloth.yaml", test::hanging_cloth_yaml(16, 1e4, 1e-3, 4));
   const std::string out = dir.file("out.h5");
   app::RunOptions options;
   options.scene_path = scene;
-  options.overrides = {"output.path=" + out, "simulation.frames=6", "devices=cpu/2"};
+  options.overrides = {"output.path=" + out, "simulation.frames=6", "devices=cpu/2", "solver.method=" + method};
   options.overrides.insert(options.overrides.end(), extra.begin(), extra.end());
   app::run_simulation(options);
   return out;
@@ -48,7 +59,8 @@ std::string run_cloth(const test::TempDir& dir, const std::vector<std::string>& 
 
 }  // namespace
 
-TEST_CASE("replaying an async schedule on one device reproduces the executed result exactly") {
+TEST_CASE("replaying an async schedule on one device reproduces the executed result exactly (every Gauss-Seidel method)") {
+  const std::string method = GENERATE(from_range(gauss_seidel_methods()));
   const auto devices = device::DeviceSet::open("cpu/2");
   const plan::MergeStrategy strategy =
       GENERATE(plan::MergeStrategy::average_displacements, plan::MergeStrategy::average_positions,
@@ -61,7 +73,7 @@ TEST_CASE("replaying an async schedule on one device reproduces the executed res
   options.profile_repetitions = 2;
   // Equal costs everywhere: HEFT's placement no longer depends on timing
   // noise, and with the kinds' chains independent it uses both devices.
-  const plan::SubstepPlan plan = cloth_plan(24, 4);
+  const plan::SubstepPlan plan = cloth_plan(24, 4, method);
   options.placement_costs = sched::CostTable(plan.graph.size(), 2, 1.0);
   app::Execution e = app::prepare_execution(devices, plan, options);
   // Both devices really work, and they exchange data.
@@ -77,23 +89,27 @@ TEST_CASE("replaying an async schedule on one device reproduces the executed res
   const auto executed = positions_after(e, start, 8);
   app::replay_on_one_device(e);
   const auto replayed = positions_after(e, start, 8);
-  INFO("strategy " << plan::to_string(strategy) << ", executor " << device::to_string(executor));
+  INFO(method << ", strategy " << plan::to_string(strategy) << ", executor " << device::to_string(executor));
   CHECK(max_difference(executed, replayed) == 0.0);
 }
 
-TEST_CASE("async with depth 1 is serial Gauss-Seidel") {
+TEST_CASE("async with depth 1 is serial Gauss-Seidel (every Gauss-Seidel method)") {
+  const std::string method = GENERATE(from_range(gauss_seidel_methods()));
+  INFO(method);
   test::TempDir dir;
-  const auto serial = io::read_frame_positions(run_cloth(dir, {"solver.schedule=single"}), 6);
+  const auto serial = io::read_frame_positions(run_cloth(dir, method, {"solver.schedule=single"}), 6);
   const auto async = io::read_frame_positions(
-      run_cloth(dir, {"solver.schedule=async", "solver.async_depth=1", "solver.merge=average_displacements"}), 6);
+      run_cloth(dir, method, {"solver.schedule=async", "solver.async_depth=1", "solver.merge=average_displacements"}),
+      6);
   CHECK(max_difference(serial, async) <= 1e-6);
 }
 
-TEST_CASE("every merge strategy runs the hanging cloth without NaN and stays near serial") {
+TEST_CASE("every merge strategy runs the hanging cloth without NaN and stays near serial (every Gauss-Seidel method)") {
+  const std::string method = GENERATE(from_range(gauss_seidel_methods()));
   const std::string merge = GENERATE("average_displacements", "average_positions", "main_precedence");
   test::TempDir dir;
-  const auto serial = io::read_frame_positions(run_cloth(dir, {"solver.schedule=single"}), 6);
-  const std::string out = run_cloth(dir, {"solver.schedule=async", "solver.merge=" + merge});
+  const auto serial = io::read_frame_positions(run_cloth(dir, method, {"solver.schedule=single"}), 6);
+  const std::string out = run_cloth(dir, method, {"solver.schedule=async", "solver.merge=" + merge});
   const auto summary = io::read_summary(out);
   CHECK(summary.complete);
   for (std::size_t f = 0; f < summary.frames; ++f) {
@@ -101,6 +117,6 @@ TEST_CASE("every merge strategy runs the hanging cloth without NaN and stays nea
   }
   // Async Gauss-Seidel is another iteration, not another model: after 6
   // frames of a 1 m cloth it stays within a few centimetres of serial.
-  INFO(merge << ": max |async - serial| " << max_difference(serial, io::read_frame_positions(out, 6)));
+  INFO(method << ", " << merge << ": max |async - serial| " << max_difference(serial, io::read_frame_positions(out, 6)));
   CHECK(max_difference(serial, io::read_frame_positions(out, 6)) < 0.05);
 }

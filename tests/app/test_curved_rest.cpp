@@ -9,6 +9,7 @@
 
 #include "app/simulation.hpp"
 #include "io/result_reader.hpp"
+#include "solver/method_registry.hpp"
 #include "support/curved_meshes.hpp"
 #include "support/temp_dir.hpp"
 
@@ -22,9 +23,9 @@ namespace {
 // origin it stays within 2e-8 m. So the shells sit at the origin, and the
 // falling cap starts 0.6 m up (it ends 0.64 m down).
 std::string mesh_scene(const std::string& mesh, const std::string& gravity, int frames, const std::string& bend_model,
-                       double y, double bend_stiffness) {
-  // One substep per frame keeps the test fast (the criteria name frames and iterations only).
-  return "simulation: {fps: 60, substeps: 1, iterations: 8, frames: " + std::to_string(frames) +
+                       double y, double bend_stiffness, int substeps) {
+  return "simulation: {fps: 60, substeps: " + std::to_string(substeps) +
+         ", iterations: 8, frames: " + std::to_string(frames) +
          ", gravity: " + gravity +
          "}\n"
          "objects:\n"
@@ -49,7 +50,11 @@ Run run(const test::TempDir& dir, const test::ObjMesh& mesh, const std::string& 
         int frames, const std::string& bend_model = "auto", double y = 0.0, double bend_stiffness = 0.01) {
   dir.write("mesh.obj", mesh.obj_text());
   app::RunOptions o;
-  o.scene_path = dir.write("scene.yaml", mesh_scene("mesh.obj", gravity, frames, bend_model, y, bend_stiffness));
+  // One substep per frame keeps the test fast; explicit integration needs
+  // its stable step (2.8e-3 s estimated for these shells).
+  const int substeps = method == "explicit" ? 8 : 1;
+  o.scene_path =
+      dir.write("scene.yaml", mesh_scene("mesh.obj", gravity, frames, bend_model, y, bend_stiffness, substeps));
   o.overrides = {"output.path=" + dir.file("out.h5"), "devices=cpu", "solver.method=" + method};
   app::run_simulation(o);
   Run r;
@@ -76,17 +81,24 @@ double mean_y(const std::vector<float>& x) {
   return s / static_cast<double>(x.size() / 3);
 }
 
+std::vector<std::string> method_names() {
+  std::vector<std::string> names;
+  for (const solver::MethodDescription* m : solver::methods()) names.emplace_back(m->name);
+  return names;
+}
+
 }  // namespace
 
 TEST_CASE("a closed sphere shell and an open spherical cap stay at rest without gravity, under every method",
           "[bending][curved]") {
-  const std::string method = GENERATE(as<std::string>{}, "xpbd", "vbd", "sosd", "jpgd");
+  const std::string method = GENERATE(from_range(method_names()));
   const bool sphere = GENERATE(true, false);
   const test::ObjMesh mesh = sphere ? test::icosphere(0.3, 2) : test::spherical_cap(0.5, 0.3, 12);
   test::TempDir dir;
   const double drift = largest_drift(run(dir, mesh, method, "[0, 0, 0]", 100));
   INFO(method << (sphere ? " sphere" : " cap") << ": largest drift " << drift << " m in 100 frames");
   CHECK(drift < 1e-5);
+  WARN(method << (sphere ? " sphere" : " cap") << ": largest drift " << drift << " m in 100 frames");
 }
 
 TEST_CASE("the isometric model does not keep a curved rest shape (the control of the test above)",
