@@ -11,6 +11,7 @@
 #include "app/simulation.hpp"
 #include "io/result_reader.hpp"
 #include "solver/method_registry.hpp"
+#include "support/methods.hpp"
 #include "support/scenes.hpp"
 #include "support/temp_dir.hpp"
 #include "util/error.hpp"
@@ -19,12 +20,6 @@ using namespace atssim;
 
 namespace {
 
-std::vector<std::string> method_names() {
-  std::vector<std::string> names;
-  for (const solver::MethodDescription* m : solver::methods()) names.emplace_back(m->name);
-  return names;
-}
-
 constexpr int kFrames = 6;
 constexpr int kStopAfter = 3;
 
@@ -32,7 +27,7 @@ constexpr int kStopAfter = 3;
 
 TEST_CASE("a run stopped after frame 3 and resumed writes the uninterrupted run's positions bit for bit, every method",
           "[resume]") {
-  const std::string method = GENERATE(from_range(method_names()));
+  const std::string method = GENERATE(from_range(test::method_names()));
   const solver::MethodDescription& description = solver::method(method);
   INFO(method);
   test::TempDir dir;
