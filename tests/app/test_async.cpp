@@ -127,6 +127,7 @@ TEST_CASE("every merge strategy runs the hanging cloth without NaN and stays nea
   }
   // Async Gauss-Seidel is another iteration, not another model: after 6
   // frames of a 1 m cloth it stays within a few centimetres of serial.
-  INFO(method << ", " << merge << ": max |async - serial| " << max_difference(serial, io::read_frame_positions(out, 6)));
+  INFO(method << ", " << merge << ": max |async - serial| "
+              << max_difference(serial, io::read_frame_positions(out, 6)));
   CHECK(max_difference(serial, io::read_frame_positions(out, 6)) < 0.05);
 }

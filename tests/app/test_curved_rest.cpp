@@ -9,8 +9,8 @@
 
 #include "app/simulation.hpp"
 #include "io/result_reader.hpp"
-#include "support/curved_meshes.hpp"
 #include "solver/method_registry.hpp"
+#include "support/curved_meshes.hpp"
 #include "support/methods.hpp"
 #include "support/temp_dir.hpp"
 
@@ -26,8 +26,7 @@ namespace {
 std::string mesh_scene(const std::string& mesh, const std::string& gravity, int frames, const std::string& bend_model,
                        double y, double bend_stiffness, int substeps) {
   return "simulation: {fps: 60, substeps: " + std::to_string(substeps) +
-         ", iterations: 8, frames: " + std::to_string(frames) +
-         ", gravity: " + gravity +
+         ", iterations: 8, frames: " + std::to_string(frames) + ", gravity: " + gravity +
          "}\n"
          "objects:\n"
          "  - name: shell\n"
@@ -84,9 +83,10 @@ double mean_y(const std::vector<float>& x) {
 // Every method but explicit integration: its stable step needs 26 (sphere)
 // and 42 (cap) substeps a frame, and at 48 the shells drift 1.1e-6 and
 // 1.4e-6 m in 100 frames (measured; nothing damps the rounding there).
-TEST_CASE("a closed sphere shell and an open spherical cap stay at rest within 5e-8 m without gravity, under every "
-          "implicit method",
-          "[bending][curved]") {
+TEST_CASE(
+    "a closed sphere shell and an open spherical cap stay at rest within 5e-8 m without gravity, under every "
+    "implicit method",
+    "[bending][curved]") {
   const std::string method =
       GENERATE(from_range(test::method_names([](const solver::MethodDescription& m) { return m.name != "explicit"; })));
   const bool sphere = GENERATE(true, false);

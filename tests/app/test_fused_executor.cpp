@@ -81,8 +81,7 @@ TEST_CASE(
   const solver::MethodDescription& description = solver::method(method);
   const auto scene = scene::parse_scene(scene_for(description), "s.yaml", ".");
   const plan::SubstepPlan plan = app::substep_plan_for(scene);
-  std::vector<app::ScheduleMode> modes = {app::ScheduleMode::single, app::ScheduleMode::split,
-                                          app::ScheduleMode::heft};
+  std::vector<app::ScheduleMode> modes = {app::ScheduleMode::single, app::ScheduleMode::split, app::ScheduleMode::heft};
   if (description.gauss_seidel) modes.push_back(app::ScheduleMode::async);
   std::vector<float> start;
   for (const auto& p : plan.buffers) {

@@ -30,17 +30,16 @@ constexpr int kBoxVertices = 27;  // a 2 x 2 x 2 box grid; the lower box's come 
 // The lower box (0.2 m) lies on the ground, its top at y = 0.2; the upper
 // one (0.12 m), turned by 20 degrees about y, starts 3 cm above it, inside
 // the top face's outline, and lands within ~5 frames.
-const std::string kStack =
-    "simulation: {fps: 60, substeps: 8, iterations: 8, frames: " + std::to_string(kFrames) +
-    ", ground: 0.0}\n"
-    "objects:\n"
-    "  - {name: lower, type: solid, box: {size: [0.2, 0.2, 0.2], resolution: [2, 2, 2]},\n"
-    "     transform: {translate: [0, 0.1, 0]},\n"
-    "     material: {density: 1000, youngs_modulus: 1.0e6, poisson_ratio: 0.3, model: stvk}}\n"
-    "  - {name: upper, type: solid, box: {size: [0.12, 0.12, 0.12], resolution: [2, 2, 2]},\n"
-    "     transform: {translate: [0.01, 0.29, 0.01], rotate: [0, 20, 0]},\n"
-    "     material: {density: 1000, youngs_modulus: 1.0e6, poisson_ratio: 0.3, model: stvk}}\n"
-    "contact: {self: true, thickness: 0.01}\n";
+const std::string kStack = "simulation: {fps: 60, substeps: 8, iterations: 8, frames: " + std::to_string(kFrames) +
+                           ", ground: 0.0}\n"
+                           "objects:\n"
+                           "  - {name: lower, type: solid, box: {size: [0.2, 0.2, 0.2], resolution: [2, 2, 2]},\n"
+                           "     transform: {translate: [0, 0.1, 0]},\n"
+                           "     material: {density: 1000, youngs_modulus: 1.0e6, poisson_ratio: 0.3, model: stvk}}\n"
+                           "  - {name: upper, type: solid, box: {size: [0.12, 0.12, 0.12], resolution: [2, 2, 2]},\n"
+                           "     transform: {translate: [0.01, 0.29, 0.01], rotate: [0, 20, 0]},\n"
+                           "     material: {density: 1000, youngs_modulus: 1.0e6, poisson_ratio: 0.3, model: stvk}}\n"
+                           "contact: {self: true, thickness: 0.01}\n";
 
 double centroid_y(const std::vector<Eigen::Vector3d>& x, std::size_t from, std::size_t to) {
   double y = 0.0;
@@ -77,11 +76,11 @@ TEST_CASE("a soft box dropped on another rests on it, the surfaces apart in ever
   const auto last = test::frame(out, kFrames);
   const double above = centroid_y(last, kBoxVertices, 2 * kBoxVertices) - highest_lower(last);
   INFO("closest vertex-triangle pair " << closest << " m, upper centroid " << above
-                                      << " m above the lower box's top (0.06 + thickness at rest)");
+                                       << " m above the lower box's top (0.06 + thickness at rest)");
   CHECK(crossings == 0);
   CHECK(closest >= 0.5 * kThickness);  // measured 9.9 mm under each method
-  CHECK(above > 0.05);  // it rests on the lower box (0.06 is its half height); measured 0.065-0.070
-  CHECK(above < 0.08);  // and it did land
+  CHECK(above > 0.05);                 // it rests on the lower box (0.06 is its half height); measured 0.065-0.070
+  CHECK(above < 0.08);                 // and it did land
 }
 
 TEST_CASE("without contact the dropped box sinks into the lower one (the control of the test above)",

@@ -50,8 +50,12 @@ TEST_CASE("a bar hanging under its own weight stretches by rho g L^2 / (2E) (eve
     for (const std::string schedule : {"split", "heft", "async"}) {
       INFO(schedule);
       app::RunOptions two = o;
-      two.overrides = {"output.path=" + dir.file(schedule + ".h5"), "devices=cpu/2", "solver.method=xpbd",
-                       "simulation.iterations=100", "objects.0.material.model=stvk", "simulation.frames=3",
+      two.overrides = {"output.path=" + dir.file(schedule + ".h5"),
+                       "devices=cpu/2",
+                       "solver.method=xpbd",
+                       "simulation.iterations=100",
+                       "objects.0.material.model=stvk",
+                       "simulation.frames=3",
                        "solver.schedule=" + schedule};
       app::run_simulation(two);
       for (std::size_t f = 1; f <= 3; ++f) {
