@@ -82,7 +82,7 @@ TEST_CASE("a bar hanging under its own weight stretches by rho g L^2 / (2E) (eve
   const double tip = sum / samples;
   const double analytic = -1000.0 * 9.81 * 1.0 / (2.0 * 1.0e7);  // linear elasticity, nu = 0
   INFO(method << ": mean tip displacement " << tip << " m, analytic " << analytic << " m");
-  CHECK(tip == Approx(analytic).epsilon(tolerance));  // measured: vbd 1.7 %, sosd 3.1 %, jpgd 1 %, xpbd 0.97 %
+  CHECK(tip == Approx(analytic).epsilon(tolerance));  // measured: vbd 2.2 %, sosd 3.1 %, jpgd 1.6 %, xpbd 0.97 %
 }
 
 TEST_CASE("no particle ends below the ground plane, whatever the method and schedule") {
