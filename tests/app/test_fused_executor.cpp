@@ -32,16 +32,20 @@ std::vector<int> count_per_device(const std::vector<sched::DeviceId>& assignment
   return n;
 }
 
-// Async places by costs and the measured hop: with equal placement costs
-// (tests/app/test_async.cpp) HEFT uses both devices, and the two executions
-// place alike (the test requires it).
+// Async places by profiled costs and the measured hop, which differ from
+// one execution to the next: given equal costs and a fixed hop, HEFT uses
+// both devices (tests/app/test_async.cpp) and the two executions place
+// alike (the test requires it).
 Ran run(const device::DeviceSet& devices, const plan::SubstepPlan& plan, app::ScheduleMode mode,
         device::ExecutorKind kind, int substeps) {
   app::ExecutionOptions options;
   options.mode = mode;
   options.executor = kind;
   options.profile_repetitions = 2;
-  if (mode == app::ScheduleMode::async) options.placement_costs = sched::CostTable(plan.graph.size(), 2, 1.0);
+  if (mode == app::ScheduleMode::async) {
+    options.placement_costs = sched::CostTable(plan.graph.size(), 2, 1.0);
+    options.placement_links = sched::DeviceLinks::unified_memory(2, 0.01);
+  }
   app::Execution e = app::prepare_execution(devices, plan, options);
   REQUIRE(e.executor->kind() == kind);
   e.executor->run_substeps(substeps, true);
