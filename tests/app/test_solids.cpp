@@ -45,9 +45,10 @@ TEST_CASE("a bar hanging under its own weight stretches by rho g L^2 / (2E) (eve
                  "simulation.iterations=" + std::to_string(iterations), "objects.0.material.model=" + material};
   app::run_simulation(o);
   if (method == "xpbd") {
-    // Every schedule on the two sub-devices writes the one-device bits
-    // (checked over the first 3 frames), so the bound below holds for each.
-    for (const std::string schedule : {"split", "heft", "async"}) {
+    // split and heft on the two sub-devices write the one-device bits
+    // (checked over the first 3 frames), so the bound below holds for them.
+    // Async is another iteration, placed by profiled costs: not claimed.
+    for (const std::string schedule : {"split", "heft"}) {
       INFO(schedule);
       app::RunOptions two = o;
       two.overrides = {"output.path=" + dir.file(schedule + ".h5"),
