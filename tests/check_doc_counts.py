@@ -2,7 +2,8 @@
 """Fails when a count that README.md or docs/ states about the project
 differs from the real thing, counted here from the source tree:
 
-- the bad-input cases (README "tests/bad_input: N cases"), counted the way
+- the bad-input cases (README "tests/bad_input: N cases"; docs/reliability.md
+  the scene cases, the command lines and their sum), counted the way
   tests/bad_input/run_bad_input.py loads them;
 - the bundled scenes: every scenes/*.yaml is named in the README's
   "Scenes" item and no scene named there is missing;
@@ -45,6 +46,19 @@ def main() -> int:
     for s in stated:
         if number(s) != cases:
             problems.append(f"README.md says {s} bad-input cases; tests/bad_input has {cases}")
+
+    reliability = flat((root / "docs" / "reliability.md").read_text(encoding="utf-8"))
+    scene_cases = len([c for c in run_bad_input.load_cases() if c[4] is not None])
+    for label, pattern, real in (("scene cases", r"`cases/\*\.yaml` — one scene per case \(([0-9]+)\)", scene_cases),
+                                 ("command lines", r"`cli\.txt` — one command line per line \(([0-9]+)\)",
+                                  cases - scene_cases),
+                                 ("cases in all", r"was written\. ([0-9][0-9,]*) cases", cases)):
+        found = re.findall(pattern, reliability)
+        if not found:
+            problems.append(f"docs/reliability.md: no '{pattern}' found")
+        for s in found:
+            if number(s) != real:
+                problems.append(f"docs/reliability.md says {s} bad-input {label}; tests/bad_input has {real}")
 
     # Bundled scenes, by name in the README's Scenes item.
     item = re.search(r"- \*\*Scenes\*\*:(.*?)(?= - \*\*|$)", readme)
