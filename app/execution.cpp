@@ -92,7 +92,7 @@ Execution prepare_async(const device::DeviceSet& devices, const plan::SubstepPla
     device::PlanExecutor probe(devices, base, executor_options(options));
     costs = options.placement_costs ? *options.placement_costs
                                     : probe.profile(std::max(2, options.profile_repetitions / 2));
-    hop = measure_links(probe);
+    hop = options.placement_links ? *options.placement_links : measure_links(probe);
   }
   if (costs.tasks != graph.size() || costs.devices != n) {
     throw Error(fmt::format("async: placement costs for {} tasks on {} devices, the plan has {} on {}", costs.tasks,

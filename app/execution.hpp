@@ -46,8 +46,10 @@ struct ExecutionOptions {
   bool async_latest = true;
   bool replay = false;  // run the async schedule on device 0 alone, in schedule order
   // Async: costs of the base plan's tasks per device to place them with,
-  // instead of a profile (tests use it to make the placement deterministic).
+  // instead of a profile, and the links between the devices instead of a
+  // measured hop (tests use both to make the placement deterministic).
   std::optional<sched::CostTable> placement_costs;
+  std::optional<sched::DeviceLinks> placement_links;
 };
 
 // The options a scene asks for (solver.schedule, solver.executor, the async

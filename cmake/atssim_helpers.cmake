@@ -19,6 +19,11 @@ function(atssim_add_library name)
   target_link_libraries(${name} PUBLIC ${ARG_DEPS})
 endfunction()
 
+# The arguments every ctest entry of a Catch2 test passes to its binary.
+# -w NoTests: a ctest entry whose filter matches no test case fails (Catch2
+# v2 otherwise exits 0 having run nothing); tests/CMakeLists.txt checks it.
+set(ATSSIM_CATCH_ARGS -w NoTests)
+
 # atssim_add_test(NAME SOURCES... DEPS...) — one Catch2 executable per stage,
 # registered with ctest test by test.
 function(atssim_add_test name)
@@ -31,10 +36,8 @@ function(atssim_add_test name)
   if(ARG_LABELS)
     list(APPEND props LABELS "${ARG_LABELS}")
   endif()
-  # -w NoTests: a ctest entry whose filter matches no test case fails
-  # (Catch2 v2 otherwise exits 0 having run nothing).
   catch_discover_tests(${name}
-    EXTRA_ARGS -w NoTests
+    EXTRA_ARGS ${ATSSIM_CATCH_ARGS}
     WORKING_DIRECTORY ${PROJECT_BINARY_DIR}
     PROPERTIES ${props}
     DISCOVERY_MODE PRE_TEST)

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Quick start (2): install what is missing, build, run the whole test suite
-# (everything but the `slow` label; benchmarks live in scripts/bench_*.sh).
+# (everything but the labels `slurm` and `stability`, which need a Slurm
+# cluster or minutes; benchmarks live in scripts/bench_*.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh

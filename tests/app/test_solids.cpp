@@ -31,18 +31,40 @@ const char* kBar =
 
 TEST_CASE("a bar hanging under its own weight stretches by rho g L^2 / (2E) (every method on tetrahedra)") {
   // XPBD solves StVK (its strain constraints minimise that energy); at this
-  // small strain StVK and neo-Hookean are both linear elasticity.
-  const auto [method, iterations, material] =
-      GENERATE(std::make_tuple(std::string("vbd"), 100, std::string("neo_hookean")),
-               std::make_tuple(std::string("sosd"), 200, std::string("neo_hookean")),
-               std::make_tuple(std::string("jpgd"), 300, std::string("neo_hookean")),
-               std::make_tuple(std::string("xpbd"), 100, std::string("stvk")));
+  // small strain StVK and neo-Hookean are both linear elasticity. The
+  // tolerance is what README.md claims per method.
+  const auto [method, iterations, material, tolerance] =
+      GENERATE(std::make_tuple(std::string("vbd"), 100, std::string("neo_hookean"), 0.05),
+               std::make_tuple(std::string("sosd"), 200, std::string("neo_hookean"), 0.05),
+               std::make_tuple(std::string("jpgd"), 300, std::string("neo_hookean"), 0.05),
+               std::make_tuple(std::string("xpbd"), 100, std::string("stvk"), 0.01));
   test::TempDir dir;
   app::RunOptions o;
   o.scene_path = dir.write("bar.yaml", kBar);
   o.overrides = {"output.path=" + dir.file("bar.h5"), "devices=cpu", "solver.method=" + method,
                  "simulation.iterations=" + std::to_string(iterations), "objects.0.material.model=" + material};
   app::run_simulation(o);
+  if (method == "xpbd") {
+    // split and heft on the two sub-devices write the one-device bits
+    // (checked over the first 3 frames), so the bound below holds for them.
+    // Async is another iteration, placed by profiled costs: not claimed.
+    for (const std::string schedule : {"split", "heft"}) {
+      INFO(schedule);
+      app::RunOptions two = o;
+      two.overrides = {"output.path=" + dir.file(schedule + ".h5"),
+                       "devices=cpu/2",
+                       "solver.method=xpbd",
+                       "simulation.iterations=100",
+                       "objects.0.material.model=stvk",
+                       "simulation.frames=3",
+                       "solver.schedule=" + schedule};
+      app::run_simulation(two);
+      for (std::size_t f = 1; f <= 3; ++f) {
+        CHECK(io::read_frame_positions(dir.file(schedule + ".h5"), f) ==
+              io::read_frame_positions(dir.file("bar.h5"), f));
+      }
+    }
+  }
   const auto rest = io::read_frame_positions(dir.file("bar.h5"), 0);
   // Undamped, the bar oscillates about its static equilibrium (period
   // 4 L / sqrt(E / rho) = 0.04 s): 30 frames at 60 Hz sample 12 periods at
@@ -61,7 +83,7 @@ TEST_CASE("a bar hanging under its own weight stretches by rho g L^2 / (2E) (eve
   const double tip = sum / samples;
   const double analytic = -1000.0 * 9.81 * 1.0 / (2.0 * 1.0e7);  // linear elasticity, nu = 0
   INFO(method << ": mean tip displacement " << tip << " m, analytic " << analytic << " m");
-  CHECK(tip == Approx(analytic).epsilon(0.05));
+  CHECK(tip == Approx(analytic).epsilon(tolerance));  // measured: vbd 2.2 %, sosd 3.1 %, jpgd 1.6 %, xpbd 0.97 %
 }
 
 TEST_CASE("no particle ends below the ground plane, whatever the method and schedule") {
@@ -142,7 +164,7 @@ std::string run_soft_box(const test::TempDir& dir, const std::string& schedule, 
 
 }  // namespace
 
-TEST_CASE("split and heft give the single-device XPBD solid to 1e-5") {
+TEST_CASE("split and heft give the single-device XPBD solid bit for bit") {
   // 1296 tets, so that the tet color blocks are big enough to be cut between
   // the devices (plan_split's granule is 64); dropped from 0.35 m so that it
   // lands within the 12 frames; few substeps and iterations to keep it short.
@@ -160,7 +182,7 @@ TEST_CASE("split and heft give the single-device XPBD solid to 1e-5") {
     double worst = 0.0;
     for (std::size_t i = 0; i < two.size(); ++i) worst = std::max(worst, double(std::abs(two[i] - single[i])));
     INFO(schedule << ": max |difference| " << worst);
-    CHECK(worst <= 1e-5);
+    CHECK(two == single);
   }
 }
 

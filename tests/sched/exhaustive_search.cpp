@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -58,7 +59,7 @@ struct Search {
 }  // namespace
 
 double optimal_makespan(const TaskGraph& graph, const CostTable& costs, const DeviceLinks& links,
-                        std::span<const double> device_ready_ms, double upper_bound) {
+                        std::span<const double> device_ready_ms) {
   const std::size_t n = graph.size();
   if (n > 12) throw std::invalid_argument("exhaustive search is for tiny graphs");
   Search s{graph,
@@ -70,7 +71,7 @@ double optimal_makespan(const TaskGraph& graph, const CostTable& costs, const De
            std::vector<double>(costs.devices, 0.0),
            std::vector<double>(n, 0.0),
            std::vector<DeviceId>(n, 0),
-           upper_bound * (1 + 1e-12) + 1e-12};
+           std::numeric_limits<double>::infinity()};
   if (!device_ready_ms.empty()) s.device_free.assign(device_ready_ms.begin(), device_ready_ms.end());
   const auto topo = graph.topological_order();
   for (auto it = topo.rbegin(); it != topo.rend(); ++it) {
