@@ -6,13 +6,19 @@
 //
 //   bench_native --scene scenes/hanging_cloth.yaml --method xpbd|vbd|explicit --resolution N
 //                --threads 1|2 --frames F [--warmup W] [--integrator semi_euler|midpoint|rk4]
-//                [--shape cloth|solid] [--ordering colors|batches]
+//                [--shape cloth|solid] [--ordering colors|batches] [--loop reference|plain]
 // (explicit: the explicit reference's semi-implicit Euler, midpoint or RK4;
 // solid: N sets objects.0.box.resolution=[N,N,N] instead of the grid's.)
 //
 // Prints one line of JSON: method, resolution, threads, frames, median_ms and
-// min_ms of a frame (the scene's substeps), and checksum, the sum of the
-// final positions (shows the work was done and lets runs be compared).
+// min_ms of a frame (the scene's substeps), checksum, the sum of the final
+// positions (shows the work was done and lets runs be compared), and the
+// sizes the roofline counts with (substeps, iterations, vertices, stretch,
+// bend, tets).
+//
+// --loop plain (XPBD): the sceptic's baseline instead of the project's host
+// reference, bench/plain_xpbd.hpp (colors: a parallel_for per color block)
+// or bench/plain_xpbd_batches.hpp (batches: float8 lanes, one thread).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -22,7 +28,11 @@
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
+#include <tbb/task_arena.h>
+
 #include "model/cloth_builder.hpp"
+#include "plain_xpbd.hpp"
+#include "plain_xpbd_batches.hpp"
 #include "scene/scene_loader.hpp"
 #include "solver/explicit/explicit_reference.hpp"
 #include "solver/layout/sim_layout.hpp"
@@ -51,6 +61,7 @@ struct Options {
   std::string shape = "cloth";
   int substeps = 0;                 // 0: the scene's
   std::string ordering = "colors";  // xpbd: colors or batches (solver/xpbd/xpbd_batches)
+  std::string loop = "reference";   // xpbd: reference (the project's host reference) or plain (plain_xpbd.hpp)
 };
 
 struct FrameTimes {
@@ -75,9 +86,9 @@ FrameTimes time_frames(Reference& reference, int substeps, const Options& o) {
   return {n % 2 ? ms[n / 2] : 0.5 * (ms[n / 2 - 1] + ms[n / 2]), ms.front()};
 }
 
-double checksum(const solver::SimLayout& state) {
+double checksum(const std::vector<solver::Float4>& x) {
   double sum = 0.0;
-  for (const solver::Float4& p : state.x) sum += double(p.x) + double(p.y) + double(p.z);
+  for (const solver::Float4& p : x) sum += double(p.x) + double(p.y) + double(p.z);
   return sum;
 }
 
@@ -96,13 +107,23 @@ int run(const Options& o) {
 
   FrameTimes times;
   double sum = 0.0;
-  if (method == Method::xpbd) {
+  if (method == Method::xpbd && o.loop == "plain" && o.ordering == "batches") {
+    if (o.threads != 1) throw input_error("--ordering batches runs one thread (--threads 1)");
+    bench::PlainXpbdBatches loop(layout, h, sim.iterations);
+    times = time_frames(loop, sim.substeps, o);
+    sum = checksum(loop.positions());
+  } else if (method == Method::xpbd && o.loop == "plain") {
+    bench::PlainXpbd loop(layout, h, sim.iterations, o.threads > 1);
+    tbb::task_arena arena(o.threads);  // entered once, around every frame
+    arena.execute([&] { times = time_frames(loop, sim.substeps, o); });
+    sum = checksum(loop.positions());
+  } else if (method == Method::xpbd) {
     if (o.ordering == "batches" && o.threads != 1)
       throw input_error("--ordering batches runs one thread (--threads 1)");
     solver::xpbd::XpbdReference reference(o.ordering == "batches" ? solver::xpbd::in_batch_order(layout) : layout,
                                           {h, sim.iterations}, o.threads);
     times = time_frames(reference, sim.substeps, o);
-    sum = checksum(reference.state());
+    sum = checksum(reference.state().x);
   } else if (method == Method::explicit_rk) {
     using solver::explicit_rk::Integrator;
     const Integrator integrator = o.integrator == "rk4"        ? Integrator::rk4
@@ -110,16 +131,18 @@ int run(const Options& o) {
                                                                : Integrator::semi_euler;
     solver::explicit_rk::ExplicitReference reference(layout, {h, integrator}, o.threads);
     times = time_frames(reference, sim.substeps, o);
-    sum = checksum(reference.state());
+    sum = checksum(reference.state().x);
   } else {
     solver::vbd::VbdReference reference(layout, h, sim.iterations, o.threads);
     times = time_frames(reference, sim.substeps, o);
-    sum = checksum(reference.state());
+    sum = checksum(reference.state().x);
   }
   fmt::print(
       "{{\"method\": \"{}\", \"resolution\": {}, \"threads\": {}, \"frames\": {}, \"median_ms\": {:.4f}, "
-      "\"min_ms\": {:.4f}, \"checksum\": {:.9g}}}\n",
-      o.method, o.resolution, o.threads, o.frames, times.median_ms, times.min_ms, sum);
+      "\"min_ms\": {:.4f}, \"checksum\": {:.9g}, \"substeps\": {}, \"iterations\": {}, \"vertices\": {}, "
+      "\"stretch\": {}, \"bend\": {}, \"tets\": {}}}\n",
+      o.method, o.resolution, o.threads, o.frames, times.median_ms, times.min_ms, sum, sim.substeps, sim.iterations,
+      layout.x.size(), layout.stretch.size(), layout.bend.size(), layout.tets.size());
   return 0;
 }
 
@@ -136,6 +159,11 @@ int main(int argc, char** argv) {
                  "xpbd: colors, or batches (the constraints in the order of "
                  "solver.ordering: batches, one thread)")
       ->check(CLI::IsMember({"colors", "batches"}));
+  cli.add_option("--loop", o.loop,
+                 "xpbd: reference (the project's host reference) or plain (bench/plain_xpbd.hpp, the "
+                 "sceptic's per-color parallel_for over copies of the same arrays)")
+      ->check(CLI::IsMember({"reference", "plain"}))
+      ->capture_default_str();
   cli.add_option("--integrator", o.integrator, "explicit: semi_euler, midpoint or rk4")
       ->check(CLI::IsMember({"semi_euler", "midpoint", "rk4"}))
       ->capture_default_str();

@@ -37,21 +37,29 @@ VbdReference::VbdReference(VbdReference&&) noexcept = default;
 VbdReference& VbdReference::operator=(VbdReference&&) noexcept = default;
 VbdReference::~VbdReference() = default;
 
+// With threads > 1 substep() is already inside the arena (entered once per
+// substep, not once per color): each sweep is one plain parallel_for.
 template <class Body>
 void VbdReference::sweep(int first, int last, const Body& body) {
   if (!arena_) {
     for (int i = first; i < last; ++i) body(i);
     return;
   }
-  arena_->arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<int>(first, last), [&](const tbb::blocked_range<int>& r) {
-      for (int i = r.begin(); i < r.end(); ++i) body(i);
-    });
+  tbb::parallel_for(tbb::blocked_range<int>(first, last), [&](const tbb::blocked_range<int>& r) {
+    for (int i = r.begin(), e = r.end(); i < e; ++i) body(i);
   });
 }
 
-// The task order of make_vbd_plan (lib/solver/vbd/vbd_plan.cpp).
 void VbdReference::substep() {
+  if (arena_) {
+    arena_->arena.execute([&] { substep_here(); });
+  } else {
+    substep_here();
+  }
+}
+
+// The task order of make_vbd_plan (lib/solver/vbd/vbd_plan.cpp).
+void VbdReference::substep_here() {
   predict();
   for (int it = 0; it < iterations_; ++it) {
     for (int c = 0; c < vertices_.colors.count(); ++c) solve_color(c);

@@ -31,6 +31,7 @@ class VbdReference {
   const std::vector<Float4>& predicted() const { return x_tilde_; }
 
  private:
+  void substep_here();  // the substep, in the arena already when threads > 1
   void predict();
   void solve_color(int color);
   void project_ground();

@@ -44,7 +44,9 @@ XpbdReference::XpbdReference(SimLayout layout, XpbdSettings settings, int thread
       x_prev_(layout_.x),
       stretch_lambda_(layout_.stretch.size(), 0.0f),
       bend_lambda_(layout_.bend.size() * 3, 0.0f),
-      tet_lambda_(layout_.tets.size() * ATS_TET_LAMBDA_STRIDE, 0.0f) {
+      tet_lambda_(layout_.tets.size() * ATS_TET_LAMBDA_STRIDE, 0.0f),
+      // As xpbd_stretch with its plan's 1/h (0 without damped springs).
+      inv_h_(has_spring_damping(layout_) ? 1.0f / static_cast<float>(settings_.substep_dt) : 0.0f) {
   if (threads < 1) throw input_error("the XPBD reference needs threads >= 1, got " + std::to_string(threads));
   if (threads > 1) arena_ = std::make_unique<Arena>(threads);
 }
@@ -53,20 +55,28 @@ XpbdReference::XpbdReference(XpbdReference&&) noexcept = default;
 XpbdReference& XpbdReference::operator=(XpbdReference&&) noexcept = default;
 XpbdReference::~XpbdReference() = default;
 
+// With threads > 1 substep() is already inside the arena (entered once per
+// substep, not once per block): each sweep is one plain parallel_for.
 template <class Body>
 void XpbdReference::sweep(int first, int last, const Body& body) {
   if (!arena_) {
     for (int i = first; i < last; ++i) body(i);
     return;
   }
-  arena_->arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<int>(first, last), [&](const tbb::blocked_range<int>& r) {
-      for (int i = r.begin(); i < r.end(); ++i) body(i);
-    });
+  tbb::parallel_for(tbb::blocked_range<int>(first, last), [&](const tbb::blocked_range<int>& r) {
+    for (int i = r.begin(), e = r.end(); i < e; ++i) body(i);
   });
 }
 
 void XpbdReference::substep() {
+  if (arena_) {
+    arena_->arena.execute([&] { substep_here(); });
+  } else {
+    substep_here();
+  }
+}
+
+void XpbdReference::substep_here() {
   predict();
   for (int it = 0; it < settings_.iterations; ++it) {
     solve_stretch(it == 0);
@@ -105,20 +115,25 @@ void XpbdReference::predict() {
 // particle, so any order (or thread) inside a block gives the same result.
 void XpbdReference::solve_stretch(bool reset) {
   const float dt = static_cast<float>(inertia_dt(layout_, settings_.substep_dt));
-  // As xpbd_stretch with its plan's 1/h (0 without damped springs).
-  const float inv_h = has_spring_damping(layout_) ? 1.0f / static_cast<float>(settings_.substep_dt) : 0.0f;
+  const float inv_h = inv_h_;
+  // Raw pointers, captured by value: through `this` the compiler reloads the
+  // arrays after every store (a float store may alias them).
+  Float4* x = layout_.x.data();
+  const Float4* x0 = x_prev_.data();
+  const ats_distance_c* con = layout_.stretch.data();
+  float* lambda = stretch_lambda_.data();
   for (std::size_t b = 0; b + 1 < layout_.stretch_blocks.size(); ++b) {
-    sweep(layout_.stretch_blocks[b], layout_.stretch_blocks[b + 1], [&](int i) {
-      const ats_distance_c& c = layout_.stretch[i];
-      Float4& pa = layout_.x[c.a];
-      Float4& pb = layout_.x[c.b];
-      const float l = reset ? 0.0f : stretch_lambda_[i];
+    sweep(layout_.stretch_blocks[b], layout_.stretch_blocks[b + 1], [=](int i) {
+      const ats_distance_c c = con[i];
+      Float4& pa = x[c.a];
+      Float4& pb = x[c.b];
+      const float l = reset ? 0.0f : lambda[i];
       const float gamma = c.damping * inv_h;
       const ats_distance_step s = gamma > 0.0f
                                       ? ats_xpbd_distance_damped(xyz(pa), pa.w, xyz(pb), pb.w, c.rest, c.compliance, l,
-                                                                 dt, xyz(x_prev_[c.a]), xyz(x_prev_[c.b]), gamma)
+                                                                 dt, xyz(x0[c.a]), xyz(x0[c.b]), gamma)
                                       : ats_xpbd_distance(xyz(pa), pa.w, xyz(pb), pb.w, c.rest, c.compliance, l, dt);
-      stretch_lambda_[i] = l + s.dlambda;
+      lambda[i] = l + s.dlambda;
       add_xyz(pa, s.dxa);
       add_xyz(pb, s.dxb);
     });
@@ -127,22 +142,26 @@ void XpbdReference::solve_stretch(bool reset) {
 
 void XpbdReference::solve_bend(bool reset) {
   const float dt = static_cast<float>(inertia_dt(layout_, settings_.substep_dt));
+  Float4* x = layout_.x.data();
+  const ats_bend_c* con = layout_.bend.data();
+  float* lambda = bend_lambda_.data();
   for (std::size_t b = 0; b + 1 < layout_.bend_blocks.size(); ++b) {
-    sweep(layout_.bend_blocks[b], layout_.bend_blocks[b + 1], [&](int i) {
-      const ats_bend_c& c = layout_.bend[i];
+    sweep(layout_.bend_blocks[b], layout_.bend_blocks[b + 1], [=](int i) {
+      const ats_bend_c& c = con[i];
       ats_vec3 p[4];
       float w[4];
       for (int j = 0; j < 4; ++j) {
-        p[j] = xyz(layout_.x[c.v[j]]);
-        w[j] = layout_.x[c.v[j]].w;
+        const Float4 q = x[c.v[j]];
+        p[j] = xyz(q);
+        w[j] = q.w;
       }
-      float* lam = &bend_lambda_[3 * i];
+      float* lam = lambda + 3 * i;
       const ats_vec3 l = reset ? ats_v3(0, 0, 0) : ats_v3(lam[0], lam[1], lam[2]);
       const ats_bend_step s = ats_xpbd_bend_element(p, w, &c, l, dt);
       lam[0] = l.x + s.dlambda.x;
       lam[1] = l.y + s.dlambda.y;
       lam[2] = l.z + s.dlambda.z;
-      for (int j = 0; j < 4; ++j) add_xyz(layout_.x[c.v[j]], s.dx[j]);
+      for (int j = 0; j < 4; ++j) add_xyz(x[c.v[j]], s.dx[j]);
     });
   }
 }

@@ -30,6 +30,7 @@ class XpbdReference {
   double residual_rms() const;
 
  private:
+  void substep_here();  // the substep, in the arena already when threads > 1
   void predict();
   void solve_stretch(bool reset);
   void solve_bend(bool reset);
@@ -46,6 +47,7 @@ class XpbdReference {
   std::vector<float> stretch_lambda_;
   std::vector<float> bend_lambda_;  // 3 per stencil
   std::vector<float> tet_lambda_;   // ATS_TET_LAMBDA_STRIDE per tet
+  float inv_h_;                     // 1/h with damped springs, else 0 (xpbd_stretch's inv_h)
   struct Arena;                     // a tbb::task_arena, kept out of this header
   std::unique_ptr<Arena> arena_;    // null: 1 thread
 };
