@@ -81,7 +81,7 @@ TEST_CASE("replaying an async schedule on one device reproduces the executed res
   CHECK(max_difference(executed, replayed) == 0.0);
 }
 
-TEST_CASE("async with depth 1 is serial Gauss-Seidel") {
+TEST_CASE("async with depth 1 is serial Gauss-Seidel", "[fast]") {
   test::TempDir dir;
   const auto serial = io::read_frame_positions(run_cloth(dir, {"solver.schedule=single"}), 6);
   const auto async = io::read_frame_positions(
