@@ -40,7 +40,7 @@ class EnergyGrowthCheck {
 
   struct Energy {
     double kinetic = 0.0, elastic = 0.0;
-    std::vector<float> terms;  // per particle (kinetic), then stretch, bend and tet elements (elastic)
+    std::vector<float> velocities;  // xyz, kept to name the element that exploded (positions are the caller's)
     double total() const { return kinetic + elastic; }
   };
   // The energy of a state: positions and velocities as xyz triplets.
@@ -55,6 +55,8 @@ class EnergyGrowthCheck {
   double largest_growth() const { return largest_growth_; }
 
  private:
+  // Per particle (kinetic), then per stretch, bend and tet element (elastic).
+  std::vector<float> terms(std::span<const float> xyz, std::span<const float> velocities_xyz) const;
   std::string describe_term(std::size_t term) const;
   int term_vertex(std::size_t term) const;
   int object_of(int vertex) const;

@@ -134,6 +134,12 @@ def test_sigkill(tmp):
     listed = xdmf_frames(h5)
     check(len(positions) - 1 <= listed <= len(positions),
           f"the sidecar lists {listed} frames, the file holds {len(positions)}")
+    # /frames/flushed is written after each flush, the same way: as far as
+    # the rows, or one frame behind.
+    with h5py.File(h5, "r") as f:
+        flushed = int(f["frames/flushed"][0])
+    check(len(positions) - 1 <= flushed <= len(positions),
+          f"/frames/flushed is {flushed}, the file holds {len(positions)} frames")
     r = subprocess.run([ATSSIM, "inspect", h5], capture_output=True, text=True)
     check(r.returncode == 0 and "incomplete" in r.stdout, f"atssim inspect: {r.stdout} {r.stderr}")
 
@@ -177,6 +183,7 @@ def test_resume(tmp):
               "the time series do not match the frames")
         check(list(f["schedule/makespan/frame"][()]) == list(range(1, frames + 1)),
               f"/schedule/makespan/frame is {list(f['schedule/makespan/frame'][()])}")
+        check(int(f["frames/flushed"][0]) == frames + 1, f"/frames/flushed is {f['frames/flushed'][0]}")
     check(xdmf_frames(h5) == frames + 1, f"the sidecar lists {xdmf_frames(h5)} frames")
     r = subprocess.run([ATSSIM, "run", scene, "-o", h5, "--resume"] + args, capture_output=True, text=True)
     check(r.returncode == 2 and "complete run" in r.stderr, f"resuming a complete run: {r.returncode} {r.stderr}")
