@@ -15,9 +15,9 @@ Action add_devices_command(CLI::App& cli) {
   return [json]() {
     const auto devices = device::list_devices();
     if (devices.empty()) {
-      throw runtime_error(
-          "no OpenCL device found: install an OpenCL driver (on Debian: pocl-opencl-icd; "
-          "scripts/setup.sh installs it)");
+      throw input_error(
+          "no OpenCL platform with a device found: install an OpenCL driver (on Debian: pocl-opencl-icd, "
+          "scripts/setup.sh installs it), and check OCL_ICD_VENDORS if it is set");
     }
     if (*json) {
       fmt::print("[\n");

@@ -1,8 +1,8 @@
 // `atssim inspect OUT.h5`: what a result file holds, and whether it is complete.
 #include <numeric>
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include "app/commands.hpp"
 #include "io/result_reader.hpp"

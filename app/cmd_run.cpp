@@ -1,7 +1,6 @@
 // `atssim run SCENE`: simulate and write HDF5.
 #include <unistd.h>
 #include <chrono>
-#include <csignal>
 #include <cstdio>
 
 #include <fmt/format.h>
@@ -10,6 +9,7 @@
 #include "app/commands.hpp"
 #include "app/run_summary.hpp"
 #include "app/simulation.hpp"
+#include "app/stop_signals.hpp"
 #include "util/error.hpp"
 
 namespace atssim::app {
@@ -31,17 +31,6 @@ struct RunArgs {
   std::string method;
   bool resume = false;
 };
-
-// The first Ctrl-C stops the run before its next substep (the frames
-// written are kept); a second one ends the process at once.
-void on_signal(int) {
-  if (stop_requested()) {
-    static const char message[] = "\natssim: interrupted again: exiting now (the frames flushed so far are kept)\n";
-    (void)!::write(STDERR_FILENO, message, sizeof message - 1);
-    ::_exit(130);
-  }
-  request_stop();
-}
 
 void print_progress(const RunProgress& p) {
   const double eta_s = p.mean_ms * (p.frames - p.frame) / 1000.0;
@@ -105,8 +94,9 @@ Action add_run_command(CLI::App& cli, const std::string& command_line) {
     options.warn = [show_progress](const std::string& text) {
       fmt::print(stderr, "{}atssim: warning: {}\n", show_progress ? "\n" : "", text);
     };
-    std::signal(SIGINT, on_signal);
-    std::signal(SIGTERM, on_signal);
+    // The first Ctrl-C stops the run before its next substep (the frames
+    // written are kept); a second one ends the process at once.
+    watch_stop_signals();
     const auto start = std::chrono::steady_clock::now();
     RunResult r;
     RunSummaryInput summary;

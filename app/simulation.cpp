@@ -14,10 +14,12 @@
 
 #include "app/blow_up.hpp"
 #include "app/collider_motion.hpp"
+#include "app/energy_growth.hpp"
 #include "app/execution.hpp"
 #include "app/scene_checks.hpp"
 #include "device/device_set.hpp"
 #include "device/plan_executor.hpp"
+#include "io/output_health.hpp"
 #include "io/result_writer.hpp"
 #include "model/cloth_builder.hpp"
 #include "scene/scene_loader.hpp"
@@ -180,6 +182,22 @@ class CrossingReport {
   bool reported_ = false;
 };
 
+constexpr const char* kInterruptedSetUp =
+    "interrupted during device set-up (building and profiling the kernels); nothing was written";
+
+// Device set-up (opening devices, building and profiling the kernels) runs
+// to its end after a Ctrl-C; whatever it fails with then (a driver cut short),
+// the run was interrupted.
+template <typename Step>
+auto during_set_up(Step&& step) -> decltype(step()) {
+  try {
+    return step();
+  } catch (const std::exception&) {
+    if (g_stop) throw runtime_error(kInterruptedSetUp);
+    throw;
+  }
+}
+
 // Keeps only what output needs (object topology and rest shape).
 void release_simulation_state(model::Model& model) {
   model = model::Model{{}, {}, {}, std::move(model.objects), model.gravity, {}, model.ground};
@@ -219,9 +237,12 @@ void run_simulation(const RunOptions& options, RunResult& result,
   g_stop = false;
   result = RunResult{};
   const scene::SceneDesc scene = load_scene(options.scene_path, options.overrides);
+  // Before the devices: an output path that cannot be written is refused in
+  // a moment, not after the kernels were built.
+  io::check_output_folder(scene.output.path);
   const solver::MethodDescription& method = solver::method(scene.solver.method);
   const solver::MethodSettings settings = solver::method_settings(scene, method);
-  const device::DeviceSet devices = open_scene_devices(scene);
+  const device::DeviceSet devices = during_set_up([&] { return open_scene_devices(scene); });
   check_schedule_fits(scene, method, settings, devices.size());
   const auto& sim = scene.simulation;
 
@@ -230,6 +251,7 @@ void run_simulation(const RunOptions& options, RunResult& result,
   model::Model model = model::build_model(scene);
   const std::size_t particles = model.particles.size();
   solver::SimLayout layout = solver::make_sim_layout(model);
+  EnergyGrowthCheck energy_check(layout, xyz_of(plan::bytes_of(layout.v)), model.objects, sim.energy_growth_limit);
   solver::KinematicColliders colliders(model.colliders);  // posed per substep; the per-frame contact record
   std::optional<solver::SurfaceContactCheck> surfaces;    // the per-frame surface record
   if (model.contact_surface) surfaces.emplace(model.contact_surface->triangles, model.contact_surface->thickness);
@@ -238,8 +260,9 @@ void run_simulation(const RunOptions& options, RunResult& result,
   layout = {};
   ExecutionOptions exec_options = execution_options(scene);
   exec_options.svm = svm_mode(options.svm_mode);
-  Execution execution = prepare_execution(devices, std::move(plan), exec_options);
+  Execution execution = during_set_up([&] { return prepare_execution(devices, std::move(plan), exec_options); });
   device::PlanExecutor& executor = *execution.executor;
+  if (g_stop) throw runtime_error(kInterruptedSetUp);
 
   const io::RunInfo info = run_info(options, scene, devices, execution, exec_options);
   io::Checkpoint resumed;
@@ -289,6 +312,7 @@ void run_simulation(const RunOptions& options, RunResult& result,
   const BlowUpBounds bounds =
       blow_up_bounds(xyz, xyz_of(state.velocities), std::hypot(sim.gravity[0], sim.gravity[1], sim.gravity[2]),
                      sim.frame_dt, sim.substeps);
+  EnergyGrowthCheck::Energy energy = energy_check.energy(xyz, xyz_of(state.velocities));
   std::optional<io::ContactFrame> first_contact;
   if (!options.resume) {
     writer.set_checkpoint(0, state.positions, state.velocities);
@@ -318,7 +342,14 @@ void run_simulation(const RunOptions& options, RunResult& result,
       const FrameMeasurement measured = refit_and_reschedule(execution, exec_options);
       const double schedule_ms =
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - schedule_start).count();
-      if (const auto why = find_blow_up(before, xyz, bounds, frame * sim.frame_dt, 1)) {
+      std::optional<std::string> why = find_blow_up(before, xyz, bounds, frame * sim.frame_dt, 1);
+      if (!why && energy_check.enabled()) {
+        state = executor.read_state();
+        EnergyGrowthCheck::Energy now = energy_check.energy(xyz, xyz_of(state.velocities));
+        why = energy_check.check(energy, before, now, xyz);
+        energy = std::move(now);
+      }
+      if (why) {
         throw runtime_error(
             fmt::format("frame {}: the simulation blew up ({}); use more substeps or iterations, "
                         "or softer materials",
@@ -327,12 +358,13 @@ void run_simulation(const RunOptions& options, RunResult& result,
       const int done = frame - first_frame + 1;
       total_ms += ms;
       result.frames_simulated = frame;
+      result.energy_growth = energy_check.largest_growth();
       result.frame_ms.push_back(ms);
       result.bytes_moved.push_back(static_cast<double>(measured.bytes_moved));
       result.mean_frame_ms = total_ms / done;
       if (written) {
         record_schedule(writer, frame, used, used_waits, measured);
-        state = executor.read_state();
+        if (!energy_check.enabled()) state = executor.read_state();
         writer.set_checkpoint(frame, state.positions, state.velocities);
         const io::ContactFrame contact = contact_frame(colliders, xyz, surface_measurement.get());
         writer.append_frame(frame * sim.frame_dt, xyz, ms, schedule_ms, contact);

@@ -1,6 +1,7 @@
 #pragma once
 // Wires the pipeline for `atssim run`: scene -> model -> XPBD plan ->
 // devices -> frames -> HDF5.
+#include <cmath>
 #include <functional>
 #include <span>
 #include <string>
@@ -58,6 +59,10 @@ struct RunResult {
   };
   bool surface_contact = false;
   std::vector<ContactRecord> contact;
+  // The largest growth of kinetic + elastic energy over one frame, relative
+  // to what the energy check allows for (app/energy_growth.hpp); the run
+  // fails above simulation.energy_growth_limit.
+  double energy_growth = -INFINITY;
 };
 
 // Throws atssim::Error: input errors before anything is written; runtime

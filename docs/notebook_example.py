@@ -10,7 +10,7 @@ its own small results in a temporary folder and draws one figure:
 The cells: (1) a run with its `--json` summary; (2) positions of a frame from
 /frames/positions; (3) the schedule map of the last recorded substep,
 predicted vs measured; (4) convergence curves from `atssim converge`;
-(5) reading a file while atssim is still writing it (reopened per read).
+(5) reading a file while atssim is still writing it (python/atssim.follow_frames).
 """
 # %% Setup: where atssim is, a folder for the results.
 import argparse
@@ -18,8 +18,8 @@ import json
 import os
 import pathlib
 import subprocess
+import sys
 import tempfile
-import time
 
 import h5py
 import matplotlib
@@ -33,13 +33,13 @@ ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
 ap.add_argument("-o", "--output", default=str(root / "docs" / "notebook-example.png"))
 ap.add_argument("--atssim", default=os.environ.get("ATSSIM", str(root / "build" / "release" / "atssim")))
 args, _ = ap.parse_known_args()
-atssim = args.atssim
+atssim_binary = args.atssim
 work = pathlib.Path(tempfile.mkdtemp(prefix="atssim-notebook-"))
 scene = str(root / "scenes" / "hanging_cloth.yaml")
 small = ["--set", "objects.0.grid.resolution=[32, 32]"]
 
 # %% (1) A run on two sub-devices; its summary is one JSON object on stdout.
-run = subprocess.run([atssim, "run", scene, "-o", str(work / "cloth.h5"), "--frames", "40", "--devices", "cpu/2",
+run = subprocess.run([atssim_binary, "run", scene, "-o", str(work / "cloth.h5"), "--frames", "40", "--devices", "cpu/2",
                       "--schedule", "split", *small, "--json"], capture_output=True, text=True, check=True)
 summary = json.loads(run.stdout)
 print(f"{summary['status']}: {summary['frames']['written']} frames, "
@@ -84,7 +84,7 @@ with h5py.File(work / "cloth.h5", "r") as f:
               fontsize=7, loc="lower right")
 
 # %% (4) Convergence: relative energy error y_k against iterations, per method.
-subprocess.run([atssim, "converge", scene, "-o", str(work / "convergence.h5"), "--methods", "xpbd,vbd",
+subprocess.run([atssim_binary, "converge", scene, "-o", str(work / "convergence.h5"), "--methods", "xpbd,vbd",
                 "--iterations", "16", "--frames-before", "5", *small], capture_output=True, text=True, check=True)
 with h5py.File(work / "convergence.h5", "r") as f:
     ax = axes[1, 0]
@@ -96,28 +96,21 @@ with h5py.File(work / "convergence.h5", "r") as f:
     ax.set_title("convergence against the Newton reference")
     ax.legend(fontsize=8)
 
-# %% (5) A file that is still being written: open it read-only, read, close, repeat.
-# atssim writes without SWMR (so that a killed run's file opens with a plain
-# h5py.File), flushing every frame; a reopen sees every flushed frame. A read
-# that lands inside a flush can fail: retry it.
-proc = subprocess.Popen([atssim, "run", scene, "-o", str(work / "live.h5"), "--frames", "400", "--devices", "cpu/2:0",
-                         *small, "--quiet"])
-while not (work / "live.h5").exists() or not (work / "live.xdmf").exists():
-    time.sleep(0.05)
-seen, failed_reads = [], 0
-while proc.poll() is None:
-    try:
-        with h5py.File(work / "live.h5", "r") as f:
-            positions, times = f["frames/positions"], f["frames/time"]
-            n = min(positions.shape[0], times.shape[0])
-            if n and (not seen or n != seen[-1][0]):
-                seen.append((n, float(positions[n - 1, :, 1].min())))  # the lowest point of the newest frame
-    except (OSError, KeyError):
-        failed_reads += 1  # caught the writer mid-flush: try again
-    time.sleep(0.02)
-with h5py.File(work / "live.h5", "r") as f:
-    complete = int(f.attrs["complete"])
-print(f"{failed_reads} reads caught the writer mid-flush and were retried")
+# %% (5) A file that is still being written: python/atssim reads the frames the run has flushed in
+# full, retrying a read that lands inside a flush (docs/output-format.md), every 0.1 s.
+sys.path.insert(0, str(root / "python"))
+import atssim  # noqa: E402
+
+proc = subprocess.Popen([atssim_binary, "run", scene, "-o", str(work / "live.h5"), "--frames", "400", "--devices",
+                         "cpu/2:0", *small, "--quiet"])
+seen, retried, complete = [], 0, False
+for new in atssim.follow_frames(work / "live.h5", interval=0.1):
+    last = new.first + len(new.time)
+    seen.append((last, float(new.positions[-1, :, 1].min())))  # frames so far, lowest point of the newest
+    retried += new.retries
+    complete = new.complete
+proc.wait()
+print(f"{retried} reads caught the writer mid-flush and were retried inside read_frames")
 print(f"read {len(seen)} growing states while the run wrote; complete afterwards: {complete}")
 ax = axes[1, 1]
 ax.plot([n for n, _ in seen], [y for _, y in seen], ".")

@@ -1,13 +1,18 @@
 #!/usr/bin/env bash
 # Fuzzes the scene parser with libFuzzer (Debian's clang; `bash scripts/setup.sh fuzz`
-# installs it). Not run by CI: it is CPU-heavy, so it runs niced, one worker.
+# installs it). It runs niced, one worker; scripts/check.sh runs it for 2
+# minutes (CI, --quick) or 10.
 #
-#   scripts/fuzz_scene.sh [RUNS] [extra libFuzzer flags]   (default 1000000 runs)
+#   scripts/fuzz_scene.sh [RUNS] [extra libFuzzer flags]   (default 1000000 runs; -1: no limit,
+#                                                           e.g. with -max_total_time=120)
 #
 # Builds build/fuzz/fuzz_scene from lib/scene + lib/util with
-# -fsanitize=fuzzer,address,undefined; the seed corpus is every bundled scene
+# -fsanitize=fuzzer,address,undefined; the seed corpus is the kept corpus
+# tests/fuzz/corpus (a minimised corpus of earlier runs), every bundled scene
 # and every bad-input case; new inputs go to build/fuzz/corpus, crashes to
 # build/fuzz/crash-*. Turn a crash into a case under tests/bad_input/cases.
+# To refresh the kept corpus after a long run:
+#   build/fuzz/fuzz_scene -merge=1 -max_len=8192 tests/fuzz/corpus build/fuzz/corpus
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 runs="${1:-1000000}"
@@ -27,6 +32,7 @@ if [[ ! -x "$out/fuzz_scene" || -n "$(find "${sources[@]}" "$root"/lib/scene "$r
     -lyaml-cpp -lassimp -lfmt -o "$out/fuzz_scene"
 fi
 cp "$root"/scenes/*.yaml "$root"/tests/bad_input/cases/*.yaml "$out/seeds/"
+if compgen -G "$root/tests/fuzz/corpus/*" >/dev/null; then cp "$root"/tests/fuzz/corpus/* "$out/seeds/"; fi
 cd "$out"
 echo "nice -n 19 $out/fuzz_scene -runs=$runs -timeout=10 -rss_limit_mb=2048 -max_len=8192 $* corpus seeds"
 exec nice -n 19 "$out/fuzz_scene" -runs="$runs" -timeout=10 -rss_limit_mb=2048 -max_len=8192 -print_final_stats=1 \

@@ -6,6 +6,8 @@
 #   bash scripts/setup.sh                 # build, tests, scripts (CI runs this)
 #   bash scripts/setup.sh paraview        # + ParaView's pvpython and Xvfb (~600 MB)
 #   bash scripts/setup.sh slurm           # + a one-node Slurm cluster with munge
+#   bash scripts/setup.sh fuzz            # + clang with libFuzzer (scripts/fuzz_scene.sh)
+#   bash scripts/setup.sh check           # + fuzz, clang-tidy, clang-format (scripts/check.sh; CI)
 #
 # ParaView and Slurm are opt-in groups: they are large (ParaView pulls Qt,
 # VTK and OpenMPI) or start daemons, and only the workflow scripts under
@@ -31,7 +33,8 @@ for group in "$@"; do
     paraview) packages+=(paraview python3-paraview xvfb xauth) ;;
     slurm) packages+=(slurm-wlm munge) ;;
     fuzz) packages+=(clang libclang-rt-dev) ;;
-    *) echo "atssim setup: unknown group '$group' (groups: paraview, slurm, fuzz)" >&2; exit 2 ;;
+    check) packages+=(clang libclang-rt-dev clang-tidy clang-format) ;;
+    *) echo "atssim setup: unknown group '$group' (groups: paraview, slurm, fuzz, check)" >&2; exit 2 ;;
   esac
 done
 

@@ -15,7 +15,11 @@ ISSUE = re.compile(r"issue #\d+")
 
 def main() -> int:
     bad = []
-    for src in sorted(pathlib.Path(sys.argv[1]).rglob("*.cpp")):
+    sources = sorted(pathlib.Path(sys.argv[1]).rglob("*.cpp"))
+    if not sources:
+        print(f"no test source under {sys.argv[1]}: nothing was checked")
+        return 1
+    for src in sources:
         lines = src.read_text(encoding="utf-8").splitlines()
         for k, line in enumerate(lines):
             if HIDDEN.search(line) and not any(ISSUE.search(l) for l in lines[max(0, k - 5):k + 1]):

@@ -4,9 +4,7 @@
 #include "common/task.h"
 
 /* Snapshot of a device's positions for other devices to merge. */
-ATS_TASK void async_publish(int i, __global float4* dst, __global const float4* src) {
-  dst[i] = src[i];
-}
+ATS_TASK void async_publish(int i, __global float4* dst, __global const float4* src) { dst[i] = src[i]; }
 
 #define ATS_MERGE_COPY 0
 #define ATS_MERGE_AVERAGE_POSITIONS 1
@@ -18,7 +16,8 @@ ATS_TASK void async_publish(int i, __global float4* dst, __global const float4* 
  *   average positions:     (dst + other) / 2
  *   average displacements: start + the mean of the displacements of the
  *                          copies that moved the particle since `start` */
-ATS_TASK void async_merge(int i, __global float4* dst, __global const float4* other, __global const float4* start, int strategy) {
+ATS_TASK void async_merge(int i, __global float4* dst, __global const float4* other, __global const float4* start,
+                          int strategy) {
   const float4 a = dst[i];
   const float4 b = other[i];
   float3 r;

@@ -60,7 +60,8 @@ static inline float2 contact_mu(__global const ats_collider_c* c, float2 pf) {
 /* Coulomb friction on the substep's displacement from q (x_t) to p relative
  * to the collider's surface, given the normal displacement dn the contact
  * caused (see above), with the coefficients mu = (mu_s, mu_k). */
-static inline float4 coulomb_friction(float4 p, float4 q, ats_vec3 n, float dn, __global const ats_collider_c* c, float2 mu) {
+static inline float4 coulomb_friction(float4 p, float4 q, ats_vec3 n, float dn, __global const ats_collider_c* c,
+                                      float2 mu) {
   if (!(dn > 0.0f)) return p;
   const ats_vec3 u = ats_sub(ats_v3(p.x - q.x, p.y - q.y, p.z - q.z), surface_motion(c, p));
   const ats_vec3 ut = ats_sub(u, ats_scale(n, ats_dot(u, n)));
@@ -84,7 +85,9 @@ static inline float4 no_deeper(float4 f, float4 p, __global const ats_collider_c
   return (float4)(f.x + push * s.n.x, f.y + push * s.n.y, f.z + push * s.n.z, f.w);
 }
 
-ATS_TASK void particles_friction(int i, __global float4* x, __global const float4* x_prev, __global const float4* v, __global const ats_collider_c* colliders, int count, float dt, __global const float2* pf) {
+ATS_TASK void particles_friction(int i, __global float4* x, __global const float4* x_prev, __global const float4* v,
+                                 __global const ats_collider_c* colliders, int count, float dt,
+                                 __global const float2* pf) {
   const float4 p = x[i];
   if (p.w == 0.0f) return;
   ats_vec3 n;

@@ -8,8 +8,8 @@
  * returns the new position (pinned particles keep theirs and lose their
  * velocity). damp = 1/(1 + c dt) takes air drag c implicitly
  * (solver/layout/sim_layout.hpp); 1 without drag (exact: same bits). */
-static inline float4 predict_particle(int i, __global float4* x, __global float4* v, __global float4* x_prev,
-                                      float dt, float gx, float gy, float gz, float damp) {
+static inline float4 predict_particle(int i, __global float4* x, __global float4* v, __global float4* x_prev, float dt,
+                                      float gx, float gy, float gz, float damp) {
   const float4 p = x[i];
   x_prev[i] = p;
   if (p.w == 0.0f) {
@@ -29,11 +29,13 @@ static inline float4 predict_particle(int i, __global float4* x, __global float4
   return q;
 }
 
-ATS_TASK void particles_predict(int i, __global float4* x, __global float4* v, __global float4* x_prev, __global float4* x_tilde, float dt, float gx, float gy, float gz, float damp) {
+ATS_TASK void particles_predict(int i, __global float4* x, __global float4* v, __global float4* x_prev,
+                                __global float4* x_tilde, float dt, float gx, float gy, float gz, float damp) {
   x_tilde[i] = predict_particle(i, x, v, x_prev, dt, gx, gy, gz, damp);
 }
 
-ATS_TASK void particles_update_velocity(int i, __global const float4* x, __global float4* v, __global const float4* x_prev, float inv_dt) {
+ATS_TASK void particles_update_velocity(int i, __global const float4* x, __global float4* v,
+                                        __global const float4* x_prev, float inv_dt) {
   const float4 d = x[i] - x_prev[i];
   v[i] = (float4)(d.x * inv_dt, d.y * inv_dt, d.z * inv_dt, 0.0f);
 }
@@ -46,6 +48,4 @@ ATS_TASK void particles_ground(int i, __global float4* x, float height) {
 }
 
 /* Copies positions (used where an iteration leaves its result elsewhere). */
-ATS_TASK void particles_copy(int i, __global float4* dst, __global const float4* src) {
-  dst[i] = src[i];
-}
+ATS_TASK void particles_copy(int i, __global float4* dst, __global const float4* src) { dst[i] = src[i]; }

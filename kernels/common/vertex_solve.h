@@ -20,9 +20,7 @@ ATS_FN ats_solve3 ats_m3_solve(ats_mat3 h, ats_vec3 b) {
   s.x = ats_v3(0, 0, 0);
   s.ok = 0;
   ats_real m = 0;
-  ATS_UNROLL for (int i = 0; i < 3; ++i) {
-    m = fmax(m, fmax(fabs(h.r[i].x), fmax(fabs(h.r[i].y), fabs(h.r[i].z))));
-  }
+  ATS_UNROLL for (int i = 0; i < 3; ++i) { m = fmax(m, fmax(fabs(h.r[i].x), fmax(fabs(h.r[i].y), fabs(h.r[i].z)))); }
   if (!(m > 0)) return s;
   const ats_real inv_m = (ats_real)1 / m;
   ATS_UNROLL for (int i = 0; i < 3; ++i) h.r[i] = ats_scale(h.r[i], inv_m);

@@ -34,28 +34,33 @@
 
 /* state: the frame_state of common/self_contact_bvh.h (sc_decide); the
  * detection tasks do nothing in a substep that keeps the lists. */
-ATS_TASK void sc_leaf_boxes(int t, __global const float4* x, __global const int4* tris, __global float4* nodes, __global const int* state) {
+ATS_TASK void sc_leaf_boxes(int t, __global const float4* x, __global const int4* tris, __global float4* nodes,
+                            __global const int* state) {
   if (state[1]) sc_leaf_box(t, x, (__global const int*)tris, nodes);
 }
 
 /* Node j of the level at `offset` from its children at `child_offset`. */
-ATS_TASK void sc_refit_level(int j, __global float4* nodes, int offset, int child_offset, int children, __global const int* state) {
+ATS_TASK void sc_refit_level(int j, __global float4* nodes, int offset, int child_offset, int children,
+                             __global const int* state) {
   if (state[1]) sc_refit_node(nodes, offset + j, child_offset, 2 * j, children);
 }
 
 /* The levels from `from` to `root`, each after the one below (one work-item). */
-ATS_TASK void sc_refit_top(int k, __global float4* nodes, __global const int* levels, int from, int root, __global const int* state) {
+ATS_TASK void sc_refit_top(int k, __global float4* nodes, __global const int* levels, int from, int root,
+                           __global const int* state) {
   if (k == 0 && state[1]) sc_refit_levels(nodes, levels, from, root);
 }
 
 /* Per block of ATS_SC_MOTION_BLOCK particles the boxes of the displacements
  * since the lists were made and of the predicted steps. */
-ATS_TASK void sc_motion(int b, __global const float4* x_det, __global const float4* x_start, __global const float4* x_guess, __global const int* inc, int n, __global float* block_max) {
+ATS_TASK void sc_motion(int b, __global const float4* x_det, __global const float4* x_start,
+                        __global const float4* x_guess, __global const int* inc, int n, __global float* block_max) {
   sc_block_motion(b, x_det, x_start, x_guess, inc, n, block_max);
 }
 
 /* Whether this substep rebuilds the lists (one work-item). */
-ATS_TASK void sc_decide_detection(int k, __global const float* block_max, int blocks, float r, float r_max, __global int* state) {
+ATS_TASK void sc_decide_detection(int k, __global const float* block_max, int blocks, float r, float r_max,
+                                  __global int* state) {
   if (k == 0) sc_decide(block_max, blocks, r, r_max, state);
 }
 
@@ -66,29 +71,41 @@ ATS_TASK void sc_snap(int i, __global const float4* x_start, __global float4* x_
 
 /* The lists of the leaves of group g, one walk per group
  * (common/self_contact_bvh.h sc_query_group). */
-ATS_TASK void sc_query_groups(int g, __global const float4* x, __global const int* inc, __global const int4* tris, __global const int2* edges, __global const int* leaves, __global const float4* nodes, __global const int* levels, int root, int leaf_count, __global const int* state, __global int* vt, __global int* tv, __global int* ee) {
-  if (state[1]) sc_query_group(g, leaf_count, x, inc, (__global const int*)tris, (__global const int*)edges, leaves, nodes, levels, root, as_float(state[2]), vt, tv, ee);
+ATS_TASK void sc_query_groups(int g, __global const float4* x, __global const int* inc, __global const int4* tris,
+                              __global const int2* edges, __global const int* leaves, __global const float4* nodes,
+                              __global const int* levels, int root, int leaf_count, __global const int* state,
+                              __global int* vt, __global int* tv, __global int* ee) {
+  if (state[1])
+    sc_query_group(g, leaf_count, x, inc, (__global const int*)tris, (__global const int*)edges, leaves, nodes, levels,
+                   root, as_float(state[2]), vt, tv, ee);
 }
 
 /* Once per substep, after the lists (common/self_contact_bvh.h): every
  * listed pair's distance at x_t, per vertex, triangle and edge list; then
  * the bound (below) and the near lists the iterations and friction read. */
-ATS_TASK void sc_vertex_distances_task(int i, __global const float4* x, __global const int4* tris, __global const int* vt, __global float* vt_d) {
+ATS_TASK void sc_vertex_distances_task(int i, __global const float4* x, __global const int4* tris,
+                                       __global const int* vt, __global float* vt_d) {
   sc_vertex_distances(i, x, (__global const int*)tris, vt, vt_d);
 }
-ATS_TASK void sc_triangle_distances_task(int t, __global const float4* x, __global const int4* tris, __global const int* tv, __global float* tv_d) {
+ATS_TASK void sc_triangle_distances_task(int t, __global const float4* x, __global const int4* tris,
+                                         __global const int* tv, __global float* tv_d) {
   sc_triangle_distances(t, x, (__global const int*)tris, tv, tv_d);
 }
-ATS_TASK void sc_edge_distances_task(int e, __global const float4* x, __global const int2* edges, __global const int* ee, __global float* ee_d) {
+ATS_TASK void sc_edge_distances_task(int e, __global const float4* x, __global const int2* edges,
+                                     __global const int* ee, __global float* ee_d) {
   sc_edge_distances(e, x, (__global const int*)edges, ee, ee_d);
 }
-ATS_TASK void sc_near_vertices(int i, __global const int* inc, int n, __global const int4* tris, __global const int* vt, __global const float* vt_d, __global const float* bound, float r, __global const int* tv_near, __global const int* ee_near, __global int* vt_near) {
+ATS_TASK void sc_near_vertices(int i, __global const int* inc, int n, __global const int4* tris, __global const int* vt,
+                               __global const float* vt_d, __global const float* bound, float r,
+                               __global const int* tv_near, __global const int* ee_near, __global int* vt_near) {
   sc_near_vertex(i, inc, n, (__global const int*)tris, vt, vt_d, bound, r, tv_near, ee_near, vt_near);
 }
-ATS_TASK void sc_near_triangles(int t, __global const int4* tris, __global const int* tv, __global const float* tv_d, __global const float* bound, float r, __global int* tv_near) {
+ATS_TASK void sc_near_triangles(int t, __global const int4* tris, __global const int* tv, __global const float* tv_d,
+                                __global const float* bound, float r, __global int* tv_near) {
   sc_near_triangle(t, (__global const int*)tris, tv, tv_d, bound, r, tv_near);
 }
-ATS_TASK void sc_near_edges(int e, __global const int2* edges, __global const int* ee, __global const float* ee_d, __global const float* bound, float r, __global int* ee_near) {
+ATS_TASK void sc_near_edges(int e, __global const int2* edges, __global const int* ee, __global const float* ee_d,
+                            __global const float* bound, float r, __global int* ee_near) {
   sc_near_edge(e, (__global const int*)edges, ee, ee_d, bound, r, ee_near);
 }
 
@@ -129,7 +146,8 @@ static inline float4 sc_bounded(float4 p, float4 q, float b) {
 /* x[i] held within its bound of x_t, then out of the colliders: an obstacle
  * moving into the surface (a rising box) carries a vertex further than its
  * bound, which only limits how fast surfaces close on each other. */
-ATS_TASK void sc_clamp(int i, __global float4* x, __global const float4* x_start, __global const float* bound, __global const ats_collider_c* colliders, int collider_count) {
+ATS_TASK void sc_clamp(int i, __global float4* x, __global const float4* x_start, __global const float* bound,
+                       __global const ats_collider_c* colliders, int collider_count) {
   x[i] = sc_out_of_colliders(sc_bounded(x[i], x_start[i], bound[i]), colliders, collider_count, 1);
 }
 
@@ -143,46 +161,51 @@ ATS_TASK void sc_clamp(int i, __global float4* x, __global const float4* x_start
  * vertex-triangle pair, as a corner of one, as an end of an edge-edge pair.
  * Reads the caller's i, x, tris, edges, inc, n and the near lists vt, tv and
  * ee (vt[i][1]: how many; none, nothing to read). */
-#define SC_FOR_EACH_PAIR(BODY)                                              \
-  if (vt[(i) * ATS_SC_STRIDE + 1] > 0) {                                                                           \
-    const float4 sc_p = x[i];                                                                                      \
-    __global const int* sc_l = vt + (i) * ATS_SC_STRIDE;                                                           \
-    for (int sc_m = 0; sc_m < sc_l[0]; ++sc_m) {                                                                   \
-      const int4 sc_f = tris[sc_l[2 + sc_m]];                                                                         \
-      const int pv[4] = {(i), sc_f.x, sc_f.y, sc_f.z};                                                                      \
-      const int slot = 0;                                                                                          \
-      const ats_pair_geometry g = ats_point_triangle(sc_v(sc_p), sc_v(SC_AT(sc_f.x)), sc_v(SC_AT(sc_f.y)), sc_v(SC_AT(sc_f.z)));        \
-      BODY                                                                                                         \
-    }                                                                                                              \
-    for (int sc_k = inc[i]; sc_k < inc[(i) + 1]; ++sc_k) {                                                         \
-      const int sc_t = inc[sc_k];                                                                                  \
-      const int4 sc_f = tris[sc_t];                                                                                   \
-      const int slot = sc_f.x == (i) ? 1 : (sc_f.y == (i) ? 2 : 3);                                                      \
-      __global const int* sc_q = tv + sc_t * ATS_SC_STRIDE;                                                        \
-      for (int sc_m = 0; sc_m < sc_q[0]; ++sc_m) {                                                                 \
-        const int sc_o = sc_q[2 + sc_m];                                                                           \
-        const int pv[4] = {sc_o, sc_f.x, sc_f.y, sc_f.z};                                                                   \
-        const ats_pair_geometry g = ats_point_triangle(sc_v(SC_AT(sc_o)), sc_v(SC_AT(sc_f.x)), sc_v(SC_AT(sc_f.y)), sc_v(SC_AT(sc_f.z)));   \
-        BODY                                                                                                       \
-      }                                                                                                            \
-    }                                                                                                              \
-    for (int sc_k = inc[(n) + 1 + (i)]; sc_k < inc[(n) + 2 + (i)]; ++sc_k) {                                       \
-      const int sc_e = inc[sc_k];                                                                                  \
-      const int2 sc_s = edges[sc_e];                                                                                  \
-      const int slot = sc_s.x == (i) ? 0 : 1;                                                                         \
-      __global const int* sc_q = ee + sc_e * ATS_SC_STRIDE;                                                        \
-      for (int sc_m = 0; sc_m < sc_q[0]; ++sc_m) {                                                                 \
-        const int2 sc_o2 = edges[sc_q[2 + sc_m]];                                                                      \
-        const int pv[4] = {sc_s.x, sc_s.y, sc_o2.x, sc_o2.y};                                                                    \
-        const ats_pair_geometry g = ats_edge_edge(sc_v(SC_AT(sc_s.x)), sc_v(SC_AT(sc_s.y)), sc_v(SC_AT(sc_o2.x)), sc_v(SC_AT(sc_o2.y)));         \
-        BODY                                                                                                       \
-      }                                                                                                            \
-    }                                                                                                              \
+#define SC_FOR_EACH_PAIR(BODY)                                                                                    \
+  if (vt[(i)*ATS_SC_STRIDE + 1] > 0) {                                                                            \
+    const float4 sc_p = x[i];                                                                                     \
+    __global const int* sc_l = vt + (i)*ATS_SC_STRIDE;                                                            \
+    for (int sc_m = 0; sc_m < sc_l[0]; ++sc_m) {                                                                  \
+      const int4 sc_f = tris[sc_l[2 + sc_m]];                                                                     \
+      const int pv[4] = {(i), sc_f.x, sc_f.y, sc_f.z};                                                            \
+      const int slot = 0;                                                                                         \
+      const ats_pair_geometry g =                                                                                 \
+          ats_point_triangle(sc_v(sc_p), sc_v(SC_AT(sc_f.x)), sc_v(SC_AT(sc_f.y)), sc_v(SC_AT(sc_f.z)));          \
+      BODY                                                                                                        \
+    }                                                                                                             \
+    for (int sc_k = inc[i]; sc_k < inc[(i) + 1]; ++sc_k) {                                                        \
+      const int sc_t = inc[sc_k];                                                                                 \
+      const int4 sc_f = tris[sc_t];                                                                               \
+      const int slot = sc_f.x == (i) ? 1 : (sc_f.y == (i) ? 2 : 3);                                               \
+      __global const int* sc_q = tv + sc_t * ATS_SC_STRIDE;                                                       \
+      for (int sc_m = 0; sc_m < sc_q[0]; ++sc_m) {                                                                \
+        const int sc_o = sc_q[2 + sc_m];                                                                          \
+        const int pv[4] = {sc_o, sc_f.x, sc_f.y, sc_f.z};                                                         \
+        const ats_pair_geometry g =                                                                               \
+            ats_point_triangle(sc_v(SC_AT(sc_o)), sc_v(SC_AT(sc_f.x)), sc_v(SC_AT(sc_f.y)), sc_v(SC_AT(sc_f.z))); \
+        BODY                                                                                                      \
+      }                                                                                                           \
+    }                                                                                                             \
+    for (int sc_k = inc[(n) + 1 + (i)]; sc_k < inc[(n) + 2 + (i)]; ++sc_k) {                                      \
+      const int sc_e = inc[sc_k];                                                                                 \
+      const int2 sc_s = edges[sc_e];                                                                              \
+      const int slot = sc_s.x == (i) ? 0 : 1;                                                                     \
+      __global const int* sc_q = ee + sc_e * ATS_SC_STRIDE;                                                       \
+      for (int sc_m = 0; sc_m < sc_q[0]; ++sc_m) {                                                                \
+        const int2 sc_o2 = edges[sc_q[2 + sc_m]];                                                                 \
+        const int pv[4] = {sc_s.x, sc_s.y, sc_o2.x, sc_o2.y};                                                     \
+        const ats_pair_geometry g =                                                                               \
+            ats_edge_edge(sc_v(SC_AT(sc_s.x)), sc_v(SC_AT(sc_s.y)), sc_v(SC_AT(sc_o2.x)), sc_v(SC_AT(sc_o2.y)));  \
+        BODY                                                                                                      \
+      }                                                                                                           \
+    }                                                                                                             \
   }
 
 /* VBD's conservative displacement bound of vertex i (§3.7), from the
  * distances above (common/self_contact_bvh.h sc_vertex_bound). */
-ATS_TASK void sc_bound(int i, __global const int* inc, int n, __global const int* vt, __global const int* tv, __global const int* ee, __global const float* vt_d, __global const float* tv_d, __global const float* ee_d, __global const int* state, float gamma, __global float* bound) {
+ATS_TASK void sc_bound(int i, __global const int* inc, int n, __global const int* vt, __global const int* tv,
+                       __global const int* ee, __global const float* vt_d, __global const float* tv_d,
+                       __global const float* ee_d, __global const int* state, float gamma, __global float* bound) {
   bound[i] = sc_vertex_bound(i, inc, n, vt, tv, ee, vt_d, tv_d, ee_d, as_float(state[3]), gamma);
 }
 
@@ -190,7 +213,9 @@ ATS_TASK void sc_bound(int i, __global const int* inc, int n, __global const int
  * pair of vertex i, zero compliance: the pair's correction of vertex i,
  * -C w_i m_i n / sum_j m_j w_j^2 (m: inverse masses), averaged over its
  * active pairs (Jacobi; every vertex reads the same x). */
-ATS_TASK void sc_project(int i, __global const float4* x, __global float4* x_out, __global const int4* tris, __global const int2* edges, __global const int* inc, int n, __global const int* vt, __global const int* tv, __global const int* ee, float r) {
+ATS_TASK void sc_project(int i, __global const float4* x, __global float4* x_out, __global const int4* tris,
+                         __global const int2* edges, __global const int* inc, int n, __global const int* vt,
+                         __global const int* tv, __global const int* ee, float r) {
   const float4 p = x[i];
   x_out[i] = p;
   if (p.w == 0.0f || !sc_is_surface(inc, i)) return;
@@ -212,7 +237,8 @@ ATS_TASK void sc_project(int i, __global const float4* x, __global float4* x_out
   x_out[i] = (float4)(p.x + s * sum.x, p.y + s * sum.y, p.z + s * sum.z, p.w);
 }
 
-ATS_TASK void sc_apply(int i, __global float4* x, __global const float4* x_out, __global const float4* x_start, __global const float* bound, __global const ats_collider_c* colliders, int collider_count) {
+ATS_TASK void sc_apply(int i, __global float4* x, __global const float4* x_out, __global const float4* x_start,
+                       __global const float* bound, __global const ats_collider_c* colliders, int collider_count) {
   x[i] = sc_out_of_colliders(sc_bounded(x_out[i], x_start[i], bound[i]), colliders, collider_count, 1);
 }
 
@@ -233,7 +259,10 @@ ATS_TASK void sc_apply(int i, __global float4* x, __global const float4* x_out, 
  * else the scene's contact.friction (mu). A pair takes the mean of its sides. */
 static inline float2 sc_side_mu(float2 pf, float2 mu) { return pf.x < 0.0f ? mu : pf; }
 
-ATS_TASK void sc_friction(int i, __global const float4* x, __global float4* x_out, __global const float4* x_prev, __global const float4* v, float h, __global const int4* tris, __global const int2* edges, __global const int* inc, int n, __global const int* vt, __global const int* tv, __global const int* ee, float r, float mu_s, float mu_k, __global const float2* pf) {
+ATS_TASK void sc_friction(int i, __global const float4* x, __global float4* x_out, __global const float4* x_prev,
+                          __global const float4* v, float h, __global const int4* tris, __global const int2* edges,
+                          __global const int* inc, int n, __global const int* vt, __global const int* tv,
+                          __global const int* ee, float r, float mu_s, float mu_k, __global const float2* pf) {
   const float4 p = x[i];
   x_out[i] = p;
   if (p.w == 0.0f || !sc_is_surface(inc, i)) return;
@@ -256,8 +285,8 @@ ATS_TASK void sc_friction(int i, __global const float4* x, __global float4* x_ou
         const float4 qj = x_prev[pv[j]];
         const float4 vj = v[pv[j]];
         u = ats_add(u, ats_scale(ats_v3(xj.x - qj.x, xj.y - qj.y, xj.z - qj.z), g.w[j]));
-        push = ats_add(push, ats_scale(ats_v3(xj.x - qj.x - h * vj.x, xj.y - qj.y - h * vj.y, xj.z - qj.z - h * vj.z),
-                                       g.w[j]));
+        push = ats_add(
+            push, ats_scale(ats_v3(xj.x - qj.x - h * vj.x, xj.y - qj.y - h * vj.y, xj.z - qj.z - h * vj.z), g.w[j]));
         if (g.w[j] > 0.0f) first += g.w[j] * g.w[j] * xj.w;
         if (g.w[j] < 0.0f) second += g.w[j] * g.w[j] * xj.w;
         if (g.w[j] > 0.0f) mu_first = sc_side_mu(pf[pv[j]], (float2)(mu_s, mu_k));

@@ -46,8 +46,8 @@ static inline void ats_give_up(__global int* mine, int task, int waited_for) {
 
 __kernel void ats_dispatch(__global const ats_slot* slots, int slot_count, __global const ats_launch* launches,
                            __global const ats_wait* waits, __global const ulong* args, __global int* counters,
-                           __global int* control, __global ulong* stamps, int stamp_stride, int device,
-                           int epoch0, int substeps, int record) {
+                           __global int* control, __global ulong* stamps, int stamp_stride, int device, int epoch0,
+                           int substeps, int record) {
   const int g = get_group_id(0);
   const int groups = get_num_groups(0);
   __global int* mine = control + ATS_LINE * (1 + device);

@@ -12,13 +12,18 @@
 #include "common/particle_steps.cl"
 
 /* accel[i] = g - c v + f/m at the stage state (xs, vs). */
-ATS_TASK void explicit_forces(int i, __global const float4* xs, __global const float4* vs, __global float4* accel, __global const int* adj_offsets, __global const int* adj, __global const ats_distance_c* stretch, __global const ats_bend_c* bend, __global const ats_tet_c* tets, float gx, float gy, float gz, float drag) {
-  const ats_vec3 acc = particle_acceleration(i, xs, vs, adj_offsets, adj, stretch, bend, tets, ats_v3(gx, gy, gz), drag);
+ATS_TASK void explicit_forces(int i, __global const float4* xs, __global const float4* vs, __global float4* accel,
+                              __global const int* adj_offsets, __global const int* adj,
+                              __global const ats_distance_c* stretch, __global const ats_bend_c* bend,
+                              __global const ats_tet_c* tets, float gx, float gy, float gz, float drag) {
+  const ats_vec3 acc =
+      particle_acceleration(i, xs, vs, adj_offsets, adj, stretch, bend, tets, ats_v3(gx, gy, gz), drag);
   accel[i] = (float4)(acc.x, acc.y, acc.z, 0.0f);
 }
 
 /* Semi-implicit (symplectic) Euler, Eq. 2: v += h a(x, v), x += h v. */
-ATS_TASK void explicit_semi_euler(int i, __global float4* x, __global float4* v, __global const float4* accel, float h) {
+ATS_TASK void explicit_semi_euler(int i, __global float4* x, __global float4* v, __global const float4* accel,
+                                  float h) {
   const float4 p = x[i];
   if (p.w == 0.0f) {
     v[i] = (float4)(0.0f);
@@ -37,7 +42,9 @@ ATS_TASK void explicit_semi_euler(int i, __global float4* x, __global float4* v,
  * (x, v) at the step's start: this stage's slopes are k_x = vs, k_v = a;
  * the sums gain weight * slopes (reset on the first stage); the next stage
  * state is (x, v) + c h (k_x, k_v). */
-ATS_TASK void explicit_stage(int i, __global const float4* x, __global const float4* v, __global float4* xs, __global float4* vs, __global const float4* accel, __global float4* sum_x, __global float4* sum_v, float weight, float c_h, int first) {
+ATS_TASK void explicit_stage(int i, __global const float4* x, __global const float4* v, __global float4* xs,
+                             __global float4* vs, __global const float4* accel, __global float4* sum_x,
+                             __global float4* sum_v, float weight, float c_h, int first) {
   const float4 p = x[i];
   const float4 kx = first ? v[i] : vs[i];
   const float4 kv = accel[i];
@@ -52,7 +59,9 @@ ATS_TASK void explicit_stage(int i, __global const float4* x, __global const flo
 
 /* The last stage: its slopes join the sums with `weight`, then
  * x += h_sum sum_x, v += h_sum sum_v (h_sum = h / total weight). */
-ATS_TASK void explicit_finish(int i, __global float4* x, __global float4* v, __global const float4* vs, __global const float4* accel, __global const float4* sum_x, __global const float4* sum_v, float weight, float h_sum) {
+ATS_TASK void explicit_finish(int i, __global float4* x, __global float4* v, __global const float4* vs,
+                              __global const float4* accel, __global const float4* sum_x, __global const float4* sum_v,
+                              float weight, float h_sum) {
   const float4 p = x[i];
   if (p.w == 0.0f) {
     v[i] = (float4)(0.0f);

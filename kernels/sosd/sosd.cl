@@ -31,9 +31,22 @@
 #define SOSD_MAX 12 /* 4 vertices x 3 */
 
 /* sys[4 i] = (f, 0), sys[4 i + 1 .. 4 i + 3] = rows of H_ii. */
-ATS_TASK void sosd_vertex_systems(int i, __global const float4* x, __global const float4* x_tilde, __global const int* adj_offsets, __global const int* adj, __global const ats_distance_c* stretch, __global const ats_bend_c* bend, __global const ats_tet_c* tets, __global float4* sys, float inv_h2, __global const ats_collider_c* colliders, int collider_count, __global const float4* x_start, float inv_h, __global const int4* sc_tris, __global const int2* sc_edges, __global const int* sc_inc, __global const int* sc_vt, __global const int* sc_tv, __global const int* sc_ee, __global const float* sc_bound, int sc_n, float sc_k, float sc_r, int sc_on) {
+ATS_TASK void sosd_vertex_systems(int i, __global const float4* x, __global const float4* x_tilde,
+                                  __global const int* adj_offsets, __global const int* adj,
+                                  __global const ats_distance_c* stretch, __global const ats_bend_c* bend,
+                                  __global const ats_tet_c* tets, __global float4* sys, float inv_h2,
+                                  __global const ats_collider_c* colliders, int collider_count,
+                                  __global const float4* x_start, float inv_h, __global const int4* sc_tris,
+                                  __global const int2* sc_edges, __global const int* sc_inc, __global const int* sc_vt,
+                                  __global const int* sc_tv, __global const int* sc_ee, __global const float* sc_bound,
+                                  int sc_n, float sc_k, float sc_r, int sc_on) {
   if (x[i].w == 0.0f) return; /* pinned: never read */
-  const vertex_system s = add_self_contact_terms_spread(add_contact_terms(add_spring_damping(gather_vertex_system(i, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend, tets), i, x, x_start, inv_h, adj_offsets, adj, stretch), vs_xyz(x[i]), x[i].w, inv_h2, colliders, collider_count), i, x, sc_tris, sc_edges, sc_inc, sc_n, sc_vt, sc_tv, sc_ee, sc_k, sc_r, sc_on);
+  const vertex_system s = add_self_contact_terms_spread(
+      add_contact_terms(
+          add_spring_damping(gather_vertex_system(i, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend, tets), i, x,
+                             x_start, inv_h, adj_offsets, adj, stretch),
+          vs_xyz(x[i]), x[i].w, inv_h2, colliders, collider_count),
+      i, x, sc_tris, sc_edges, sc_inc, sc_n, sc_vt, sc_tv, sc_ee, sc_k, sc_r, sc_on);
   sys[4 * i] = (float4)(s.f.x, s.f.y, s.f.z, 0.0f);
   ATS_UNROLL for (int r = 0; r < 3; ++r) sys[4 * i + 1 + r] = (float4)(s.h.r[r].x, s.h.r[r].y, s.h.r[r].z, 0.0f);
 }
@@ -57,8 +70,8 @@ static inline void sosd_set_block(float a[SOSD_MAX][SOSD_MAX], int row, int col,
  * vertices keep d = 0. When the system is not positive definite (an
  * indefinite element coupling), each vertex takes its own block step, as
  * VBD would; a near-singular vertex block stays put. */
-static void sosd_solve(const int* v, int n, ats_mat3 off[4][4], __global const float4* x,
-                       __global const float4* sys, __global float4* d, int base) {
+static void sosd_solve(const int* v, int n, ats_mat3 off[4][4], __global const float4* x, __global const float4* sys,
+                       __global float4* d, int base) {
   float a[SOSD_MAX][SOSD_MAX];
   float b[SOSD_MAX];
   int movable[4];
@@ -129,18 +142,22 @@ static void sosd_solve(const int* v, int n, ats_mat3 off[4][4], __global const f
   }
 }
 
-ATS_TASK void sosd_stretch(int e, __global const float4* x, __global const float4* sys, __global const ats_distance_c* stretch, __global float4* d, __global const float4* x_start, float inv_h) {
+ATS_TASK void sosd_stretch(int e, __global const float4* x, __global const float4* sys,
+                           __global const ats_distance_c* stretch, __global float4* d, __global const float4* x_start,
+                           float inv_h) {
   const ats_distance_c c = stretch[e];
   const int v[2] = {c.a, c.b};
   ats_mat3 off[4][4];
   ats_mat3 h_aa = ats_stretch_hessian(vs_xyz(x[c.a]), vs_xyz(x[c.b]), c.rest, 1.0f / c.compliance, 1);
   if (inv_h > 0.0f && c.damping > 0.0f) /* its damping term's block (common/energy_spring_damping.h) */
-    h_aa = ats_m3_add(h_aa, ats_spring_damping_hessian(vs_xyz(x_start[c.a]), vs_xyz(x_start[c.b]), c.damping / c.compliance * inv_h));
+    h_aa = ats_m3_add(
+        h_aa, ats_spring_damping_hessian(vs_xyz(x_start[c.a]), vs_xyz(x_start[c.b]), c.damping / c.compliance * inv_h));
   off[0][1] = ats_m3_scale(h_aa, -1.0f);
   sosd_solve(v, 2, off, x, sys, d, 2 * e);
 }
 
-ATS_TASK void sosd_bend(int e, __global const float4* x, __global const float4* sys, __global const ats_bend_c* bend, __global float4* d) {
+ATS_TASK void sosd_bend(int e, __global const float4* x, __global const float4* sys, __global const ats_bend_c* bend,
+                        __global float4* d) {
   const ats_bend_c c = bend[e];
   ats_vec3 y[4];
   ATS_UNROLL for (int j = 0; j < 4; ++j) y[j] = vs_xyz(x[c.v[j]]);
@@ -153,7 +170,8 @@ ATS_TASK void sosd_bend(int e, __global const float4* x, __global const float4* 
   sosd_solve(c.v, 4, off, x, sys, d, 4 * e);
 }
 
-ATS_TASK void sosd_tet(int e, __global const float4* x, __global const float4* sys, __global const ats_tet_c* tets, __global float4* d) {
+ATS_TASK void sosd_tet(int e, __global const float4* x, __global const float4* sys, __global const ats_tet_c* tets,
+                       __global float4* d) {
   const ats_tet_c t = tets[e];
   ats_vec3 q[4];
   ATS_UNROLL for (int j = 0; j < 4; ++j) q[j] = vs_xyz(x[t.v[j]]);
@@ -172,7 +190,11 @@ ATS_TASK void sosd_tet(int e, __global const float4* x, __global const float4* s
 /* Stencil displacements of kind `main_kind`, elements [main_first,
  * main_end), take precedence (the main Gauss-Seidel block); main_kind = -1:
  * none. */
-ATS_TASK void sosd_combine(int i, __global float4* x, __global const int* adj_offsets, __global const int* adj, __global const float4* d_stretch, __global const float4* d_bend, __global const float4* d_tet, __global const float4* sys, int main_kind, int main_first, int main_end, float step, int has_ground, float ground, __global const ats_collider_c* colliders, int collider_count, int sc_on) {
+ATS_TASK void sosd_combine(int i, __global float4* x, __global const int* adj_offsets, __global const int* adj,
+                           __global const float4* d_stretch, __global const float4* d_bend,
+                           __global const float4* d_tet, __global const float4* sys, int main_kind, int main_first,
+                           int main_end, float step, int has_ground, float ground,
+                           __global const ats_collider_c* colliders, int collider_count, int sc_on) {
   const float4 p = x[i];
   if (p.w == 0.0f) return;
   float4 sum = (float4)(0.0f);

@@ -16,7 +16,8 @@
 static inline ats_vec3 xyz(float4 p) { return ats_v3(p.x, p.y, p.z); }
 static inline float4 add_xyz(float4 p, ats_vec3 d) { return (float4)(p.x + d.x, p.y + d.y, p.z + d.z, p.w); }
 
-ATS_TASK void xpbd_predict(int i, __global float4* x, __global float4* v, __global float4* x_prev, float dt, float gx, float gy, float gz, float damp) {
+ATS_TASK void xpbd_predict(int i, __global float4* x, __global float4* v, __global float4* x_prev, float dt, float gx,
+                           float gy, float gz, float damp) {
   predict_particle(i, x, v, x_prev, dt, gx, gy, gz, damp);
 }
 
@@ -29,10 +30,10 @@ ATS_TASK void xpbd_stretch(int i, __global float4* x, __global const ats_distanc
   const float4 pa = x[con.a];
   const float4 pb = x[con.b];
   const float gamma = con.damping * inv_h;
-  const ats_distance_step s =
-      gamma > 0.0f ? ats_xpbd_distance_damped(xyz(pa), pa.w, xyz(pb), pb.w, con.rest, con.compliance, l, dt,
-                                              xyz(x_start[con.a]), xyz(x_start[con.b]), gamma)
-                   : ats_xpbd_distance(xyz(pa), pa.w, xyz(pb), pb.w, con.rest, con.compliance, l, dt);
+  const ats_distance_step s = gamma > 0.0f
+                                  ? ats_xpbd_distance_damped(xyz(pa), pa.w, xyz(pb), pb.w, con.rest, con.compliance, l,
+                                                             dt, xyz(x_start[con.a]), xyz(x_start[con.b]), gamma)
+                                  : ats_xpbd_distance(xyz(pa), pa.w, xyz(pb), pb.w, con.rest, con.compliance, l, dt);
   lambda[i] = l + s.dlambda;
   x[con.a] = add_xyz(pa, s.dxa);
   x[con.b] = add_xyz(pb, s.dxb);
@@ -75,14 +76,21 @@ static inline void xpbd_stretch_batch8(int k0, __global float4* x, __global cons
     ib[l] = con.b;
     const float4 pa = x[live ? con.a : 0];
     const float4 pb = x[live ? con.b : 0];
-    ax[l] = pa.x; ay[l] = pa.y; az[l] = pa.z; aw[l] = pa.w;
-    bx[l] = pb.x; by[l] = pb.y; bz[l] = pb.z; bw[l] = pb.w;
+    ax[l] = pa.x;
+    ay[l] = pa.y;
+    az[l] = pa.z;
+    aw[l] = pa.w;
+    bx[l] = pb.x;
+    by[l] = pb.y;
+    bz[l] = pb.z;
+    bw[l] = pb.w;
     rest[l] = con.rest;
     comp[l] = con.compliance;
   }
   const float8 lam = reset ? (float8)(0.0f) : vload8(0, lambda + k0);
   const float8 wa = vload8(0, aw), wb = vload8(0, bw);
-  const float8 dx = vload8(0, ax) - vload8(0, bx), dy = vload8(0, ay) - vload8(0, by), dz = vload8(0, az) - vload8(0, bz);
+  const float8 dx = vload8(0, ax) - vload8(0, bx), dy = vload8(0, ay) - vload8(0, by),
+               dz = vload8(0, az) - vload8(0, bz);
   const float8 alpha = vload8(0, comp) / (dt * dt);
   const float8 len = sqrt(dx * dx + dy * dy + dz * dz);
   const float8 denom = wa + wb + alpha;
@@ -93,8 +101,12 @@ static inline void xpbd_stretch_batch8(int k0, __global float4* x, __global cons
   vstore8(lam + dl, 0, lambda + k0);
   const float8 sa = wa * dl, sb = -wb * dl;
   float ox[8], oy[8], oz[8], qx[8], qy[8], qz[8];
-  vstore8(vload8(0, ax) + nx * sa, 0, ox); vstore8(vload8(0, ay) + ny * sa, 0, oy); vstore8(vload8(0, az) + nz * sa, 0, oz);
-  vstore8(vload8(0, bx) + nx * sb, 0, qx); vstore8(vload8(0, by) + ny * sb, 0, qy); vstore8(vload8(0, bz) + nz * sb, 0, qz);
+  vstore8(vload8(0, ax) + nx * sa, 0, ox);
+  vstore8(vload8(0, ay) + ny * sa, 0, oy);
+  vstore8(vload8(0, az) + nz * sa, 0, oz);
+  vstore8(vload8(0, bx) + nx * sb, 0, qx);
+  vstore8(vload8(0, by) + ny * sb, 0, qy);
+  vstore8(vload8(0, bz) + nz * sb, 0, qz);
   ATS_UNROLL for (int l = 0; l < 8; ++l) {
     if (ia[l] >= 0) {
       x[ia[l]] = (float4)(ox[l], oy[l], oz[l], aw[l]);
@@ -104,7 +116,8 @@ static inline void xpbd_stretch_batch8(int k0, __global float4* x, __global cons
 }
 
 ATS_TASK void xpbd_stretch_batches(int i, __global float4* x, __global const ats_distance_c* c, __global float* lambda,
-                                   float dt, int reset, __global const float4* x_start, float inv_h, int batches, int n) {
+                                   float dt, int reset, __global const float4* x_start, float inv_h, int batches,
+                                   int n) {
   (void)i;
   for (int b = 0; b < batches; ++b) {
     const int k0 = b * ATS_XPBD_BATCH_WIDTH;
@@ -209,9 +222,11 @@ ATS_TASK void xpbd_tet(int i, __global float4* x, __global const ats_tet_c* c, _
     w[j] = q[j].w;
   }
   ats_mat3 dm_inv;
-  ATS_UNROLL for (int r = 0; r < 3; ++r) dm_inv.r[r] = ats_v3(t.dm_inv[3 * r], t.dm_inv[3 * r + 1], t.dm_inv[3 * r + 2]);
+  ATS_UNROLL for (int r = 0; r < 3; ++r) dm_inv.r[r] =
+      ats_v3(t.dm_inv[3 * r], t.dm_inv[3 * r + 1], t.dm_inv[3 * r + 2]);
   float lam[ATS_TET_LAMBDA_STRIDE];
-  ATS_UNROLL for (int j = 0; j < ATS_TET_LAMBDA_STRIDE; ++j) lam[j] = reset ? 0.0f : lambda[ATS_TET_LAMBDA_STRIDE * i + j];
+  ATS_UNROLL for (int j = 0; j < ATS_TET_LAMBDA_STRIDE; ++j) lam[j] =
+      reset ? 0.0f : lambda[ATS_TET_LAMBDA_STRIDE * i + j];
   ats_xpbd_tet(p, w, dm_inv, t.volume, t.mu, t.lambda, lam, dt);
   ATS_UNROLL for (int j = 0; j < ATS_TET_LAMBDA_STRIDE; ++j) lambda[ATS_TET_LAMBDA_STRIDE * i + j] = lam[j];
   ATS_UNROLL for (int j = 0; j < 4; ++j) x[t.v[j]] = (float4)(p[j].x, p[j].y, p[j].z, q[j].w);

@@ -25,17 +25,18 @@ static inline ats_vec3 energy_xyz(float4 p) { return ats_v3(p.x, p.y, p.z); }
 ATS_TASK void energy_inertia(int i, __global const float4* x, __global const float4* x_tilde, __global float* out,
                              int out_first, float inv_h2) {
   const float4 p = x[i];
-  out[out_first + i] = p.w > 0.0f ? ats_inertia_energy(energy_xyz(p), energy_xyz(x_tilde[i]), 1.0f / p.w, inv_h2)
-                                  : 0.0f;
-}
-
-ATS_TASK void energy_stretch(int i, __global const float4* x, __global const ats_distance_c* c, __global float* out, int out_first) {
-  const ats_distance_c con = c[i];
   out[out_first + i] =
-      ats_stretch_energy(energy_xyz(x[con.a]), energy_xyz(x[con.b]), con.rest, 1.0f / con.compliance);
+      p.w > 0.0f ? ats_inertia_energy(energy_xyz(p), energy_xyz(x_tilde[i]), 1.0f / p.w, inv_h2) : 0.0f;
 }
 
-ATS_TASK void energy_bend(int i, __global const float4* x, __global const ats_bend_c* c, __global float* out, int out_first) {
+ATS_TASK void energy_stretch(int i, __global const float4* x, __global const ats_distance_c* c, __global float* out,
+                             int out_first) {
+  const ats_distance_c con = c[i];
+  out[out_first + i] = ats_stretch_energy(energy_xyz(x[con.a]), energy_xyz(x[con.b]), con.rest, 1.0f / con.compliance);
+}
+
+ATS_TASK void energy_bend(int i, __global const float4* x, __global const ats_bend_c* c, __global float* out,
+                          int out_first) {
   const ats_bend_c con = c[i];
   ats_vec3 p[4];
   ATS_UNROLL for (int j = 0; j < 4; ++j) p[j] = energy_xyz(x[con.v[j]]);
@@ -44,12 +45,14 @@ ATS_TASK void energy_bend(int i, __global const float4* x, __global const ats_be
 
 /* One tet: stable neo-Hookean or StVK (ats_tet_c.model); the host has
  * rejected mu <= 0, lambda < 0 and unknown models. */
-ATS_TASK void energy_tet(int i, __global const float4* x, __global const ats_tet_c* c, __global float* out, int out_first) {
+ATS_TASK void energy_tet(int i, __global const float4* x, __global const ats_tet_c* c, __global float* out,
+                         int out_first) {
   const ats_tet_c t = c[i];
   ats_vec3 p[4];
   ATS_UNROLL for (int j = 0; j < 4; ++j) p[j] = energy_xyz(x[t.v[j]]);
   ats_mat3 dm_inv;
-  ATS_UNROLL for (int r = 0; r < 3; ++r) dm_inv.r[r] = ats_v3(t.dm_inv[3 * r], t.dm_inv[3 * r + 1], t.dm_inv[3 * r + 2]);
+  ATS_UNROLL for (int r = 0; r < 3; ++r) dm_inv.r[r] =
+      ats_v3(t.dm_inv[3 * r], t.dm_inv[3 * r + 1], t.dm_inv[3 * r + 2]);
   out[out_first + i] = t.model == ATS_TET_STVK ? ats_tet_stvk_energy(p, dm_inv, t.volume, t.mu, t.lambda)
                                                : ats_tet_nh_energy(p, dm_inv, t.volume, t.mu, t.lambda);
 }

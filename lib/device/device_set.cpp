@@ -129,9 +129,10 @@ namespace {
 std::shared_ptr<DeviceSet::Impl> open_impl(const std::string& spec_in, MemoryMode memory) {
   const std::vector<DeviceHandle> all = all_device_handles();
   if (all.empty()) {
-    throw runtime_error(
-        "no OpenCL device found: install an OpenCL driver (on Debian: pocl-opencl-icd, "
-        "scripts/setup.sh installs it) and check `atssim devices`");
+    // The machine's set-up, not a failed run: one line and exit 2, like any input to fix.
+    throw input_error(
+        "no OpenCL platform with a device found: install an OpenCL driver (on Debian: pocl-opencl-icd, "
+        "scripts/setup.sh installs it), check OCL_ICD_VENDORS if it is set, and run `atssim devices`");
   }
   const std::string spec = spec_in.empty() ? "default" : spec_in;
   auto impl = std::make_shared<DeviceSet::Impl>();

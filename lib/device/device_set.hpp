@@ -32,8 +32,8 @@ class DeviceSet {
   // tearing a pocl 3.1 context down while its worker threads still finish
   // event bookkeeping crashed now and then; a run opens one set anyway.
   // Throws atssim::Error: input (exit 2) when the spec is malformed or
-  // matches nothing, listing the devices; runtime (exit 1) when there is no
-  // OpenCL device at all or a device lacks SVM.
+  // matches nothing, listing the devices, or when there is no OpenCL device
+  // at all; runtime (exit 1) when a device lacks SVM.
   static DeviceSet open(const std::string& spec, MemoryMode memory = MemoryMode::shared);
 
   DeviceSet(DeviceSet&&) noexcept;

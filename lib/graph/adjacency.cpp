@@ -10,8 +10,8 @@ namespace atssim::graph {
 
 Adjacency build_adjacency(std::span<const int> element_vertices, int arity, int particle_count) {
   if (arity <= 0 || element_vertices.size() % static_cast<std::size_t>(arity) != 0) {
-    throw Error(fmt::format("adjacency: {} indices do not form elements of {} vertices", element_vertices.size(),
-                            arity));
+    throw Error(
+        fmt::format("adjacency: {} indices do not form elements of {} vertices", element_vertices.size(), arity));
   }
   Adjacency adj;
   std::vector<int> count(particle_count + 1, 0);

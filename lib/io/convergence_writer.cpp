@@ -14,7 +14,8 @@ namespace atssim::io {
 void write_convergence(const std::string& path, const ConvergenceResult& r) {
   const hid_t id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
   if (id < 0) {
-    throw input_error(fmt::format("cannot create output file '{}': check that its folder exists and is writable", path));
+    throw input_error(
+        fmt::format("cannot create output file '{}': check that its folder exists and is writable", path));
   }
   H5Handle file(id, H5Fclose);
   write_string_attribute(file, "format", "atssim");

@@ -77,22 +77,24 @@ CostFile read_cost_file(const std::string& path, const sched::TaskGraph& graph) 
     }
     const auto it = by_name.find(cells[0]);
     if (it == by_name.end()) {
-      throw input_error(fmt::format("{}:{}: task '{}' is not in this substep's task graph; write the costs for the "
-                                    "same scene, method and schedule (atssim schedule --csv writes them)",
-                                    path, line_no, cells[0]));
+      throw input_error(
+          fmt::format("{}:{}: task '{}' is not in this substep's task graph; write the costs for the "
+                      "same scene, method and schedule (atssim schedule --csv writes them)",
+                      path, line_no, cells[0]));
     }
     if (cells.size() < 2) throw input_error(fmt::format("{}:{}: task '{}' has no cost", path, line_no, cells[0]));
     if (devices == 0) devices = cells.size() - 1;
     if (cells.size() - 1 != devices) {
-      throw input_error(fmt::format("{}:{}: {} costs, but earlier lines have {}; give one cost per device on every "
-                                    "line",
-                                    path, line_no, cells.size() - 1, devices));
+      throw input_error(
+          fmt::format("{}:{}: {} costs, but earlier lines have {}; give one cost per device on every "
+                      "line",
+                      path, line_no, cells.size() - 1, devices));
     }
     std::vector<double> row(devices);
     for (std::size_t d = 0; d < devices; ++d) {
       if (!parse_ms(cells[d + 1], row[d])) {
-        throw input_error(fmt::format("{}:{}: '{}' is not a cost in ms (a number ≥ 0, or inf)", path, line_no,
-                                      cells[d + 1]));
+        throw input_error(
+            fmt::format("{}:{}: '{}' is not a cost in ms (a number ≥ 0, or inf)", path, line_no, cells[d + 1]));
       }
     }
     rows[it->second] = std::move(row);
@@ -101,8 +103,7 @@ CostFile read_cost_file(const std::string& path, const sched::TaskGraph& graph) 
   for (sched::TaskId t = 0; t < graph.size(); ++t) {
     if (!seen[t]) {
       throw input_error(fmt::format("{}: no cost for task '{}' ({} of {} tasks given); list every task", path,
-                                    graph.task(t).name,
-                                    std::count(seen.begin(), seen.end(), 1), graph.size()));
+                                    graph.task(t).name, std::count(seen.begin(), seen.end(), 1), graph.size()));
     }
   }
   file.costs = sched::CostTable::from_rows(rows);

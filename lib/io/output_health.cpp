@@ -42,6 +42,25 @@ void check_output_folder(const std::string& path) {
   if (std::filesystem::exists(p, ec) && !std::filesystem::is_regular_file(p, ec)) {
     throw input_error(fmt::format("output '{}' exists and is not a regular file: pass -o elsewhere", path));
   }
+  std::filesystem::path stem = p;
+  if (p.extension() == ".xdmf") {
+    throw input_error(
+        fmt::format("output '{}' ends in .xdmf, the name of its XDMF sidecar; pass the HDF5 file's name, e.g. -o {}",
+                    path, stem.replace_extension(".h5").string()));
+  }
+  // The files beside it: the sidecar, the lock, and (over an earlier
+  // result) the partial file and its sidecar.
+  for (const std::filesystem::path& beside :
+       {std::filesystem::path(p).replace_extension(".xdmf"), std::filesystem::path(path + ".lock"),
+        std::filesystem::path(partial_path(path)),
+        std::filesystem::path(partial_path(path)).replace_extension(".xdmf")}) {
+    if (std::filesystem::exists(beside, ec) && !std::filesystem::is_regular_file(beside, ec)) {
+      throw input_error(
+          fmt::format("output '{}': '{}', which the run writes beside it, exists and is not a regular "
+                      "file; remove it or pass -o elsewhere",
+                      path, beside.string()));
+    }
+  }
 }
 
 OutputIdentity identify_output(const std::string& path) {

@@ -12,8 +12,9 @@ namespace atssim::io {
 std::string partial_path(const std::string& path);
 
 // Throws an input error (exit 2) when `path` cannot become an output file:
-// empty, a folder, in a folder that is missing or not writable, or an
-// existing non-regular file.
+// empty, a folder, in a folder that is missing or not writable, an existing
+// non-regular file, a name ending in .xdmf (its own sidecar's), or a path
+// whose sidecar, lock or partial file would land on a folder or device.
 void check_output_folder(const std::string& path);
 
 // The file a run writes, by device and inode, to notice it vanish or be replaced.

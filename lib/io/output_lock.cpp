@@ -21,8 +21,15 @@ OutputLock::OutputLock(const std::string& output_path) : lock_path_(output_path 
   for (int attempt = 0; attempt < 100; ++attempt) {
     const int fd = ::open(lock_path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
     if (fd < 0) {
-      throw runtime_error(
-          fmt::format("cannot create the lock file '{}' beside the output: {}", lock_path_, std::strerror(errno)));
+      const int err = errno;
+      // A place that cannot hold files (a read-only or pseudo file system,
+      // no permission, a folder in the way) is the output path's fault.
+      const bool path_fault = err == EACCES || err == EPERM || err == EROFS || err == ENOENT || err == ENOTDIR ||
+                              err == EISDIR || err == ENAMETOOLONG || err == ELOOP;
+      const std::string what =
+          fmt::format("cannot create the lock file '{}' beside the output: {}", lock_path_, std::strerror(err));
+      if (path_fault) throw input_error(what + "; pass -o elsewhere");
+      throw runtime_error(what);
     }
     if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
       const int err = errno;

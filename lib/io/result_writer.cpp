@@ -55,6 +55,18 @@ hid_t file_type(SeriesKind kind) {
   return H5T_IEEE_F64LE;
 }
 
+// /frames/flushed, [1] int64: created (a new file, or one written before it
+// existed) or opened.
+H5Handle open_flushed_record(hid_t file) {
+  if (H5Lexists(file, "frames/flushed", H5P_DEFAULT) > 0) {
+    return h5_check(H5Dopen2(file, "frames/flushed", H5P_DEFAULT), H5Dclose, "opening /frames/flushed");
+  }
+  const hsize_t one[1] = {1};
+  H5Handle space = h5_check(H5Screate_simple(1, one, nullptr), H5Sclose, "flushed-frames space");
+  return h5_check(H5Dcreate2(file, "frames/flushed", H5T_STD_I64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                  H5Dclose, "creating /frames/flushed");
+}
+
 }  // namespace
 
 // Every per-frame series: its path, shape and file type.
@@ -119,8 +131,10 @@ void ResultWriter::create(const RunInfo& info, std::span<const model::ObjectRang
   file_ = H5Handle(id, H5Fclose);
   write_run_header(file_, info, objects);
   open_series(true);
+  flushed_ = open_flushed_record(file_);
   views_ = write_xdmf_cells(file_, objects, particles_);
   flush();
+  record_flushed_frames();
 }
 
 void ResultWriter::reopen(const RunInfo& info, Checkpoint& resume) {
@@ -186,7 +200,9 @@ void ResultWriter::reopen(const RunInfo& info, Checkpoint& resume) {
   write_int_attribute(file_, "complete", 0);
   write_string_attribute(file_, "error", "");
   write_string_attribute(file_, "resumed", now_iso8601());
+  flushed_ = open_flushed_record(file_);
   flush();
+  record_flushed_frames();
   resume = std::move(*point);
 }
 
@@ -347,11 +363,12 @@ void ResultWriter::append_frame(double time, std::span<const float> xyz, double 
       pending_.reset();
     }
     flush();
+    ++frames_;
+    record_flushed_frames();
   } catch (...) {
     broken_ = true;
     throw;
   }
-  ++frames_;
   times_.push_back(time);
   xdmf_.append(time);
 }
@@ -360,6 +377,15 @@ void ResultWriter::append_frame(double time, std::span<const float> xyz, double 
 // a checkpoint (positions, velocities, multipliers) with a MiB to spare.
 void ResultWriter::flush() {
   prepare_flush(file_, (1u << 20) + 96 * particles_);
+  h5_check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flushing the output file");
+}
+
+// Written only after the flush that put every row of those frames on disk,
+// and flushed at once: a reader that reads rows below /frames/flushed never
+// reads into a flush (the rows above may be half-written).
+void ResultWriter::record_flushed_frames() {
+  const long long n[1] = {frames_};
+  h5_check(H5Dwrite(flushed_, H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, n), "writing /frames/flushed");
   h5_check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flushing the output file");
 }
 
@@ -382,6 +408,7 @@ void ResultWriter::fail(const std::string& error) {
 void ResultWriter::abandon() {
   closed_ = true;
   for (const SeriesSpec& s : kSeries) (void)(this->*s.member).release();
+  (void)flushed_.release();
   (void)file_.release();
   checkpoint_ = CheckpointSlots();
   xdmf_.close();
@@ -396,6 +423,7 @@ void ResultWriter::close_with(bool complete, const std::string& error) {
   write_int_attribute(file_, "complete", complete ? 1 : 0);
   write_string_attribute(file_, "error", error);
   for (const SeriesSpec& s : kSeries) (this->*s.member).reset();
+  flushed_.reset();
   flush();
   file_.reset();
   write_xdmf_file(xdmf_path(), std::filesystem::path(writing_).filename().string(), views_, object_names_, times_);

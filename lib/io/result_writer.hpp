@@ -109,6 +109,7 @@ class ResultWriter {
   void append_scalar(hid_t set, double value);
   void read_contact_rows();
   void flush();
+  void record_flushed_frames();
 
   struct SeriesSpec {
     const char* path;
@@ -133,6 +134,7 @@ class ResultWriter {
   std::vector<double> times_;
   bool closed_ = false;
   H5Handle file_, positions_, time_, frame_ms_, schedule_ms_;
+  H5Handle flushed_;  // /frames/flushed: frames written and flushed in full (live readers read those)
   // /schedule series: one row per recorded task, per wait, per frame.
   H5Handle sched_frame_, sched_task_, sched_device_, sched_pstart_, sched_pfinish_, sched_mstart_, sched_mfinish_;
   H5Handle wait_frame_, wait_producer_, wait_consumer_, wait_pdevice_, wait_cdevice_;

@@ -47,17 +47,59 @@ int obj_line_of_bad_vertex(const std::string& path) {
   return 0;
 }
 
-void check_vertices(const TriangleMesh& mesh, const std::string& path, const std::string& where) {
-  for (std::size_t k = 0; k < mesh.vertices.size(); ++k) {
-    const auto& v = mesh.vertices[k];
-    if (!bad(v)) continue;
-    const int line = obj_line_of_bad_vertex(path);
-    const std::string at = line > 0 ? fmt::format("{}:{}", path, line) : fmt::format("{} (vertex {})", path, k);
-    throw input_error(
-        fmt::format("{}: mesh vertex at ({}, {}, {}) is not finite or further than {:g} m from the "
-                    "origin (in mesh '{}', {}); fix the coordinates",
-                    at, v[0], v[1], v[2], kFarthest, path, where));
+// The 1-based line of vertex `index` of an ASCII PLY file whose first
+// element is its vertices; 0 for any other file.
+int ply_line_of_vertex(const std::string& path, std::size_t index) {
+  std::ifstream in(path);
+  std::string l;
+  if (!std::getline(in, l) || l.rfind("ply", 0) != 0) return 0;
+  int line = 1;
+  bool ascii = false, vertices_first = false, seen_element = false;
+  while (std::getline(in, l)) {
+    ++line;
+    if (l.rfind("format ascii", 0) == 0) ascii = true;
+    if (l.rfind("element ", 0) == 0 && !seen_element) {
+      seen_element = true;
+      vertices_first = l.rfind("element vertex ", 0) == 0;
+    }
+    if (l.rfind("end_header", 0) == 0) {
+      return ascii && vertices_first ? line + static_cast<int>(index) + 1 : 0;
+    }
   }
+  return 0;
+}
+
+// Vertices as the file gives them, before assimp welds or drops any (a NaN
+// vertex welded into another would pass as a degenerate triangle).
+void check_vertices(const aiScene& scene, const std::string& path, const std::string& where) {
+  std::size_t k = 0;
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+    const aiMesh* part = scene.mMeshes[m];
+    for (unsigned i = 0; i < part->mNumVertices; ++i, ++k) {
+      const aiVector3D& p = part->mVertices[i];
+      const std::array<double, 3> v{p.x, p.y, p.z};
+      if (!bad(v)) continue;
+      int line = obj_line_of_bad_vertex(path);
+      if (line == 0 && scene.mNumMeshes == 1) line = ply_line_of_vertex(path, i);
+      const std::string at = line > 0 ? fmt::format("{}:{}", path, line) : fmt::format("{} (vertex {})", path, k);
+      throw input_error(
+          fmt::format("{}: mesh vertex at ({}, {}, {}) is not finite or further than {:g} m from the "
+                      "origin (in mesh '{}', {}); fix the coordinates",
+                      at, v[0], v[1], v[2], kFarthest, path, where));
+    }
+  }
+}
+
+[[noreturn]] void cannot_read(const std::string& path, const std::string& where, const std::string& why) {
+  // assimp reports an allocation that failed as the exception's text.
+  if (why.find("mNumMeshes is 0") != std::string::npos) {
+    throw input_error(fmt::format("{}: mesh '{}' has no triangles; give a surface mesh with faces", where, path));
+  }
+  const std::string reason =
+      why.find("bad_alloc") != std::string::npos
+          ? "it declares more vertices or faces than memory can hold (a damaged or truncated file?)"
+          : why;
+  throw input_error(fmt::format("{}: cannot read mesh '{}': {}; use OBJ, PLY, STL or glTF", where, path, reason));
 }
 
 }  // namespace
@@ -73,13 +115,15 @@ TriangleMesh load_triangle_mesh(const std::string& path, const std::string& wher
                                                           aiComponent_TEXTURES | aiComponent_LIGHTS |
                                                           aiComponent_CAMERAS | aiComponent_MATERIALS);
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+  // First as the file is (faces naming vertices it lacks are refused), then
+  // welded and cleaned.
+  const aiScene* raw = importer.ReadFile(path, aiProcess_ValidateDataStructure);
+  if (raw == nullptr) cannot_read(path, where, importer.GetErrorString());
+  check_vertices(*raw, path, where);
   const aiScene* ai =
-      importer.ReadFile(path, aiProcess_RemoveComponent | aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                                  aiProcess_SortByPType | aiProcess_PreTransformVertices | aiProcess_FindDegenerates);
-  if (ai == nullptr) {
-    throw input_error(fmt::format("{}: cannot read mesh '{}': {}; use OBJ, PLY, STL or glTF", where, path,
-                                  importer.GetErrorString()));
-  }
+      importer.ApplyPostProcessing(aiProcess_RemoveComponent | aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                   aiProcess_SortByPType | aiProcess_PreTransformVertices | aiProcess_FindDegenerates);
+  if (ai == nullptr) cannot_read(path, where, importer.GetErrorString());
 
   TriangleMesh mesh;
   for (unsigned m = 0; m < ai->mNumMeshes; ++m) {
@@ -98,7 +142,15 @@ TriangleMesh load_triangle_mesh(const std::string& path, const std::string& wher
                                 offset + static_cast<int>(face.mIndices[2])});
     }
   }
-  check_vertices(mesh, path, where);
+  // Node transforms (glTF) apply after the check of the file's own values.
+  for (std::size_t k = 0; k < mesh.vertices.size(); ++k) {
+    const auto& v = mesh.vertices[k];
+    if (!bad(v)) continue;
+    throw input_error(
+        fmt::format("{} (vertex {}): mesh vertex at ({}, {}, {}) after the file's node transforms is not finite or "
+                    "further than {:g} m from the origin ({}); fix the transforms",
+                    path, k, v[0], v[1], v[2], kFarthest, where));
+  }
   if (mesh.triangles.empty()) {
     throw input_error(fmt::format("{}: mesh '{}' has no triangles; give a surface mesh with faces", where, path));
   }

@@ -26,6 +26,9 @@ struct SimulationDesc {
   // Air drag: every free particle feels −m·c·v (c in 1/s; a body moving
   // alone slows as e^(−c t)); implicit in every method (solver/layout).
   double air_drag = 0.0;
+  // A frame whose kinetic + elastic energy grows by more than this factor
+  // (beyond gravity's work) blew up (app/energy_growth.hpp); 0 = no check.
+  double energy_growth_limit = 1000.0;
 };
 
 struct GridDesc {

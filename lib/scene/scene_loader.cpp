@@ -27,8 +27,8 @@ namespace fs = std::filesystem;
 
 constexpr std::array<std::string_view, 8> kRootKeys{"simulation", "objects", "solver",    "output",
                                                     "devices",    "memory",  "colliders", "contact"};
-constexpr std::array<std::string_view, 8> kSimulationKeys{"fps",    "dt",      "substeps", "iterations",
-                                                          "frames", "gravity", "ground",   "air_drag"};
+constexpr std::array<std::string_view, 9> kSimulationKeys{
+    "fps", "dt", "substeps", "iterations", "frames", "gravity", "ground", "air_drag", "energy_growth_limit"};
 // Keys under solver: that configure how the devices run a substep; every
 // other key is an option of a method (MethodOptionDesc).
 constexpr std::array<std::string_view, 8> kScheduleKeys{"method",      "schedule", "async_depth", "merge",
@@ -72,6 +72,7 @@ void apply_override(YAML::Node& root, const std::string& assignment, const std::
   } catch (const YAML::Exception& e) {
     throw input_error(fmt::format("--set {}: value is not valid YAML ({}); quote text values", assignment, e.msg));
   }
+  check_yaml_value(value, "--set " + assignment);
   std::vector<std::string> keys;
   std::stringstream ss(path);
   for (std::string k; std::getline(ss, k, '.');) {
@@ -142,6 +143,15 @@ SimulationDesc read_simulation(const YamlReader& r) {
   if (r.has("air_drag")) {
     sim.air_drag = r.child("air_drag").number_in(0.0, 1e6, false, "a drag rate in 1/s ≥ 0 (force −m·c·v)");
   }
+  if (r.has("energy_growth_limit")) {
+    const YamlReader limit = r.child("energy_growth_limit");
+    const double v = limit.number();
+    if (v != 0.0 && !(v > 1.0 && v <= 1e30)) {
+      limit.fail(fmt::format("'simulation.energy_growth_limit' is {}, out of range", limit.node().Scalar()),
+                 "use a factor above 1 (default 1000), or 0 to turn the energy check off");
+    }
+    sim.energy_growth_limit = v;
+  }
   if (r.has("gravity")) {
     sim.gravity = r.child("gravity").vec3();
     for (double g : sim.gravity) {
@@ -158,7 +168,15 @@ SceneDesc parse_scene(const std::string& yaml_text, const std::string& source_na
   YamlSource source{source_name, {}};
   YAML::Node root;
   try {
-    root = YAML::Load(yaml_text);
+    // Every document, so that a second one ('---') is refused, not ignored.
+    const std::vector<YAML::Node> documents = YAML::LoadAll(yaml_text);
+    if (documents.size() > 1) {
+      throw input_error(fmt::format(
+          "{}:{}: a second YAML document ('---') in the scene file; a scene is one document: remove the '---' line "
+          "and merge the keys, or split the file",
+          source_name, documents[1].Mark().is_null() ? 1 : documents[1].Mark().line + 1));
+    }
+    if (!documents.empty()) root = documents.front();
   } catch (const YAML::ParserException& e) {
     throw input_error(fmt::format("{}:{}: YAML syntax error: {}; fix the indentation or quoting there", source_name,
                                   e.mark.line + 1, e.msg));

@@ -130,6 +130,9 @@ std::string to_resolved_yaml(const SceneDesc& scene) {
   flow_seq(out, s.gravity);
   if (s.ground) out << YAML::Key << "ground" << YAML::Value << *s.ground;
   if (s.air_drag > 0.0) out << YAML::Key << "air_drag" << YAML::Value << s.air_drag;
+  if (s.energy_growth_limit != SimulationDesc{}.energy_growth_limit) {
+    out << YAML::Key << "energy_growth_limit" << YAML::Value << s.energy_growth_limit;
+  }
   out << YAML::EndMap;
   out << YAML::Key << "objects" << YAML::Value << YAML::BeginSeq;
   for (const ObjectDesc& obj : scene.objects) emit_object(out, obj);

@@ -85,6 +85,8 @@ long long TextLines::integer(std::size_t i, std::string_view what) const {
 }
 
 void TextLines::fail(std::string_view what, std::string_view fix) const {
+  // An empty file has no line to name.
+  if (line_ <= 0) throw input_error(fmt::format("{}: {} (the file is empty); {}", path_, what, fix));
   throw input_error(fmt::format("{}:{}: {}; {}", path_, line_, what, fix));
 }
 

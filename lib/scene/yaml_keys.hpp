@@ -14,4 +14,8 @@ namespace atssim::scene {
 // document whose root is not a map.
 void check_yaml_keys(const YAML::Node& root, const std::string& file);
 
+// The same checks (tags, merge keys, duplicates, nesting) of a value given on
+// the command line; messages start with `where` ("--set key=value").
+void check_yaml_value(const YAML::Node& value, const std::string& where);
+
 }  // namespace atssim::scene

@@ -29,6 +29,24 @@ std::string type_name(const YAML::Node& node) {
 
 }  // namespace
 
+std::string one_line(std::string_view text) {
+  std::string out;
+  for (const char c : text) {
+    if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\r') {
+      out += "\\r";
+    } else if (c == '\t') {
+      out += "\\t";
+    } else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+      out += fmt::format("\\x{:02x}", static_cast<unsigned char>(c));
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
 std::string YamlReader::where() const {
   if (source_ != nullptr) {
     // The longest override that is a prefix of this path produced the node.
@@ -45,7 +63,7 @@ std::string YamlReader::where() const {
 }
 
 void YamlReader::fail(std::string_view what, std::string_view fix) const {
-  throw input_error(fmt::format("{}: {}; {}", where(), what, fix));
+  throw input_error(fmt::format("{}: {}; {}", where(), one_line(what), fix));
 }
 
 void YamlReader::expect_map(std::span<const std::string_view> allowed) const {
@@ -94,7 +112,19 @@ std::vector<YamlReader> YamlReader::sequence() const {
   return items;
 }
 
+// A scalar YAML says is text — quoted ("0.2"), a block (|) or tagged !!str —
+// where a number belongs: read as a number it would be a silent guess.
+void YamlReader::refuse_text_for(std::string_view kind) const {
+  if (!node_.IsScalar()) return;
+  const std::string& tag = node_.Tag();
+  if (tag == "!" || tag == "tag:yaml.org,2002:str") {
+    fail(fmt::format("'{}' should be {}, found the text '{}' (quoted or tagged !!str)", path_, kind, node_.Scalar()),
+         "write the number without quotes");
+  }
+}
+
 double YamlReader::number() const {
+  refuse_text_for("a number");
   double value = 0.0;
   if (!node_.IsScalar() || !YAML::convert<double>::decode(node_, value)) {
     fail(fmt::format("'{}' should be a number, found {}", path_, type_name(node_)), "write a number such as 0.5");
@@ -106,6 +136,7 @@ double YamlReader::number() const {
 }
 
 int YamlReader::integer() const {
+  refuse_text_for("a whole number");
   long long value = 0;
   if (!node_.IsScalar() || !YAML::convert<long long>::decode(node_, value) || value < std::numeric_limits<int>::min() ||
       value > std::numeric_limits<int>::max()) {

@@ -19,6 +19,10 @@ struct YamlSource {
   std::map<std::string, std::string> overrides;  // dotted path -> "key=value" as typed
 };
 
+// Text from the scene as a message may quote it: on one line (a newline,
+// tab or other control character written as an escape, \n, \x01, …).
+std::string one_line(std::string_view text);
+
 class YamlReader {
  public:
   YamlReader(const YAML::Node& node, std::string path, const YamlSource* source)
@@ -56,6 +60,7 @@ class YamlReader {
 
  private:
   std::vector<double> numbers(std::size_t expected) const;
+  void refuse_text_for(std::string_view kind) const;
 
   YAML::Node node_;
   std::string path_;

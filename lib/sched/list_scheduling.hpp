@@ -86,9 +86,7 @@ class ReadyList {
  private:
   bool sorted_is_topological() const;
   // The list's total order: higher rounded priority, then smaller id.
-  bool before(TaskId a, TaskId b) const {
-    return rounded_[a] > rounded_[b] || (rounded_[a] == rounded_[b] && a < b);
-  }
+  bool before(TaskId a, TaskId b) const { return rounded_[a] > rounded_[b] || (rounded_[a] == rounded_[b] && a < b); }
 
   struct Entry {
     double priority;

@@ -4,8 +4,8 @@
 
 namespace atssim::sched {
 
-SyncMap build_sync_map(const TaskGraph& graph, const Schedule& schedule, const DeviceLinks& links,
-                       DeviceId main_device, const SyncMapOptions& options) {
+SyncMap build_sync_map(const TaskGraph& graph, const Schedule& schedule, const DeviceLinks& links, DeviceId main_device,
+                       const SyncMapOptions& options) {
   const std::size_t devices = schedule.devices.size();
   SyncMap map;
   map.main_device = main_device;

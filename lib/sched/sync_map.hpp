@@ -26,11 +26,11 @@ namespace atssim::sched {
 inline constexpr TaskId kNoTask = 0xffffffffu;
 
 struct Merge {
-  TaskId consumer = 0;       // the task that runs after the merge
+  TaskId consumer = 0;  // the task that runs after the merge
   DeviceId consumer_device = 0;
-  TaskId producer = 0;       // whose result is merged
+  TaskId producer = 0;  // whose result is merged
   DeviceId producer_device = 0;
-  TaskId start = kNoTask;    // main-device task whose result is the explicit start point; kNoTask: copy
+  TaskId start = kNoTask;  // main-device task whose result is the explicit start point; kNoTask: copy
 };
 
 struct SyncMap {
@@ -42,7 +42,7 @@ struct SyncMapOptions {
   bool latest = true;  // also merge the latest finished other-device result (not only data dependencies)
 };
 
-SyncMap build_sync_map(const TaskGraph& graph, const Schedule& schedule, const DeviceLinks& links,
-                       DeviceId main_device, const SyncMapOptions& options = {});
+SyncMap build_sync_map(const TaskGraph& graph, const Schedule& schedule, const DeviceLinks& links, DeviceId main_device,
+                       const SyncMapOptions& options = {});
 
 }  // namespace atssim::sched

@@ -35,7 +35,7 @@ int lines(const std::string& text) {
 
 }  // namespace
 
-TEST_CASE("atssim run writes a complete HDF5 file with every frame") {
+TEST_CASE("atssim run writes a complete HDF5 file with every frame", "[fast]") {
   test::TempDir dir;
   const std::string scene = dir.write("cloth.yaml", test::hanging_cloth_yaml(12));
   const auto r = run_atssim(dir, "run " + scene + " -o " + dir.file("out.h5") + " --frames 3 --devices cpu");
@@ -92,7 +92,7 @@ TEST_CASE("every bundled scene runs") {
   }
 }
 
-TEST_CASE("a bad scene gives one line naming file and line, exit code 2, and no output file") {
+TEST_CASE("a bad scene gives one line naming file and line, exit code 2, and no output file", "[fast]") {
   test::TempDir dir;
   const std::string scene = dir.write("bad.yaml",
                                       "objects:\n  - grid: {size: [1, 1], resolution: [4, 4]}\n"
@@ -105,7 +105,7 @@ TEST_CASE("a bad scene gives one line naming file and line, exit code 2, and no 
   CHECK_FALSE(std::filesystem::exists(dir.file("out.h5")));
 }
 
-TEST_CASE("bad usage gives one line and exit code 2") {
+TEST_CASE("bad usage gives one line and exit code 2", "[fast]") {
   test::TempDir dir;
   const std::string scene = dir.write("cloth.yaml", test::hanging_cloth_yaml(4));
   for (const std::string& args :
@@ -118,7 +118,7 @@ TEST_CASE("bad usage gives one line and exit code 2") {
   }
 }
 
-TEST_CASE("help works for every subcommand") {
+TEST_CASE("help works for every subcommand", "[fast]") {
   test::TempDir dir;
   for (const char* args :
        {"--help", "run --help", "devices --help", "schedule --help", "converge --help", "inspect --help"}) {
@@ -128,7 +128,7 @@ TEST_CASE("help works for every subcommand") {
   }
 }
 
-TEST_CASE("atssim devices lists the pocl CPU device with its SVM capabilities") {
+TEST_CASE("atssim devices lists the pocl CPU device with its SVM capabilities", "[fast]") {
   test::TempDir dir;
   const auto r = run_atssim(dir, "devices");
   CHECK(r.code == 0);
@@ -163,7 +163,7 @@ TEST_CASE("a run that blows up exits 1 naming the frame and keeps the frames bef
   CHECK(s.error.find("blew up") != std::string::npos);
 }
 
-TEST_CASE("a scene far from the origin falling freely is no blow-up") {
+TEST_CASE("a scene far from the origin falling freely is no blow-up", "[fast]") {
   test::TempDir dir;
   // 10 s frames under 1e5 m/s² carry the cloth 5e6 m in the first frame:
   // free fall, what gravity and the time step allow (the old |x| > 1e6 m
@@ -180,7 +180,7 @@ TEST_CASE("a scene far from the origin falling freely is no blow-up") {
   CHECK(last[1] < 2.0e6 - 1.0e6);  // it fell
 }
 
-TEST_CASE("a run killed mid-way leaves a readable file with the frames flushed before the kill") {
+TEST_CASE("a run killed mid-way leaves a readable file with the frames flushed before the kill", "[fast]") {
   test::TempDir dir;
   const std::string scene = dir.write("cloth.yaml", test::hanging_cloth_yaml(24));
   const std::string out = dir.file("out.h5");
@@ -208,7 +208,7 @@ TEST_CASE("a run killed mid-way leaves a readable file with the frames flushed b
   CHECK(last.size() == 24 * 24 * 3);
 }
 
-TEST_CASE("atssim schedule prints the substep graph, its costs as CSV, and schedules from that CSV") {
+TEST_CASE("atssim schedule prints the substep graph, its costs as CSV, and schedules from that CSV", "[fast]") {
   test::TempDir dir;
   const std::string scene = dir.write("cloth.yaml", test::hanging_cloth_yaml(16, 1e4, 0.0, 2));
   const auto table = run_atssim(dir, "schedule " + scene + " --devices cpu/2 --schedule heft");
@@ -230,7 +230,7 @@ TEST_CASE("atssim schedule prints the substep graph, its costs as CSV, and sched
   CHECK(dot.out.find("digraph substep") == 0);
 }
 
-TEST_CASE("a cost file that does not match the scene is an input error with its line") {
+TEST_CASE("a cost file that does not match the scene is an input error with its line", "[fast]") {
   test::TempDir dir;
   const std::string scene = dir.write("cloth.yaml", test::hanging_cloth_yaml(8, 1e4, 0.0, 1));
   const std::string costs = dir.write("costs.csv", "latency_ms,0.01\npredict#0,1,1\nnot_a_task,1,1\n");
@@ -263,7 +263,7 @@ TEST_CASE("a split from a cost table of unequal devices drops the parts that rou
   CHECK(r.out.find("split fractions: 0.750 0.250") != std::string::npos);
 }
 
-TEST_CASE("a solid the method cannot simulate: one line naming the line that chose it, exit code 2") {
+TEST_CASE("a solid the method cannot simulate: one line naming the line that chose it, exit code 2", "[fast]") {
   test::TempDir dir;
   const std::string box = "  - name: box\n    type: solid\n    box: {size: [0.2, 0.2, 0.2], resolution: [1, 1, 1]}\n";
   // neo-Hookean chosen on line 6, XPBD on line 8

@@ -43,7 +43,7 @@ TEST_CASE("converge: the Newton minimum lies below every iterative result of eve
   }
 }
 
-TEST_CASE("converge rejects unknown schedules and infinitely stiff scenes") {
+TEST_CASE("converge rejects unknown schedules and infinitely stiff scenes", "[fast]") {
   test::TempDir dir;
   app::ConvergeOptions o;
   o.scene_path = dir.write("cloth.yaml", test::hanging_cloth_yaml(6));

@@ -68,7 +68,7 @@ double largest_difference(const std::vector<double>& a, const std::vector<double
 
 }  // namespace
 
-TEST_CASE("explicit RK4: a spring-mass oscillator's period is 2 pi sqrt(m/k) within 1 %", "[explicit]") {
+TEST_CASE("explicit RK4: a spring-mass oscillator's period is 2 pi sqrt(m/k) within 1 %", "[explicit][fast]") {
   const double k = 10.0, m = 0.2 * 0.5 / 3.0;
   test::TempDir dir;
   // fps 60 x 40 substeps: h = 1/2400 s, omega h = 0.007.

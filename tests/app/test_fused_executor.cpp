@@ -138,7 +138,7 @@ TEST_CASE(
   }
 }
 
-TEST_CASE("the fused executor times every task of a recorded substep on one clock", "[fused]") {
+TEST_CASE("the fused executor times every task of a recorded substep on one clock", "[fused][fast]") {
   const auto scene = scene::parse_scene(test::hanging_cloth_yaml(12), "s.yaml", ".");
   const auto devices = device::DeviceSet::open("cpu/2");
   app::ExecutionOptions options;
@@ -196,7 +196,7 @@ TEST_CASE("without a task clock the fused executor times launches, and its costs
   CHECK(with == without);
 }
 
-TEST_CASE("an executor refuses a launch of a task function its program does not declare", "[fused]") {
+TEST_CASE("an executor refuses a launch of a task function its program does not declare", "[fused][fast]") {
   const auto scene = scene::parse_scene(test::hanging_cloth_yaml(6), "s.yaml", ".");
   plan::SubstepPlan plan = app::substep_plan_for(scene);
   const auto devices = device::DeviceSet::open("cpu");
@@ -226,7 +226,8 @@ TEST_CASE("an executor refuses a launch of a task function its program does not 
   }
 }
 
-TEST_CASE("a fused wait that never completes ends in an error naming the device and task, not a hang", "[fused]") {
+TEST_CASE("a fused wait that never completes ends in an error naming the device and task, not a hang",
+          "[fused][fast]") {
   const std::string spec = GENERATE("cpu/2", "cpu");  // across sub-devices; between the work-groups of one device
   const auto scene = scene::parse_scene(test::hanging_cloth_yaml(8), "s.yaml", ".");
   const auto devices = device::DeviceSet::open(spec);

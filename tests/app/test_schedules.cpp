@@ -47,7 +47,7 @@ std::vector<int> read_ints(hid_t file, const char* name) {
 
 }  // namespace
 
-TEST_CASE("split and heft on two sub-devices give the single-device positions bit for bit after 10 frames") {
+TEST_CASE("split and heft on two sub-devices give the single-device positions bit for bit after 10 frames", "[fast]") {
   test::TempDir dir;
   const auto single = io::read_frame_positions(run_cloth(dir, "single"), 10);
   for (const std::string schedule : {"split", "heft"}) {
@@ -114,7 +114,7 @@ TEST_CASE("every executed schedule's measured order respects the task graph, and
   CHECK(checked == 10 * static_cast<int>(from.size()));
 }
 
-TEST_CASE("a two-device schedule on one device is an input error") {
+TEST_CASE("a two-device schedule on one device is an input error", "[fast]") {
   test::TempDir dir;
   try {
     run_cloth(dir, "heft", "cpu");

@@ -148,7 +148,7 @@ TEST_CASE("the fused executor is refused when devices share no memory, with a cl
   CHECK(e.executor->kind() == device::ExecutorKind::events);
 }
 
-TEST_CASE("every launch of every method names what it writes, also cut into parts", "[memory]") {
+TEST_CASE("every launch of every method names what it writes, also cut into parts", "[memory][fast]") {
   // An undeclared writable argument counts as written whole: right for a
   // task that alone writes the buffer, but a part of a cut task would then
   // send the other parts' stale elements along. Every method declares.

@@ -3,7 +3,7 @@
 interrupted, resumed, raced by a second writer, out of disk space, or robbed
 of its output folder.
 
-    test_faults.py sigkill|resume|disk_full|second_writer|keeps_earlier|sigint|vanished_folder
+    test_faults.py sigkill|resume|disk_full|second_writer|keeps_earlier|sigint|vanished_folder|sigint_setup
 
 Every atssim started here is killed and waited for in a finally block, so a
 failing test leaves no process behind. Exit 77 = skipped (reason on stderr).
@@ -48,12 +48,17 @@ solver:
 """
 
 
+CHECKS = 0  # checks made: a test that made none ran nothing, and fails
+
+
 def fail(message):
     print(f"FAILED: {message}", file=sys.stderr)
     sys.exit(1)
 
 
 def check(condition, message):
+    global CHECKS
+    CHECKS += 1
     if not condition:
         fail(message)
 
@@ -129,6 +134,12 @@ def test_sigkill(tmp):
     listed = xdmf_frames(h5)
     check(len(positions) - 1 <= listed <= len(positions),
           f"the sidecar lists {listed} frames, the file holds {len(positions)}")
+    # /frames/flushed is written after each flush, the same way: as far as
+    # the rows, or one frame behind.
+    with h5py.File(h5, "r") as f:
+        flushed = int(f["frames/flushed"][0])
+    check(len(positions) - 1 <= flushed <= len(positions),
+          f"/frames/flushed is {flushed}, the file holds {len(positions)} frames")
     r = subprocess.run([ATSSIM, "inspect", h5], capture_output=True, text=True)
     check(r.returncode == 0 and "incomplete" in r.stdout, f"atssim inspect: {r.stdout} {r.stderr}")
 
@@ -179,6 +190,7 @@ def test_resume(tmp):
               "the time series do not match the frames")
         check(list(f["schedule/makespan/frame"][()]) == list(range(1, frames + 1)),
               f"/schedule/makespan/frame is {list(f['schedule/makespan/frame'][()])}")
+        check(int(f["frames/flushed"][0]) == frames + 1, f"/frames/flushed is {f['frames/flushed'][0]}")
     check(xdmf_frames(h5) == frames + 1, f"the sidecar lists {xdmf_frames(h5)} frames")
     r = subprocess.run([ATSSIM, "run", scene, "-o", h5, "--resume"] + args, capture_output=True, text=True)
     check(r.returncode == 2 and "complete run" in r.stderr, f"resuming a complete run: {r.returncode} {r.stderr}")
@@ -326,16 +338,51 @@ def test_vanished_folder(tmp):
         stop(proc)
 
 
+def test_sigint_setup(tmp):
+    """Ctrl-C (SIGINT to the whole process group, as a terminal sends it) while
+    the kernels are being built: an empty POCL_CACHE_DIR makes pocl compile
+    them, and the signal comes once it has started (its cache folder is no
+    longer empty). One line, from atssim, exit 1, nothing written."""
+    scene = write_scene(tmp, frames=2)
+    cache = os.path.join(tmp, "pocl-cache")
+    os.makedirs(cache)
+    h5 = os.path.join(tmp, "setup.h5")
+    env = dict(os.environ, POCL_CACHE_DIR=cache)
+    proc = None
+    try:
+        proc = subprocess.Popen([ATSSIM, "run", scene, "-o", h5, "--quiet"], stdout=subprocess.PIPE,
+                                stderr=subprocess.PIPE, text=True, env=env, start_new_session=True)
+        deadline = time.monotonic() + 60
+        while not os.listdir(cache) and proc.poll() is None and time.monotonic() < deadline:
+            time.sleep(0.01)
+        check(proc.poll() is None, "the run ended before it began building kernels")
+        time.sleep(random.uniform(0.0, 0.3))
+        os.killpg(proc.pid, signal.SIGINT)
+        out, err = proc.communicate(timeout=120)
+        print(err)
+        lines = [l for l in err.splitlines() if l.strip()]
+        check(len(lines) == 1, f"{len(lines)} lines on stderr, expected one: {err!r}")
+        check(lines[0].startswith("atssim: interrupted during device set-up"), f"the line: {lines[0]!r}")
+        check(proc.returncode == 1, f"exit {proc.returncode}, expected 1")
+        check(out == "", f"stdout: {out!r}")
+        left = [f for f in os.listdir(tmp) if f.startswith("setup")]
+        check(not left, f"it wrote {left}")
+    finally:
+        stop(proc)
+
+
 def main():
     test = {"sigkill": test_sigkill, "resume": test_resume, "disk_full": test_disk_full,
             "second_writer": test_second_writer, "keeps_earlier": test_keeps_earlier, "sigint": test_sigint,
-            "vanished_folder": test_vanished_folder}[sys.argv[1]]
+            "vanished_folder": test_vanished_folder, "sigint_setup": test_sigint_setup}[sys.argv[1]]
     seed = int(os.environ.get("ATSSIM_FAULT_SEED", random.randrange(1 << 30)))
     random.seed(seed)
     print(f"seed {seed} (ATSSIM_FAULT_SEED to repeat)")
     with tempfile.TemporaryDirectory(prefix="atssim-faults-") as tmp:
         test(tmp)
-    print("passed")
+    if CHECKS == 0:
+        fail(f"{sys.argv[1]} made no check: it ran nothing")
+    print(f"passed ({CHECKS} checks)")
 
 
 if __name__ == "__main__":

@@ -152,3 +152,35 @@ TEST_CASE("reading something that is not an atssim file is an input error") {
   CHECK_THROWS_AS(io::read_summary(dir.file("missing.h5")), Error);
   CHECK_THROWS_AS(io::read_summary(dir.write("junk.h5", "not hdf5")), Error);
 }
+
+namespace {
+
+// /frames/flushed of `path`, read by a second handle as a reader would.
+long long flushed_frames(const std::string& path) {
+  const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  REQUIRE(f >= 0);
+  const hid_t d = H5Dopen2(f, "frames/flushed", H5P_DEFAULT);
+  REQUIRE(d >= 0);
+  long long n = -1;
+  CHECK(H5Dread(d, H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, &n) >= 0);
+  H5Dclose(d);
+  H5Fclose(f);
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("/frames/flushed counts the frames on disk in full after every append, for a reader that opens the file") {
+  test::TempDir dir;
+  const auto m = small_model();
+  const std::string path = dir.file("out.h5");
+  const std::vector<float> xyz(m.particles.size() * 3, 0.5f);
+  io::ResultWriter w(path, run_info(), m.objects);
+  CHECK(flushed_frames(path) == 0);
+  for (int f = 1; f <= 3; ++f) {
+    w.append_frame(0.1 * f, xyz, 1.0);
+    CHECK(flushed_frames(path) == f);  // while the writer still holds the file
+  }
+  w.finish();
+  CHECK(flushed_frames(path) == 3);
+}

@@ -1,8 +1,10 @@
 """Shared helpers of the workflow tests: the real atssim binary, real tools.
 
 Each test is a script that ctest runs; exit code 77 means "skipped" (ctest's
-SKIP_RETURN_CODE), with the reason on stderr.
+SKIP_RETURN_CODE), with the reason on stderr. A script that ends without
+having made a single check() ran nothing, and fails.
 """
+import atexit
 import os
 import shutil
 import subprocess
@@ -15,7 +17,22 @@ SOURCE_DIR = os.environ.get("ATSSIM_SOURCE_DIR", os.path.join(os.path.dirname(__
 SCRIPTS = os.path.join(SOURCE_DIR, "scripts")
 
 
+_checks = 0
+_skipped = _failed = False
+
+
+def _ran_nothing():
+    if _checks == 0 and not _skipped and not _failed:
+        print("FAILED: the test made no check: it ran nothing", file=sys.stderr, flush=True)
+        os._exit(1)
+
+
+atexit.register(_ran_nothing)
+
+
 def skip(reason):
+    global _skipped
+    _skipped = True
     print(f"SKIPPED: {reason}", file=sys.stderr)
     sys.exit(SKIP)
 
@@ -26,11 +43,15 @@ def require_tool(name, install_hint):
 
 
 def fail(message):
+    global _failed
+    _failed = True
     print(f"FAILED: {message}", file=sys.stderr)
     sys.exit(1)
 
 
 def check(condition, message):
+    global _checks
+    _checks += 1
     if not condition:
         fail(message)
 

@@ -8,7 +8,6 @@
 
 namespace atssim::solver::energy {
 
-std::vector<float> element_energies(const SimLayout& layout, const std::vector<Float4>& predicted,
-                                    double h);
+std::vector<float> element_energies(const SimLayout& layout, const std::vector<Float4>& predicted, double h);
 
 }  // namespace atssim::solver::energy

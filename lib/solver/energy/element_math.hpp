@@ -18,6 +18,7 @@
 namespace atssim::solver::energy::f64 {
 #define ats_real double
 #include "common/collider_distance.h"
+#include "common/energy_bend_element.h"
 #include "common/energy_bending.h"
 #include "common/energy_dihedral.h"
 #include "common/energy_inertia.h"
@@ -26,7 +27,6 @@ namespace atssim::solver::energy::f64 {
 #include "common/energy_stretch.h"
 #include "common/energy_tet_neohookean.h"
 #include "common/energy_tet_stvk.h"
-#include "common/energy_bend_element.h"
 #include "common/self_contact.h"
 #undef ats_real
 }  // namespace atssim::solver::energy::f64

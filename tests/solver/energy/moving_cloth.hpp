@@ -12,7 +12,7 @@
 namespace atssim::test {
 
 inline solver::SimLayout moving_cloth(int resolution, double stretch_stiffness, double bend_stiffness, double h,
-                                             int substeps = 5) {
+                                      int substeps = 5) {
   const auto m = model::build_model(
       scene::parse_scene(hanging_cloth_yaml(resolution, stretch_stiffness, bend_stiffness), "s.yaml", "."));
   solver::SimLayout start = solver::make_sim_layout(m);

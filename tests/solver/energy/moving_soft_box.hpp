@@ -34,8 +34,8 @@ inline std::string soft_box_yaml(int cells, double youngs_modulus, double poisso
 
 // strain: amplitude of the smooth displacement relative to the box size.
 inline solver::SimLayout moving_soft_box(int cells, const std::string& model = "neo_hookean", unsigned seed = 1,
-                                                double strain = 0.05, double youngs_modulus = 1e4,
-                                                double poisson_ratio = 0.3) {
+                                         double strain = 0.05, double youngs_modulus = 1e4,
+                                         double poisson_ratio = 0.3) {
   const auto m =
       model::build_model(scene::parse_scene(soft_box_yaml(cells, youngs_modulus, poisson_ratio, model), "s.yaml", "."));
   solver::SimLayout layout = solver::make_sim_layout(m);
