@@ -1,6 +1,7 @@
 #pragma once
-// Wires the pipeline for `atssim run`: scene -> model -> XPBD plan ->
-// devices -> frames -> HDF5.
+// Wires the pipeline for `atssim run`: scene -> model -> the method's plan
+// -> devices -> frames -> HDF5 (with a tolerance or a budget, the probe's
+// choice first: app/accuracy_control).
 #include <functional>
 #include <span>
 #include <string>
@@ -58,6 +59,12 @@ struct RunResult {
   };
   bool surface_contact = false;
   std::vector<ContactRecord> contact;
+  // run --tolerance / --budget (docs/accuracy.md): what was asked, and every
+  // choice made (the rows of /decisions, those a resumed run kept included).
+  bool tuned = false;
+  double tolerance = 0.0, budget_ms = 0.0;
+  int recheck = 0;
+  std::vector<io::DecisionRecord> decisions;
 };
 
 // Throws atssim::Error: input errors before anything is written; runtime

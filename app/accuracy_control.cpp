@@ -1,0 +1,177 @@
+#include "app/accuracy_control.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "plan/buffer.hpp"
+#include "sched/accuracy_choice.hpp"
+#include "util/error.hpp"
+
+namespace atssim::app {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+double median(std::vector<double> v) {
+  if (v.empty()) return kNaN;
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>((v.size() - 1) / 2), v.end());
+  return v[(v.size() - 1) / 2];
+}
+
+}  // namespace
+
+AccuracyControl::AccuracyControl(const scene::SceneDesc& scene, const device::DeviceSet& devices,
+                                 const model::Model& model, std::function<void(const std::string&)> warn)
+    : scene_(scene),
+      goal_{scene.solver.accuracy.tolerance, scene.solver.accuracy.budget_ms},
+      probe_(scene, devices, model),
+      layout_(solver::make_sim_layout(model)),
+      warn_(std::move(warn)) {}
+
+void AccuracyControl::record(int frame, double previous_y, double y_floor, bool changed, std::string reason) {
+  io::DecisionRecord row;
+  row.frame = frame;
+  row.method = current_.method;
+  row.iterations = current_.iterations;
+  row.schedule = current_.schedule;
+  row.y = current_.y;
+  row.previous_y = previous_y;
+  row.y_floor = y_floor;
+  row.predicted_ms = current_.predicted_ms;
+  row.check_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - check_started_).count();
+  row.changed = changed ? 1 : 0;
+  row.reason = std::move(reason);
+  events_.push_back({interval_ms(), row});
+  interval_.clear();
+}
+
+SolverChoice AccuracyControl::start(const solver::SimLayout& state) {
+  check_started_ = std::chrono::steady_clock::now();
+  const ProbeTable table = probe_.probe(state, 0, kProbeSubsteps);
+  if (!table.resolved) {
+    // Nothing on the start state to tell the choices apart at this
+    // tolerance (a body at rest or in free fall): the scene's own settings
+    // until a re-check finds a state that does.
+    resolved_ = false;
+    if (table.scene_default) {
+      current_ = table.at(*table.scene_default);
+    } else {
+      const std::string& method = probe_.methods().front();
+      const int k = scene_.simulation.iterations;
+      current_ = {method, k, "single", kNaN, probe_.predicted_ms(method, k, "single")};
+    }
+    record(0, kNaN, table.y_floor(), true,
+           fmt::format("the start state does not resolve y to the tolerance (float32 resolution {:.1e}): the "
+                       "scene's own settings, re-checked every frame until a state does",
+                       table.y_floor()));
+    return current_;
+  }
+  if (!table.choice.chosen) throw input_error(none_meets_message(table, probe_.max_iterations()));
+  current_ = table.at(*table.choice.chosen);
+  record(0, kNaN, table.y_floor(), true,
+         goal_.tolerance > 0.0 ? "probe: the cheapest choice that meets the tolerance"
+                               : "probe: the most accurate choice within the budget");
+  return current_;
+}
+
+SolverChoice AccuracyControl::resume(const std::vector<io::DecisionRecord>& kept, int frame) {
+  const io::DecisionRecord* in_force = nullptr;
+  for (const io::DecisionRecord& r : kept) {
+    if (r.frame <= frame) in_force = &r;
+  }
+  if (in_force == nullptr) {
+    throw input_error("--resume: the file records no choice of --tolerance / --budget; run without --resume");
+  }
+  current_ = {in_force->method, in_force->iterations, in_force->schedule, in_force->y, in_force->predicted_ms};
+  // A state that resolved the tolerance was found when a row says so.
+  resolved_ =
+      std::any_of(kept.begin(), kept.end(),
+                  [&](const io::DecisionRecord& r) {
+                    return r.frame <= frame && goal_.tolerance > 0.0 && sched::resolves(r.y_floor, goal_.tolerance);
+                  }) ||
+      goal_.tolerance <= 0.0;
+  return current_;
+}
+
+void AccuracyControl::frame_done(double frame_ms) { interval_.push_back(frame_ms); }
+
+double AccuracyControl::interval_ms() const { return median(interval_); }
+
+bool AccuracyControl::due(int frame) const {
+  const int every = scene_.solver.accuracy.recheck;
+  if (every <= 0) return false;
+  if (!resolved_) return true;
+  if (goal_.tolerance <= 0.0 && frame == kBudgetCalibrationFrame && frame < every) return true;
+  return frame % every == 0;
+}
+
+std::optional<SolverChoice> AccuracyControl::recheck(int frame, const plan::PlanState& state) {
+  check_started_ = std::chrono::steady_clock::now();
+  layout_.x = plan::values_of<solver::Float4>(state.positions);
+  layout_.v = plan::values_of<solver::Float4>(state.velocities);
+  ProbedState measured;
+  const double y = probe_.measure(current_, layout_, frame, &measured);
+  const double measured_ms = interval_ms();
+  const bool resolves = goal_.tolerance > 0.0 && sched::resolves(measured.y_floor, goal_.tolerance);
+  const SolverChoice before = current_;
+  if (!resolved_ && !resolves) {
+    current_.y = y;
+    record(
+        frame, y, measured.y_floor, false,
+        fmt::format("the state does not resolve y to the tolerance yet (float32 resolution {:.1e})", measured.y_floor));
+    return std::nullopt;
+  }
+  // The first state that resolves the tolerance gets the whole probe.
+  const sched::Recheck verdict =
+      !resolved_ ? sched::Recheck::reprobe : sched::recheck_verdict(goal_, y, resolves, measured_ms);
+  resolved_ = true;
+  std::string reason;
+  if (verdict == sched::Recheck::keep) {
+    current_.y = y;
+    record(frame, y, measured.y_floor, false,
+           goal_.tolerance > 0.0 ? fmt::format("kept: y {:.2e} within the tolerance", y)
+                                 : fmt::format("kept: {:.3g} ms per frame within 10 % of the budget", measured_ms));
+    return std::nullopt;
+  }
+  if (verdict == sched::Recheck::reprobe) {
+    const ProbeTable table = probe_.probe(layout_, frame, 1);
+    if (table.choice.chosen) {
+      current_ = table.at(*table.choice.chosen);
+      reason = fmt::format("y {:.2e} above the tolerance: probed again, the cheapest choice that meets it", y);
+    } else {
+      current_ = table.choice.nearest.empty() ? current_ : table.at(table.choice.nearest.front());
+      reason = fmt::format("y {:.2e} above the tolerance, and no choice meets it here: the most accurate", y);
+      if (!warned_none_ && warn_)
+        warn_(fmt::format("frame {}: {}", frame, none_meets_message(table, probe_.max_iterations())));
+      warned_none_ = true;
+    }
+  } else {
+    const sched::IterationCost line = probe_.cost_line(current_.method, current_.schedule);
+    const int k = std::min(probe_.max_iterations(),
+                           sched::iterations_for_budget(line, current_.predicted_ms, measured_ms, goal_.budget_ms));
+    reason = fmt::format("{:.3g} ms per frame measured against a budget of {:g}: {} iterations", measured_ms,
+                         goal_.budget_ms, k);
+    if (k != current_.iterations) {
+      current_.iterations = k;
+      current_.predicted_ms = line.at(k);
+      current_.y = probe_.measure(current_, layout_, frame, nullptr);
+    } else {
+      current_.y = y;
+    }
+  }
+  const bool changed = !current_.same_as(before);
+  record(frame, y, measured.y_floor, changed, reason);
+  return changed ? std::optional<SolverChoice>(current_) : std::nullopt;
+}
+
+std::vector<DecisionEvent> AccuracyControl::take_events() {
+  std::vector<DecisionEvent> out;
+  out.swap(events_);
+  return out;
+}
+
+}  // namespace atssim::app
