@@ -28,7 +28,7 @@ AccuracyControl::AccuracyControl(const scene::SceneDesc& scene, const device::De
                                  const model::Model& model, std::function<void(const std::string&)> warn)
     : scene_(scene),
       goal_{scene.solver.accuracy.tolerance, scene.solver.accuracy.budget_ms},
-      probe_(scene, devices, model),
+      probe_(scene, devices),
       layout_(solver::make_sim_layout(model)),
       warn_(std::move(warn)) {}
 
@@ -126,6 +126,7 @@ std::optional<SolverChoice> AccuracyControl::recheck(int frame, const plan::Plan
     return std::nullopt;
   }
   // The first state that resolves the tolerance gets the whole probe.
+  const bool resolved_before = resolved_;
   const sched::Recheck verdict =
       !resolved_ ? sched::Recheck::reprobe : sched::recheck_verdict(goal_, y, resolves, measured_ms);
   resolved_ = true;
@@ -139,12 +140,14 @@ std::optional<SolverChoice> AccuracyControl::recheck(int frame, const plan::Plan
   }
   if (verdict == sched::Recheck::reprobe) {
     const ProbeTable table = probe_.probe(layout_, frame, 1);
+    const std::string why = resolved_before ? fmt::format("y {:.2e} above the tolerance", y)
+                                            : std::string("the first state that resolves the tolerance");
     if (table.choice.chosen) {
       current_ = table.at(*table.choice.chosen);
-      reason = fmt::format("y {:.2e} above the tolerance: probed again, the cheapest choice that meets it", y);
+      reason = why + ": probed, the cheapest choice that meets it";
     } else {
       current_ = table.choice.nearest.empty() ? current_ : table.at(table.choice.nearest.front());
-      reason = fmt::format("y {:.2e} above the tolerance, and no choice meets it here: the most accurate", y);
+      reason = why + ", and no choice meets it here: the most accurate";
       if (!warned_none_ && warn_)
         warn_(fmt::format("frame {}: {}", frame, none_meets_message(table, probe_.max_iterations())));
       warned_none_ = true;

@@ -4,7 +4,8 @@
 // the scene allows runs one substep at a ladder of iteration counts on the
 // run's devices; the relative energy error y of each result is measured
 // against the Newton reference (solver/newton/substep_reference), over a
-// few states (the state and those after exact substeps from it), and the
+// few states (the state and those after exact substeps from it; friction
+// off, as it is no part of that potential), and the
 // cost model (plan/task_work) predicts each choice's frame time on each
 // schedule. sched::choose_accuracy then picks. The probe runs the plans;
 // it decides nothing itself.
@@ -14,7 +15,6 @@
 #include <vector>
 
 #include "device/device_set.hpp"
-#include "model/model.hpp"
 #include "scene/scene_desc.hpp"
 #include "sched/accuracy_choice.hpp"
 #include "solver/layout/sim_layout.hpp"
@@ -60,10 +60,11 @@ struct ProbeTable {
 
 class AccuracyProbe {
  public:
-  // `model` is the scene's (its colliders move with the probed states).
-  // Throws atssim::Error (input) for a method of solver.methods the scene
+  // Measures the scene without friction (friction acts after the
+  // iterations and is no part of the incremental potential). Throws
+  // atssim::Error (input) for a method of solver.methods the scene
   // forbids, one that has no iterations to choose, or no method at all.
-  AccuracyProbe(const scene::SceneDesc& scene, const device::DeviceSet& devices, const model::Model& model);
+  AccuracyProbe(const scene::SceneDesc& scene, const device::DeviceSet& devices);
   ~AccuracyProbe();
   AccuracyProbe(const AccuracyProbe&) = delete;
   AccuracyProbe& operator=(const AccuracyProbe&) = delete;

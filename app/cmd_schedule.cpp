@@ -34,7 +34,7 @@ struct ScheduleArgs {
 int print_probe(const scene::SceneDesc& scene) {
   const device::DeviceSet devices = open_scene_devices(scene);
   const model::Model model = model::build_model(scene);
-  AccuracyProbe probe(scene, devices, model);
+  AccuracyProbe probe(scene, devices);
   const ProbeTable table = probe.probe(solver::make_sim_layout(model), 0, AccuracyControl::kProbeSubsteps);
   fmt::print("{}", format_probe_table(table));
   if (table.goal.tolerance > 0.0 && !table.resolved) {

@@ -4,7 +4,8 @@
 A case is a scene in cases/*.yaml whose last comment lines say what must
 happen (`# exit: 2`; `# expect: {scene}:LINE:`, the file:line the message must
 name, {scene} standing for the case's path; optionally `# says: TEXT`, what
-it must say, and `# args: run {scene} …`), or a line of cli.txt. For each: the exit
+it must say, and `# args: run {scene} …`), or a line of cli.txt or of a
+cli-*.txt beside it. For each: the exit
 code is the one expected, stderr is exactly one line, that line contains the
 expected text (the file:line it names), stdout is empty, and a case that
 fails with exit 2 wrote no output file.
@@ -33,11 +34,14 @@ def load_cases():
         args = meta.get("args", "run {scene} -o {out}")
         expect = [meta["expect"]] + ([meta["says"]] if "says" in meta else [])
         cases.append((name[:-5], int(meta["exit"]), expect, shlex.split(args), path))
-    for number, line in enumerate(open(os.path.join(HERE, "cli.txt")), 1):
-        if not line.strip() or line.startswith("#"):
-            continue
-        code, expect, args = (part.strip() for part in line.split("|", 2))
-        cases.append((f"cli.txt:{number}", int(code), [expect], shlex.split(args), None))
+    # cli.txt and every cli-*.txt beside it (one file per area, so that
+    # branches adding cases do not edit the same lines).
+    for listing in sorted(n for n in os.listdir(HERE) if n == "cli.txt" or (n.startswith("cli-") and n.endswith(".txt"))):
+        for number, line in enumerate(open(os.path.join(HERE, listing)), 1):
+            if not line.strip() or line.startswith("#"):
+                continue
+            code, expect, args = (part.strip() for part in line.split("|", 2))
+            cases.append((f"{listing}:{number}", int(code), [expect], shlex.split(args), None))
     return cases
 
 
