@@ -25,10 +25,11 @@ double median(std::vector<double> v) {
 }  // namespace
 
 AccuracyControl::AccuracyControl(const scene::SceneDesc& scene, const device::DeviceSet& devices,
-                                 const model::Model& model, std::function<void(const std::string&)> warn)
+                                 const model::Model& model, std::function<void(const std::string&)> warn,
+                                 double cost_scale)
     : scene_(scene),
       goal_{scene.solver.accuracy.tolerance, scene.solver.accuracy.budget_ms},
-      probe_(scene, devices),
+      probe_(scene, devices, cost_scale),
       layout_(solver::make_sim_layout(model)),
       warn_(std::move(warn)) {}
 
@@ -53,10 +54,13 @@ SolverChoice AccuracyControl::start(const solver::SimLayout& state) {
   check_started_ = std::chrono::steady_clock::now();
   const ProbeTable table = probe_.probe(state, 0, kProbeSubsteps);
   if (!table.resolved) {
-    // Nothing on the start state to tell the choices apart at this
-    // tolerance (a body at rest or in free fall): the scene's own settings
-    // until a re-check finds a state that does.
+    // Nothing on the start state tells the choices apart (a body at rest or
+    // in free fall): the scene's own settings — with a budget alone, as many
+    // of its iterations as the budget holds — until a re-check finds a
+    // state that does. Whether any choice fits a budget needs no y.
     resolved_ = false;
+    const bool budget_alone = goal_.tolerance <= 0.0;
+    if (budget_alone && !table.choice.chosen) throw input_error(none_meets_message(table, probe_.max_iterations()));
     if (table.scene_default) {
       current_ = table.at(*table.scene_default);
     } else {
@@ -64,10 +68,22 @@ SolverChoice AccuracyControl::start(const solver::SimLayout& state) {
       const int k = scene_.simulation.iterations;
       current_ = {method, k, "single", kNaN, probe_.predicted_ms(method, k, "single")};
     }
+    if (budget_alone) {
+      const int k = std::min(probe_.max_iterations(),
+                             probe_.cost_line(current_.method, current_.schedule).most_within(goal_.budget_ms));
+      if (k >= 1) {
+        current_.iterations = k;
+        current_.predicted_ms = probe_.predicted_ms(current_.method, k, current_.schedule);
+        current_.y = kNaN;
+      } else {
+        current_ = table.at(*table.choice.chosen);
+      }
+    }
     record(0, kNaN, table.y_floor(), true,
-           fmt::format("the start state does not resolve y to the tolerance (float32 resolution {:.1e}): the "
-                       "scene's own settings, re-checked every frame until a state does",
-                       table.y_floor()));
+           fmt::format("the start state does not resolve y to {:g} (float32 resolution {:.1e}): the scene's own "
+                       "settings{}, re-checked every frame until a state does",
+                       sched::resolution_needed(goal_), table.y_floor(),
+                       budget_alone ? " with the iterations the budget holds" : ""));
     return current_;
   }
   if (!table.choice.chosen) throw input_error(none_meets_message(table, probe_.max_iterations()));
@@ -87,13 +103,10 @@ SolverChoice AccuracyControl::resume(const std::vector<io::DecisionRecord>& kept
     throw input_error("--resume: the file records no choice of --tolerance / --budget; run without --resume");
   }
   current_ = {in_force->method, in_force->iterations, in_force->schedule, in_force->y, in_force->predicted_ms};
-  // A state that resolved the tolerance was found when a row says so.
-  resolved_ =
-      std::any_of(kept.begin(), kept.end(),
-                  [&](const io::DecisionRecord& r) {
-                    return r.frame <= frame && goal_.tolerance > 0.0 && sched::resolves(r.y_floor, goal_.tolerance);
-                  }) ||
-      goal_.tolerance <= 0.0;
+  // A state that resolved the goal was found when a row says so.
+  resolved_ = std::any_of(kept.begin(), kept.end(), [&](const io::DecisionRecord& r) {
+    return r.frame <= frame && sched::resolves(r.y_floor, sched::resolution_needed(goal_));
+  });
   return current_;
 }
 
@@ -116,7 +129,7 @@ std::optional<SolverChoice> AccuracyControl::recheck(int frame, const plan::Plan
   ProbedState measured;
   const double y = probe_.measure(current_, layout_, frame, &measured);
   const double measured_ms = interval_ms();
-  const bool resolves = goal_.tolerance > 0.0 && sched::resolves(measured.y_floor, goal_.tolerance);
+  const bool resolves = sched::resolves(measured.y_floor, sched::resolution_needed(goal_));
   const SolverChoice before = current_;
   if (!resolved_ && !resolves) {
     current_.y = y;
@@ -141,10 +154,11 @@ std::optional<SolverChoice> AccuracyControl::recheck(int frame, const plan::Plan
   if (verdict == sched::Recheck::reprobe) {
     const ProbeTable table = probe_.probe(layout_, frame, 1);
     const std::string why = resolved_before ? fmt::format("y {:.2e} above the tolerance", y)
-                                            : std::string("the first state that resolves the tolerance");
+                                            : std::string("the first state that resolves y");
     if (table.choice.chosen) {
       current_ = table.at(*table.choice.chosen);
-      reason = why + ": probed, the cheapest choice that meets it";
+      reason = why + (goal_.tolerance > 0.0 ? ": probed, the cheapest choice that meets the tolerance"
+                                            : ": probed, the most accurate choice within the budget");
     } else {
       current_ = table.choice.nearest.empty() ? current_ : table.at(table.choice.nearest.front());
       reason = why + ", and no choice meets it here: the most accurate";

@@ -32,8 +32,9 @@ class AccuracyControl {
   // With a budget alone: a first re-check of the frame time after this frame.
   static constexpr int kBudgetCalibrationFrame = 3;
 
+  // `cost_scale` > 0: the cost model's ms per µs instead of a profile (AccuracyProbe).
   AccuracyControl(const scene::SceneDesc& scene, const device::DeviceSet& devices, const model::Model& model,
-                  std::function<void(const std::string&)> warn);
+                  std::function<void(const std::string&)> warn, double cost_scale = 0.0);
 
   // The choice for frame 1 on, from the probe of the start state. Throws
   // atssim::Error (input) when no choice meets the goal.

@@ -77,23 +77,28 @@ struct AccuracyProbe::Impl {
   std::vector<std::string> names;
   std::vector<std::string> schedules;
   std::vector<std::vector<int>> method_schedules;  // per method: the schedules it may run on
-  device::ExecutorOptions executor;
+  device::ExecutorOptions executor;                // measures y
+  device::ExecutorOptions calibration;             // profiles the cost model's scale
   HopCosts hops;
   std::vector<double> ms_per_us;  // per device, once calibrated
   std::map<std::pair<int, int>, sched::IterationCost> lines;
   std::unique_ptr<device::PlanExecutor> last;  // the executor measure_y ran last, and its method and iterations
   std::pair<int, int> last_key{-1, 0};
 
-  Impl(const scene::SceneDesc& s, const device::DeviceSet& d)
-      : scene(without_friction(s)), devices(d) {
+  Impl(const scene::SceneDesc& s, const device::DeviceSet& d) : scene(without_friction(s)), devices(d) {
     const model::Model model = model::build_model(scene);
     base = solver::make_sim_layout(model);
     colliders = solver::KinematicColliders(model.colliders);
     h = scene.simulation.frame_dt / scene.simulation.substeps;
     substeps = scene.simulation.substeps;
     const ExecutionOptions e = execution_options(scene);
-    executor.kind = e.executor;
-    executor.wait_timeout_s = e.wait_timeout_s;
+    // Calibrated on the executor the run uses; y measured on the events
+    // executor, which gives the same bits (device/plan_executor.hpp) and is
+    // built in about half the time of a fused one (the probe builds one
+    // per method and iteration count).
+    calibration.kind = e.executor;
+    calibration.wait_timeout_s = e.wait_timeout_s;
+    executor.kind = device::ExecutorKind::events;
     hops = hop_costs(device::choose_executor(e.executor, devices.infos(), devices.memories()));
     choose_schedules();
     choose_methods();
@@ -173,22 +178,36 @@ struct AccuracyProbe::Impl {
   }
 
   // ms per µs of the reference device, per device: the profiled cost of the
-  // first method's plan on each device against the model's. Devices that
-  // are alike (name, type, compute units) share their mean, so that the
-  // ranking of schedules on two halves of one device does not follow noise.
+  // first method's plan on each device against the model's, task by task;
+  // the median ratio weighted by the modelled cost, so that a task the
+  // machine's load held back does not scale the rest. Devices that are alike
+  // (name, type, compute units) share their mean, so that the ranking of
+  // schedules on two halves of one device does not follow noise.
   void calibrate() {
     if (!ms_per_us.empty()) return;
     const plan::SubstepPlan plan = build(*methods.front(), std::min(8, scene.simulation.iterations));
-    double model_us = 0.0;
-    for (sched::TaskId t = 0; t < plan.graph.size(); ++t) model_us += plan::task_work_us(plan, t, {hops.task_us});
-    device::PlanExecutor probe(devices, plan, executor);
+    device::PlanExecutor probe(devices, plan, calibration);
     const sched::CostTable measured = probe.profile(3);
     const std::size_t n = devices.size();
     std::vector<double> scale(n, 1e-3);
     for (std::size_t d = 0; d < n; ++d) {
-      double ms = 0.0;
-      for (sched::TaskId t = 0; t < measured.tasks; ++t) ms += measured.at(t, d);
-      if (std::isfinite(ms) && ms > 0.0 && model_us > 0.0) scale[d] = ms / model_us;
+      std::vector<std::pair<double, double>> ratios;  // measured / modelled, modelled
+      double total = 0.0;
+      for (sched::TaskId t = 0; t < measured.tasks; ++t) {
+        const double model_us = plan::task_work_us(plan, t, {hops.task_us});
+        if (!std::isfinite(measured.at(t, d)) || measured.at(t, d) <= 0.0 || model_us <= 0.0) continue;
+        ratios.emplace_back(measured.at(t, d) / model_us, model_us);
+        total += model_us;
+      }
+      std::sort(ratios.begin(), ratios.end());
+      double seen = 0.0;
+      for (const auto& [ratio, weight] : ratios) {
+        seen += weight;
+        if (seen >= 0.5 * total) {
+          scale[d] = ratio;
+          break;
+        }
+      }
     }
     ms_per_us.assign(n, 0.0);
     const auto& infos = devices.infos();
@@ -289,8 +308,10 @@ double ProbeTable::y_floor() const {
   return worst;
 }
 
-AccuracyProbe::AccuracyProbe(const scene::SceneDesc& scene, const device::DeviceSet& devices)
-    : impl_(std::make_unique<Impl>(scene, devices)) {}
+AccuracyProbe::AccuracyProbe(const scene::SceneDesc& scene, const device::DeviceSet& devices, double ms_per_us)
+    : impl_(std::make_unique<Impl>(scene, devices)) {
+  if (ms_per_us > 0.0) impl_->ms_per_us.assign(devices.size(), ms_per_us);
+}
 
 AccuracyProbe::~AccuracyProbe() = default;
 
@@ -334,16 +355,16 @@ ProbeTable AccuracyProbe::probe(const solver::SimLayout& state, int frame, int s
   std::vector<solver::newton::SubstepReference> references;
   p.make_states(state, frame, std::max(1, substeps), states, references);
 
-  // The states y is taken over: with a tolerance those that resolve it,
-  // else (or when none does) every state with something to solve.
+  // The states y is taken over: those that resolve the goal
+  // (sched::resolution_needed), else every state with something to solve.
   std::vector<std::size_t> counted, solvable;
   for (std::size_t s = 0; s < states.size(); ++s) {
     t.states.push_back({frame, static_cast<int>(s), references[s].span(), references[s].y_floor});
     if (references[s].span() <= 0.0) continue;
     solvable.push_back(s);
-    if (t.goal.tolerance <= 0.0 || sched::resolves(references[s].y_floor, t.goal.tolerance)) counted.push_back(s);
+    if (sched::resolves(references[s].y_floor, sched::resolution_needed(t.goal))) counted.push_back(s);
   }
-  t.resolved = t.goal.tolerance <= 0.0 || !counted.empty();
+  t.resolved = !counted.empty();
   if (counted.empty()) counted = solvable;
 
   const auto add_rows = [&](int m, int k, double y) {
@@ -355,10 +376,12 @@ ProbeTable AccuracyProbe::probe(const solver::SimLayout& state, int frame, int s
     return best;
   };
   const bool tolerance = t.goal.tolerance > 0.0, budget = t.goal.budget_ms > 0.0;
-  // No state tells the choices apart at the tolerance: only the scene's
-  // own settings are measured (a run keeps them until a state does).
+  // No state tells the choices apart: only the scene's own settings are
+  // measured (a run keeps them, with as many iterations as a budget holds,
+  // until a state does), and with a budget the cheapest choice (whether
+  // any fits does not depend on y).
   const std::vector<int> ladder =
-      t.resolved ? sched::iteration_ladder(kMaxIterations, p.scene.simulation.iterations) : std::vector<int>{};
+      t.resolved ? sched::iteration_ladder(kMaxIterations, p.scene.simulation.iterations) : std::vector<int>{1};
   // Every method and iteration count in the order of their predicted time
   // (ties: the methods' order, then fewer iterations): with a tolerance the
   // first that meets it is the cheapest, so the probe stops there — nothing
@@ -369,9 +392,11 @@ ProbeTable AccuracyProbe::probe(const solver::SimLayout& state, int frame, int s
     for (int k : ladder) order.emplace_back(cheapest(m, k), m, k);
   }
   std::sort(order.begin(), order.end());
+  if (!t.resolved) order.resize(budget ? std::min<std::size_t>(order.size(), 1) : 0);
   double best_meeting = std::numeric_limits<double>::infinity();
   for (const auto& [cost, m, k] : order) {
-    if ((tolerance && cost > best_meeting) || (budget && cost > t.goal.budget_ms)) break;
+    // (The cheapest is measured even over the budget: it is the nearest.)
+    if ((tolerance && cost > best_meeting) || (budget && cost > t.goal.budget_ms && !t.candidates.empty())) break;
     const double y = p.measure_y(m, k, states, references, counted);
     add_rows(m, k, y);
     if (tolerance && y <= t.goal.tolerance) best_meeting = std::min(best_meeting, cost);
@@ -395,7 +420,7 @@ ProbeTable AccuracyProbe::probe(const solver::SimLayout& state, int frame, int s
   t.choice = sched::choose_accuracy(t.candidates, t.goal);
   // A budget alone: the chosen method and schedule with as many iterations
   // as the budget holds, when that is more accurate still.
-  if (budget && !tolerance && t.choice.chosen) {
+  if (budget && !tolerance && t.choice.chosen && t.resolved) {
     const sched::AccuracyCandidate c = t.candidates[*t.choice.chosen];
     const int fill = std::min(kMaxIterations, p.line(c.method, c.schedule).most_within(t.goal.budget_ms));
     if (fill > c.iterations) {
@@ -413,7 +438,7 @@ std::string format_probe_table(const ProbeTable& t) {
                   t.states.size() == 1 ? "" : "s", t.states.empty() ? 0 : t.states.front().frame, t.y_floor());
   if (t.goal.tolerance > 0.0) out += fmt::format("; tolerance {:g}", t.goal.tolerance);
   if (t.goal.budget_ms > 0.0) out += fmt::format("; budget {:g} ms per frame", t.goal.budget_ms);
-  if (!t.resolved) out += " (no state resolves the tolerance: y is at float32 rounding)";
+  if (!t.resolved) out += " (no state resolves y to that: its values are float32 rounding)";
   out += fmt::format("\n{:<8} {:>10} {:>10}", "method", "iterations", "y");
   for (const std::string& s : t.schedules) out += fmt::format(" {:>12}", s + " ms");
   out += "\n";

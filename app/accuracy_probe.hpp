@@ -64,7 +64,10 @@ class AccuracyProbe {
   // iterations and is no part of the incremental potential). Throws
   // atssim::Error (input) for a method of solver.methods the scene
   // forbids, one that has no iterations to choose, or no method at all.
-  AccuracyProbe(const scene::SceneDesc& scene, const device::DeviceSet& devices);
+  // `ms_per_us` > 0: the cost model's scale for every device (ms per µs of
+  // the reference device) instead of one profiled (tests: a budget decided
+  // without timings).
+  AccuracyProbe(const scene::SceneDesc& scene, const device::DeviceSet& devices, double ms_per_us = 0.0);
   ~AccuracyProbe();
   AccuracyProbe(const AccuracyProbe&) = delete;
   AccuracyProbe& operator=(const AccuracyProbe&) = delete;

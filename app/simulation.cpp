@@ -238,7 +238,7 @@ void run_simulation(const RunOptions& options, RunResult& result,
     result.budget_ms = scene.solver.accuracy.budget_ms;
     result.recheck = scene.solver.accuracy.recheck;
     probed = model::build_model(scene);
-    tuning.emplace(scene, devices, *probed, options.warn);
+    tuning.emplace(scene, devices, *probed, options.warn, options.cost_scale);
     if (!options.resume) apply_choice(scene, tuning->start(solver::make_sim_layout(*probed)));
   }
   const solver::MethodDescription& method = solver::method(scene.solver.method);

@@ -23,6 +23,9 @@ struct RunOptions {
   // Called with a warning's text (no prefix, no newline), e.g. that surfaces
   // crossed; unset: printed on stderr as "atssim: warning: TEXT".
   std::function<void(const std::string&)> warn;
+  // A tolerance or a budget: the cost model's ms per µs of the reference
+  // device instead of a profile (tests decide a budget without timings); 0 = profile.
+  double cost_scale = 0.0;
 };
 
 struct RunProgress {

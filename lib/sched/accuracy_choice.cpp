@@ -126,4 +126,6 @@ bool resolves(double y_floor, double tolerance, double margin) {
   return std::isfinite(y_floor) && y_floor * margin <= tolerance;
 }
 
+double resolution_needed(const AccuracyGoal& goal) { return goal.tolerance > 0.0 ? goal.tolerance : 1e-2; }
+
 }  // namespace atssim::sched

@@ -88,4 +88,9 @@ Recheck recheck_verdict(const AccuracyGoal& goal, double y, bool resolved, doubl
 // (methods' own rounding ends ~2× above the floor).
 bool resolves(double y_floor, double tolerance, double margin = 4.0);
 
+// The y a state must resolve for `goal` to tell its choices apart: the
+// tolerance, or with a budget alone 1e-2 (a budget ranks the choices by y,
+// and only differences well above float32 rounding rank them).
+double resolution_needed(const AccuracyGoal& goal);
+
 }  // namespace atssim::sched

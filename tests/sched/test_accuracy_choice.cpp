@@ -178,4 +178,7 @@ TEST_CASE("a state resolves a tolerance when its float32 floor lies four times b
   CHECK(sched::resolves(2.5e-3, 1e-2));
   CHECK_FALSE(sched::resolves(3e-3, 1e-2));
   CHECK_FALSE(sched::resolves(not_measured, 1e-2));  // E0 = E*: nothing to solve
+  CHECK(sched::resolution_needed({1e-4, 0.0}) == 1e-4);
+  CHECK(sched::resolution_needed({1e-4, 20.0}) == 1e-4);
+  CHECK(sched::resolution_needed({0.0, 20.0}) == 1e-2);
 }
