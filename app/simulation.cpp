@@ -281,7 +281,9 @@ void run_simulation(const RunOptions& options, RunResult& result,
   };
   const auto write_decisions = [&] {
     for (const DecisionEvent& e : tuning->take_events()) {
-      if (!result.decisions.empty()) {
+      // (No frame ran under the row before in this process: a resumed run
+      // keeps what the file says.)
+      if (!result.decisions.empty() && std::isfinite(e.previous_measured_ms)) {
         writer.set_decision_measured(e.previous_measured_ms);
         result.decisions.back().measured_ms = e.previous_measured_ms;
       }
@@ -304,6 +306,8 @@ void run_simulation(const RunOptions& options, RunResult& result,
   if (tuning) {
     result.decisions = writer.decisions();  // those a resumed run kept
     if (options.resume) {
+      // (A re-check's row is flushed with its frame's checkpoint, so the
+      // rows kept are those an uninterrupted run had made by then.)
       const SolverChoice in_force = tuning->resume(writer.decisions(), static_cast<int>(resumed.frame));
       if (in_force.method != result.method || in_force.iterations != sim.iterations ||
           in_force.schedule != result.schedule) {
@@ -419,7 +423,7 @@ void run_simulation(const RunOptions& options, RunResult& result,
             : fmt::format("{}; the earlier {} was left as it was", writer.path(), writer.target_path());
     throw runtime_error(fmt::format("{} ({} frames kept in {})", e.what(), kept, where));
   }
-  if (tuning && !result.decisions.empty()) {
+  if (tuning && !result.decisions.empty() && std::isfinite(tuning->interval_ms())) {
     result.decisions.back().measured_ms = tuning->interval_ms();
     writer.set_decision_measured(result.decisions.back().measured_ms);
   }

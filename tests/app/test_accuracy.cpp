@@ -146,7 +146,7 @@ app::ProbeTable probe_at(const SceneCase& c, const std::string& from, int frame,
   const io::Checkpoint point = io::read_checkpoint(from);
   state.x = plan::values_of<solver::Float4>(point.positions);
   state.v = plan::values_of<solver::Float4>(point.velocities);
-  app::AccuracyProbe probe(s, devices);
+  app::AccuracyProbe probe(s, devices, 1e-3);  // the reference device's speed: times comparable across probes
   return probe.probe(state, frame, 1);
 }
 
@@ -205,6 +205,28 @@ TEST_CASE("the same scene, devices and flags give the same choices, schedules in
   const app::RunResult b = tuned_run(c, 1e-2, 4, dir.file("b.h5"));
   REQUIRE(a.decisions.size() >= 2);
   CHECK(same_choices(a.decisions, b.decisions));
+}
+
+TEST_CASE("a resumed run goes on with the choices an uninterrupted run makes", "[accuracy]") {
+  const SceneCase c = small_hanging_cloth();
+  test::TempDir dir;
+  const app::RunResult whole = tuned_run(c, 1e-2, 7, dir.file("whole.h5"));
+  app::RunOptions o;
+  o.scene_path = c.path;
+  o.overrides = with(c.overrides, {"solver.tolerance=" + std::to_string(1e-2), "solver.recheck=3",
+                                   "simulation.frames=7", "output.path=" + dir.file("part.h5")});
+  o.warn = [](const std::string&) {};
+  // Stopped (as by Ctrl-C) after frame 4, past the re-check of frame 3.
+  app::RunResult stopped;
+  CHECK_THROWS_WITH(app::run_simulation(o, stopped,
+                                        [](const app::RunProgress& p) {
+                                          if (p.frame == 4) app::request_stop();
+                                        }),
+                    Catch::Contains("interrupted"));
+  o.resume = true;
+  const app::RunResult resumed = app::run_simulation(o);
+  CHECK(same_choices(resumed.decisions, whole.decisions));
+  CHECK(io::read_frame_positions(dir.file("part.h5"), 7) == io::read_frame_positions(dir.file("whole.h5"), 7));
 }
 
 TEST_CASE(
