@@ -110,7 +110,36 @@ SolverChoice AccuracyControl::resume(const std::vector<io::DecisionRecord>& kept
   return current_;
 }
 
-void AccuracyControl::frame_done(double frame_ms) { interval_.push_back(frame_ms); }
+void AccuracyControl::frame_done(double frame_ms) {
+  interval_.push_back(frame_ms);
+  frames_.push_back(frame_ms);
+}
+
+std::optional<std::string> AccuracyControl::budget_report() const {
+  if (goal_.tolerance > 0.0 || !(goal_.budget_ms > 0.0)) return std::nullopt;
+  const double ms = median(frames_);
+  const int most = probe_.max_iterations();
+  const std::string head = fmt::format("the median frame took {:.3g} ms against a budget of {:g} ms ({:+.0f} %)", ms,
+                                       goal_.budget_ms, 100.0 * (ms / goal_.budget_ms - 1.0));
+  switch (sched::budget_miss(goal_.budget_ms, ms, current_.iterations, most)) {
+    case sched::BudgetMiss::none:
+      return std::nullopt;
+    case sched::BudgetMiss::too_small:
+      return fmt::format(
+          "{}: at one iteration of {}, the least, what a frame costs besides the iterations (predict, contact, "
+          "{} substeps) is above the budget; raise --budget or lower simulation.substeps",
+          head, current_.method, scene_.simulation.substeps);
+    case sched::BudgetMiss::too_large:
+      return fmt::format("{}: {} iterations of {}, the most the probe tries, take less; no choice needs the budget",
+                         head, most, current_.method);
+    case sched::BudgetMiss::unsettled:
+      break;
+  }
+  return fmt::format(
+      "{}: the frame time moved between re-checks (other load on the devices) or the run ended before one; "
+      "a shorter --recheck follows it closer",
+      head);
+}
 
 double AccuracyControl::interval_ms() const { return median(interval_); }
 

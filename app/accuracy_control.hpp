@@ -54,6 +54,10 @@ class AccuracyControl {
   std::vector<DecisionEvent> take_events();
   // The median frame time since the last row (NaN: no frame yet).
   double interval_ms() const;
+  // With a budget alone, when the median frame of the run (of this process)
+  // is off the budget by more than 10 %: one line saying so and why. Empty
+  // otherwise.
+  std::optional<std::string> budget_report() const;
   const SolverChoice& current() const { return current_; }
   AccuracyProbe& probe() { return probe_; }
   // The start layout with the state of the last re-check (the plans of a
@@ -72,6 +76,7 @@ class AccuracyControl {
   bool resolved_ = true;  // whether a state resolved the tolerance yet (false: the scene's own settings meanwhile)
   bool warned_none_ = false;
   std::vector<double> interval_;  // frame times since the last row
+  std::vector<double> frames_;    // every frame time of this process
   std::chrono::steady_clock::time_point check_started_;
   std::vector<DecisionEvent> events_;
 };

@@ -427,6 +427,9 @@ void run_simulation(const RunOptions& options, RunResult& result,
     result.decisions.back().measured_ms = tuning->interval_ms();
     writer.set_decision_measured(result.decisions.back().measured_ms);
   }
+  if (tuning && options.warn) {
+    if (const auto why = tuning->budget_report()) options.warn(*why);
+  }
   writer.finish();
   result.frames_written = writer.frames_written();
 }

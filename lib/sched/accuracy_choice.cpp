@@ -110,6 +110,14 @@ int iterations_for_budget(const IterationCost& predicted, double predicted_ms, d
   return std::max(1, predicted.most_within(budget_ms / scale));
 }
 
+BudgetMiss budget_miss(double budget_ms, double measured_ms, int iterations, int max_iterations, double band) {
+  if (!(budget_ms > 0.0) || !std::isfinite(measured_ms) || !(measured_ms > 0.0)) return BudgetMiss::none;
+  if (std::abs(measured_ms - budget_ms) <= band * budget_ms) return BudgetMiss::none;
+  if (measured_ms > budget_ms && iterations <= 1) return BudgetMiss::too_small;
+  if (measured_ms < budget_ms && iterations >= max_iterations) return BudgetMiss::too_large;
+  return BudgetMiss::unsettled;
+}
+
 Recheck recheck_verdict(const AccuracyGoal& goal, double y, bool resolved, double measured_ms, double band) {
   if (goal.tolerance > 0.0) {
     if (!resolved || !std::isfinite(y)) return Recheck::keep;

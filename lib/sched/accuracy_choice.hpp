@@ -69,6 +69,17 @@ struct IterationCost {
 // check, so one slow frame does not move it.
 int iterations_for_budget(const IterationCost& predicted, double predicted_ms, double measured_ms, double budget_ms);
 
+// Why a budget alone was not held: the run's median frame time
+// `measured_ms`, with `iterations` in force at the end (of at most
+// `max_iterations`), against budget·(1 ± band).
+enum class BudgetMiss {
+  none,       // within the band (or nothing measured)
+  too_small,  // above it with one iteration: what a frame costs besides the iterations exceeds the budget
+  too_large,  // below it with the most iterations tried: no choice needs that much time
+  unsettled,  // off it with iterations to spare: the frame time moved (load), or the run ended before a re-check
+};
+BudgetMiss budget_miss(double budget_ms, double measured_ms, int iterations, int max_iterations, double band = 0.1);
+
 // What a re-check on the live state does with the choice in force.
 enum class Recheck {
   keep,     // it still meets the goal (or the state cannot tell)

@@ -12,6 +12,9 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
+#include "app/accuracy_control.hpp"
 #include "app/accuracy_probe.hpp"
 #include "app/convergence.hpp"
 #include "app/scene_checks.hpp"
@@ -176,6 +179,19 @@ void check_tighter_and_cheaper(const SceneCase& c, int frame) {
   if (own.y <= 1e-2) CHECK(a.predicted_ms <= own.predicted_ms);
 }
 
+// The modelled cost (µs on the reference device) of one VBD substep of
+// `iterations` on one device: the sum of its tasks' costs.
+double vbd_substep_us(const SceneCase& c, int iterations) {
+  const scene::SceneDesc s = app::load_scene(c.path, with(c.overrides, {"solver.method=vbd"}));
+  const solver::MethodDescription& vbd = solver::method("vbd");
+  solver::MethodSettings settings = solver::method_settings(s, vbd);
+  settings.iterations = iterations;
+  const plan::SubstepPlan p = vbd.build(solver::make_sim_layout(model::build_model(s)), settings);
+  double us = 0.0;
+  for (sched::TaskId t = 0; t < p.graph.size(); ++t) us += plan::task_work_us(p, t);
+  return us;
+}
+
 }  // namespace
 
 TEST_CASE("--tolerance 1e-2 holds at every re-check of the hanging cloth, measured by converge", "[accuracy]") {
@@ -251,17 +267,8 @@ TEST_CASE(
   CHECK(same_choices(a.decisions, b.decisions));
   // One device, one schedule: a substep costs the sum of its tasks' modelled
   // costs, linear in the iterations; a frame is 16 substeps.
-  const scene::SceneDesc s = app::load_scene(c.path, with(c.overrides, {"solver.method=vbd"}));
-  const solver::MethodDescription& vbd = solver::method("vbd");
-  const auto substep_us = [&](int k) {
-    solver::MethodSettings settings = solver::method_settings(s, vbd);
-    settings.iterations = k;
-    const plan::SubstepPlan p = vbd.build(solver::make_sim_layout(model::build_model(s)), settings);
-    double us = 0.0;
-    for (sched::TaskId t = 0; t < p.graph.size(); ++t) us += plan::task_work_us(p, t);
-    return us;
-  };
-  const double per_iteration = substep_us(2) - substep_us(1), fixed = substep_us(1) - per_iteration;
+  const double per_iteration = vbd_substep_us(c, 2) - vbd_substep_us(c, 1);
+  const double fixed = vbd_substep_us(c, 1) - per_iteration;
   const int fits = static_cast<int>(std::floor((20.0 / 16 / 1e-3 - fixed) / per_iteration));
   CHECK(a.decisions.front().method == "vbd");
   CHECK(a.decisions.front().iterations == fits);
@@ -271,4 +278,33 @@ TEST_CASE(
   o.overrides = with(c.overrides, {"solver.budget_ms=1e-3", "output.path=" + dir.file("none.h5")});
   CHECK_THROWS_WITH(app::run_simulation(o), Catch::Contains("no choice fits"));
   CHECK_FALSE(std::filesystem::exists(dir.file("none.h5")));
+}
+
+TEST_CASE("a budget below what one iteration's frame costs ends at one iteration and says why", "[accuracy]") {
+  // The cost model told the devices are a million times faster than the
+  // reference (cost_scale 1e-6 ms per modelled µs): the probe fits 4 VBD
+  // iterations into the budget, and the frames measured after frame 3 (16
+  // substeps of real kernel launches, far above the budget's ~2 µs) scale
+  // them down to the least, one. The run then says why it cannot hold it.
+  const SceneCase c = small_hanging_cloth();
+  const double per_iteration = vbd_substep_us(c, 2) - vbd_substep_us(c, 1);
+  const double fixed = vbd_substep_us(c, 1) - per_iteration;
+  const double budget_ms = 16e-6 * (fixed + 4.5 * per_iteration);
+  test::TempDir dir;
+  app::RunOptions o;
+  o.scene_path = c.path;
+  o.cost_scale = 1e-6;
+  o.overrides = with(c.overrides, {fmt::format("solver.budget_ms={:.17g}", budget_ms), "solver.methods=[vbd]",
+                                   "simulation.frames=5", "output.path=" + dir.file("a.h5")});
+  std::vector<std::string> warnings;
+  o.warn = [&](const std::string& w) { warnings.push_back(w); };
+  const app::RunResult a = app::run_simulation(o);
+  REQUIRE(a.decisions.size() >= 2);
+  CHECK(a.decisions.front().iterations == 4);
+  CHECK(a.decisions.back().frame == app::AccuracyControl::kBudgetCalibrationFrame);
+  CHECK(a.decisions.back().iterations == 1);
+  REQUIRE_FALSE(warnings.empty());
+  CHECK_THAT(warnings.back(), Catch::Contains("the median frame took") &&
+                                  Catch::Contains("at one iteration of vbd, the least") &&
+                                  Catch::Contains("raise --budget or lower simulation.substeps"));
 }

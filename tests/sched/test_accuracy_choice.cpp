@@ -173,6 +173,18 @@ TEST_CASE("a budget alone rescales when the measured frame time leaves the 10 % 
   CHECK(sched::recheck_verdict(budget, 0.5, true, not_measured) == Recheck::keep);
 }
 
+TEST_CASE("a budget missed by more than 10 % names why: one iteration, the most iterations, or a moving frame time") {
+  using sched::BudgetMiss;
+  CHECK(sched::budget_miss(20.0, 21.9, 1, 1024) == BudgetMiss::none);
+  CHECK(sched::budget_miss(20.0, 18.1, 1024, 1024) == BudgetMiss::none);
+  CHECK(sched::budget_miss(20.0, not_measured, 1, 1024) == BudgetMiss::none);
+  CHECK(sched::budget_miss(20.0, 22.1, 1, 1024) == BudgetMiss::too_small);
+  CHECK(sched::budget_miss(20.0, 22.1, 2, 1024) == BudgetMiss::unsettled);
+  CHECK(sched::budget_miss(20.0, 17.9, 1024, 1024) == BudgetMiss::too_large);
+  CHECK(sched::budget_miss(20.0, 17.9, 1, 1024) == BudgetMiss::unsettled);
+  CHECK(sched::budget_miss(20.0, 25.0, 1, 1024, 0.3) == BudgetMiss::none);
+}
+
 TEST_CASE("a state resolves a tolerance when its float32 floor lies four times below it") {
   CHECK(sched::resolves(2e-3, 1e-2));
   CHECK(sched::resolves(2.5e-3, 1e-2));
