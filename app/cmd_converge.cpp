@@ -29,6 +29,9 @@ Action add_converge_command(CLI::App& cli, const std::string& command_line) {
       ->capture_default_str();
   cmd->add_option("--frames-before", o->frames_before, "Frames simulated first to reach a moving state")
       ->capture_default_str();
+  cmd->add_option("--from", o->from,
+                  "A result file of atssim run of this scene: measure from the state of its last written frame "
+                  "instead of --frames-before");
   cmd->add_option("--devices", *devices, "Device spec (two-device schedules need two, e.g. cpu/2)");
   cmd->add_option("--memory", *memory,
                   "shared (a platform's devices share SVM) or separate (every device its own memory, copies "
@@ -42,6 +45,7 @@ Action add_converge_command(CLI::App& cli, const std::string& command_line) {
     if (cmd->count("--output") > 0 && output->empty()) throw input_error("-o/--output: the output path is empty");
     if (cmd->count("--devices") > 0 && devices->empty()) throw input_error("--devices: the device spec is empty");
     if (cmd->count("--method") > 0 && method->empty()) throw input_error("--method: the method is empty");
+    if (cmd->count("--from") > 0 && options.from.empty()) throw input_error("--from: the file name is empty");
     if (!method->empty()) options.overrides.push_back("solver.method=" + *method);
     if (!devices->empty()) options.overrides.push_back("devices=" + *devices);
     if (!memory->empty()) options.overrides.push_back("memory=" + *memory);

@@ -30,6 +30,10 @@ struct RunArgs {
   std::string svm;
   std::string method;
   bool resume = false;
+  double tolerance = 0.0;
+  double budget_ms = 0.0;
+  int recheck = -1;
+  std::vector<std::string> methods;
 };
 
 void print_progress(const RunProgress& p) {
@@ -48,6 +52,10 @@ Action add_run_command(CLI::App& cli, const std::string& command_line) {
   cmd->add_option("--frames", args->frames, "Number of frames to simulate (1 or more)")
       ->check(CLI::Range(1, 10000000).description("1 or more"));
   cmd->add_option("--method", args->method, "Solver method (the scene's solver.method; see atssim methods)");
+  add_accuracy_options(*cmd, args->tolerance, args->budget_ms, args->methods);
+  cmd->add_option("--recheck", args->recheck,
+                  "With --tolerance or --budget: re-check the choice on the live state every N frames (default 30, "
+                  "0 = never)");
   cmd->add_flag("--resume", args->resume,
                 "Continue the run a killed or stopped run left at the output path, from its last recorded frame");
   cmd->add_option("--devices", args->devices, "Device spec: default, cpu, gpu, N, cpu/2 (see atssim devices)");
@@ -82,6 +90,15 @@ Action add_run_command(CLI::App& cli, const std::string& command_line) {
     if (cmd->count("--method") > 0 && args->method.empty()) {
       throw input_error("--method: the method is empty; pass one of those atssim methods lists");
     }
+    if (cmd->count("--recheck") > 0 && args->recheck < 0) {
+      throw input_error(fmt::format("--recheck {}: give a number of frames, 0 (never) or more", args->recheck));
+    }
+    // --method with a tolerance or a budget: the one method to choose iterations for.
+    if (!args->method.empty() && args->methods.empty() && (cmd->count("--tolerance") + cmd->count("--budget")) > 0) {
+      args->methods = {args->method};
+    }
+    push_accuracy_overrides(*cmd, args->tolerance, args->budget_ms, args->methods, options.overrides);
+    if (cmd->count("--recheck") > 0) options.overrides.push_back(fmt::format("solver.recheck={}", args->recheck));
     if (!args->method.empty()) options.overrides.push_back("solver.method=" + args->method);
     if (!args->output.empty()) options.overrides.push_back("output.path=" + args->output);
     if (args->frames > 0) options.overrides.push_back("simulation.frames=" + std::to_string(args->frames));

@@ -1,15 +1,19 @@
 // `atssim schedule SCENE`: the substep's task graph and its predicted
 // schedule, without simulating: as a table, JSON, Graphviz dot, or the cost
-// table as CSV (which --costs reads back).
+// table as CSV (which --costs reads back). With --tolerance or --budget:
+// the table of the probe a run would choose from.
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
+#include "app/accuracy_control.hpp"
+#include "app/accuracy_probe.hpp"
 #include "app/commands.hpp"
 #include "app/execution.hpp"
 #include "app/scene_checks.hpp"
 #include "app/simulation.hpp"
 #include "device/device_set.hpp"
 #include "io/cost_file.hpp"
+#include "model/cloth_builder.hpp"
 #include "plan/substep_plan.hpp"
 #include "scene/scene_loader.hpp"
 #include "util/error.hpp"
@@ -22,7 +26,27 @@ struct ScheduleArgs {
   std::string scene, devices, schedule, executor, memory, costs, method;
   std::vector<std::string> sets;
   bool json = false, dot = false, csv = false;
+  double tolerance = 0.0, budget_ms = 0.0;
+  std::vector<std::string> methods;
 };
+
+// `schedule --tolerance` / `--budget`: the probe's table, without running.
+int print_probe(const scene::SceneDesc& scene) {
+  const device::DeviceSet devices = open_scene_devices(scene);
+  const model::Model model = model::build_model(scene);
+  AccuracyProbe probe(scene, devices);
+  const ProbeTable table = probe.probe(solver::make_sim_layout(model), 0, AccuracyControl::kProbeSubsteps);
+  fmt::print("{}", format_probe_table(table));
+  if (table.goal.tolerance > 0.0 && !table.resolved) {
+    fmt::print(
+        "the start state does not resolve the tolerance: a run starts with the scene's own settings and "
+        "re-checks every frame until a state does\n");
+  } else if (!table.choice.chosen) {
+    std::fflush(stdout);
+    throw input_error(none_meets_message(table, probe.max_iterations()));
+  }
+  return 0;
+}
 
 std::string kind_name(const sched::Task& task) {
   return task.kind == sched::kMixedKind ? "mixed" : std::string(plan::to_string(plan::kind_of(task)));
@@ -125,6 +149,7 @@ Action add_schedule_command(CLI::App& cli) {
   cmd->add_option("--costs", args->costs, "Cost table CSV (as --csv prints it) instead of profiling the devices");
   cmd->add_option("--set", args->sets, "Override a scene key (repeatable)");
   cmd->add_option("--method", args->method, "Solver method (the scene's solver.method; see atssim methods)");
+  add_accuracy_options(*cmd, args->tolerance, args->budget_ms, args->methods);
   auto* json = cmd->add_flag("--json", args->json, "Print JSON");
   auto* dot = cmd->add_flag("--dot", args->dot, "Print a Graphviz graph, tasks coloured by device");
   auto* csv = cmd->add_flag("--csv", args->csv, "Print the cost table (ms per task and device) as CSV");
@@ -139,12 +164,23 @@ Action add_schedule_command(CLI::App& cli) {
         throw input_error(fmt::format("{}: the value is empty; see atssim schedule --help", flag));
       }
     }
+    if (!args->method.empty() && args->methods.empty() && (cmd->count("--tolerance") + cmd->count("--budget")) > 0) {
+      args->methods = {args->method};
+    }
+    push_accuracy_overrides(*cmd, args->tolerance, args->budget_ms, args->methods, overrides);
     if (!args->method.empty()) overrides.push_back("solver.method=" + args->method);
     if (!args->devices.empty()) overrides.push_back("devices=" + args->devices);
     if (!args->schedule.empty()) overrides.push_back("solver.schedule=" + args->schedule);
     if (!args->executor.empty()) overrides.push_back("solver.executor=" + args->executor);
     if (!args->memory.empty()) overrides.push_back("memory=" + args->memory);
     const scene::SceneDesc scene = load_scene(args->scene, overrides);
+    if (scene.solver.accuracy.active()) {
+      if (args->json || args->dot || args->csv || !args->costs.empty()) {
+        throw input_error(
+            "--tolerance / --budget print the probe's table as text; drop --json, --dot, --csv and --costs");
+      }
+      return print_probe(scene);
+    }
     const ScheduleMode mode = parse_schedule_mode(scene.solver.schedule);
     const plan::SubstepPlan base = substep_plan_for(scene);
 

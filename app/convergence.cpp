@@ -12,12 +12,11 @@
 #include "app/simulation.hpp"
 #include "device/device_set.hpp"
 #include "device/plan_executor.hpp"
+#include "io/result_reader.hpp"
 #include "model/cloth_builder.hpp"
 #include "scene/scene_loader.hpp"
-#include "solver/energy/incremental_potential.hpp"
-#include "solver/energy/predicted_positions.hpp"
 #include "solver/method_registry.hpp"
-#include "solver/newton/newton_reference.hpp"
+#include "solver/newton/substep_reference.hpp"
 #include "util/error.hpp"
 
 namespace atssim::app {
@@ -68,6 +67,28 @@ std::vector<Variant> variants_of(const ConvergeOptions& o, const ExecutionOption
   return out;
 }
 
+// The state at the end of the newest checkpoint of a run's result file
+// (`converge --from`): its positions and velocities, and the colliders
+// where they are during the substep after it.
+void state_from_result(const std::string& path, const scene::SceneDesc& scene, const model::Model& model,
+                       solver::SimLayout& state) {
+  const io::Checkpoint point = io::read_checkpoint(path);
+  const std::size_t bytes = state.x.size() * sizeof(Float4);
+  if (point.positions.size() != bytes || point.velocities.size() != bytes) {
+    throw input_error(
+        fmt::format("--from {}: its state holds {} bytes of positions, this scene's {} particles "
+                    "need {}; pass the result of a run of this scene",
+                    path, point.positions.size(), state.x.size(), bytes));
+  }
+  state.x = plan::values_of<Float4>(point.positions);
+  state.v = plan::values_of<Float4>(point.velocities);
+  solver::KinematicColliders colliders(model.colliders);
+  if (colliders.moving()) {
+    const double t = static_cast<double>(point.frame) * scene.simulation.frame_dt;
+    state.colliders = colliders.records(t, t + scene.simulation.frame_dt / scene.simulation.substeps);
+  }
+}
+
 }  // namespace
 
 io::ConvergenceResult run_convergence(const ConvergeOptions& o) {
@@ -83,10 +104,12 @@ io::ConvergenceResult run_convergence(const ConvergeOptions& o) {
   const device::DeviceSet devices = open_scene_devices(scene);
 
   // The state after `frames_before` frames of the scene's own method
-  // (solver.method), on one device.
+  // (solver.method), on one device; or the one a run's result file holds.
   const model::Model model = model::build_model(scene);
   solver::SimLayout state = solver::make_sim_layout(model);
-  {
+  if (!o.from.empty()) {
+    state_from_result(o.from, scene, model, state);
+  } else {
     const solver::MethodDescription& own = solver::method(scene.solver.method);
     device::PlanExecutor executor(devices, own.build(state, solver::method_settings(scene, own)));
     solver::KinematicColliders colliders(model.colliders);
@@ -111,27 +134,16 @@ io::ConvergenceResult run_convergence(const ConvergeOptions& o) {
   result.scene_yaml = scene.yaml_text;
   result.resolved_yaml = scene.resolved_yaml;
   result.frames_before = o.frames_before;
+  result.from = o.from;
   result.substep_dt = h;
-  const std::vector<Float4> predicted = solver::energy::predicted_positions(state, h);
-  {
-    // E0 at x~, held above the ground as every method's collision task does
-    // (a feasible start: E* <= E0 then holds with the ground bound too).
-    solver::SimLayout at_start = state;
-    at_start.x = predicted;
-    if (state.has_ground) {
-      for (Float4& p : at_start.x) {
-        if (p.w > 0.0f) p.y = std::max(p.y, state.ground_y);
-      }
-    }
-    result.energy_start = solver::energy::incremental_potential(at_start, predicted, h, &state.x);
-  }
-  const solver::newton::NewtonResult newton = solver::newton::newton_reference(state, predicted, h);
-  result.energy_reference = newton.energy;
-  result.newton_iterations = newton.iterations;
-  result.newton_relative_gradient = newton.relative_gradient;
-  result.newton_status = std::string(solver::newton::to_string(newton.status));
+  const solver::newton::SubstepReference reference = solver::newton::substep_reference(state, h);
+  result.energy_start = reference.energy_start;
+  result.energy_reference = reference.newton.energy;
+  result.newton_iterations = reference.newton.iterations;
+  result.newton_relative_gradient = reference.newton.relative_gradient;
+  result.newton_status = std::string(solver::newton::to_string(reference.newton.status));
+  result.y_floor = reference.y_floor;
 
-  const double span = result.energy_start - result.energy_reference;
   for (const Variant& v : variants) {
     io::ConvergenceTrace trace;
     trace.variant = v.name;
@@ -150,12 +162,9 @@ io::ConvergenceResult run_convergence(const ConvergeOptions& o) {
         x = plan::values_of<Float4>(e.executor->read_state().positions);
       }
       std::nth_element(times.begin(), times.begin() + times.size() / 2, times.end());
-      solver::SimLayout after = state;
-      after.x = x;
-      const double energy = solver::energy::incremental_potential(after, predicted, h, &state.x);
       trace.iterations.push_back(k);
-      trace.energy.push_back(energy);
-      trace.relative_error.push_back(span > 0.0 ? (energy - result.energy_reference) / span : 0.0);
+      trace.energy.push_back(reference.energy(state, x));
+      trace.relative_error.push_back(reference.relative_error(state, x));
       trace.time_ms.push_back(times[times.size() / 2]);
     }
     result.traces.push_back(std::move(trace));
@@ -165,8 +174,9 @@ io::ConvergenceResult run_convergence(const ConvergeOptions& o) {
 
 std::string format_convergence_table(const io::ConvergenceResult& r) {
   std::string out = fmt::format(
-      "E0 = {:.9g}, E* = {:.9g} (Newton: {} steps, relative gradient {:.2e}, {}); y_k = (E_k - E*)/(E0 - E*)\n",
-      r.energy_start, r.energy_reference, r.newton_iterations, r.newton_relative_gradient, r.newton_status);
+      "E0 = {:.9g}, E* = {:.9g} (Newton: {} steps, relative gradient {:.2e}, {}); y_k = (E_k - E*)/(E0 - E*); "
+      "float32 resolution {:.2e}\n",
+      r.energy_start, r.energy_reference, r.newton_iterations, r.newton_relative_gradient, r.newton_status, r.y_floor);
   if (r.traces.empty()) return out;
   out += fmt::format("{:<36}", "variant");
   for (int k : r.traces.front().iterations) out += fmt::format(" {:>10}", fmt::format("k={}", k));

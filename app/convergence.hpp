@@ -21,6 +21,10 @@ struct ConvergeOptions {
   int max_iterations = 64;  // k = 1, 2, 4, …, max (and max itself)
   int frames_before = 10;   // simulated first (the scene's solver.method, one device) to reach a moving state
   int timing_repeats = 3;   // substeps timed per point; the median counts
+  // A result file of `atssim run` (of this scene): the state is the one at
+  // its newest checkpoint (the end of its last written frame) instead of
+  // `frames_before` frames simulated here.
+  std::string from;
 };
 
 // Throws atssim::Error (input) for unknown schedules or merges, a scene

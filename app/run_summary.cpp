@@ -82,6 +82,32 @@ std::string contact_json(const RunResult& r) {
                      worst ? surface_frame_json(*worst) : "null");
 }
 
+std::string decision_json(const io::DecisionRecord& d) {
+  return fmt::format(
+      "{{\"frame\": {}, \"method\": {}, \"iterations\": {}, \"schedule\": {}, \"y\": {}, \"previous_y\": {}, "
+      "\"y_floor\": {}, \"predicted_ms\": {}, \"measured_ms\": {}, \"check_ms\": {}, \"changed\": {}, "
+      "\"reason\": {}}}",
+      d.frame, json_string(d.method), d.iterations, json_string(d.schedule), json_number(d.y),
+      json_number(d.previous_y), json_number(d.y_floor), json_number(d.predicted_ms), json_number(d.measured_ms),
+      json_number(d.check_ms), d.changed != 0 ? "true" : "false", json_string(d.reason));
+}
+
+// What --tolerance / --budget asked and chose (null without either).
+std::string accuracy_json(const RunResult& r) {
+  if (!r.tuned) return "null";
+  std::vector<std::string> rows;
+  for (const io::DecisionRecord& d : r.decisions) rows.push_back(decision_json(d));
+  std::string list = "[]";
+  if (!rows.empty()) {
+    list = "[\n";
+    for (std::size_t i = 0; i < rows.size(); ++i) list += "    " + rows[i] + (i + 1 < rows.size() ? ",\n" : "\n");
+    list += "  ]";
+  }
+  return fmt::format("{{\"tolerance\": {}, \"budget_ms\": {}, \"recheck\": {}, \"decisions\": {}}}",
+                     r.tolerance > 0.0 ? json_number(r.tolerance) : "null",
+                     r.budget_ms > 0.0 ? json_number(r.budget_ms) : "null", r.recheck, list);
+}
+
 }  // namespace
 
 std::string to_string(RunStatus status) {
@@ -142,6 +168,7 @@ std::string run_summary_json(const RunResult& r, const RunSummaryInput& in) {
                    errors.size(), json_number(percentile(errors, 0.5)), json_number(percentile(errors, 0.95)),
                    json_number(percentile(errors, 1.0)));
   j += fmt::format("  \"contact\": {},\n", contact_json(r));
+  j += fmt::format("  \"accuracy\": {},\n", accuracy_json(r));
   j += fmt::format("  \"wall_s\": {}\n}}\n", json_number(in.wall_s));
   return j;
 }

@@ -12,6 +12,7 @@
 
 #include <fmt/format.h>
 
+#include "app/accuracy_control.hpp"
 #include "app/blow_up.hpp"
 #include "app/collider_motion.hpp"
 #include "app/energy_growth.hpp"
@@ -198,6 +199,13 @@ auto during_set_up(Step&& step) -> decltype(step()) {
   }
 }
 
+// The scene as a choice of `--tolerance` / `--budget` runs it.
+void apply_choice(scene::SceneDesc& scene, const SolverChoice& choice) {
+  scene.solver.method = choice.method;
+  scene.simulation.iterations = choice.iterations;
+  scene.solver.schedule = choice.schedule;
+}
+
 // Keeps only what output needs (object topology and rest shape).
 void release_simulation_state(model::Model& model) {
   model = model::Model{{}, {}, {}, std::move(model.objects), model.gravity, {}, model.ground};
@@ -236,19 +244,32 @@ void run_simulation(const RunOptions& options, RunResult& result,
                     const std::function<void(const RunProgress&)>& progress) {
   g_stop = false;
   result = RunResult{};
-  const scene::SceneDesc scene = load_scene(options.scene_path, options.overrides);
+  scene::SceneDesc scene = load_scene(options.scene_path, options.overrides);
   // Before the devices: an output path that cannot be written is refused in
   // a moment, not after the kernels were built.
   io::check_output_folder(scene.output.path);
+  const device::DeviceSet devices = during_set_up([&] { return open_scene_devices(scene); });
+  // A tolerance or a budget: the probe chooses the method, iterations and
+  // schedule before anything is written (docs/accuracy.md).
+  std::optional<model::Model> probed;
+  std::optional<AccuracyControl> tuning;
+  if (scene.solver.accuracy.active()) {
+    result.tuned = true;
+    result.tolerance = scene.solver.accuracy.tolerance;
+    result.budget_ms = scene.solver.accuracy.budget_ms;
+    result.recheck = scene.solver.accuracy.recheck;
+    probed = model::build_model(scene);
+    tuning.emplace(scene, devices, *probed, options.warn, options.cost_scale);
+    if (!options.resume) apply_choice(scene, tuning->start(solver::make_sim_layout(*probed)));
+  }
   const solver::MethodDescription& method = solver::method(scene.solver.method);
   const solver::MethodSettings settings = solver::method_settings(scene, method);
-  const device::DeviceSet devices = during_set_up([&] { return open_scene_devices(scene); });
   check_schedule_fits(scene, method, settings, devices.size());
   const auto& sim = scene.simulation;
 
   // Each stage's data is released once the next holds it, so the peak memory
   // is one stage's worth, not the sum (docs/benchmarks.md: bytes per vertex).
-  model::Model model = model::build_model(scene);
+  model::Model model = probed ? std::move(*probed) : model::build_model(scene);
   const std::size_t particles = model.particles.size();
   solver::SimLayout layout = solver::make_sim_layout(model);
   EnergyGrowthCheck energy_check(layout, xyz_of(plan::bytes_of(layout.v)), model.objects, sim.energy_growth_limit);
@@ -261,12 +282,38 @@ void run_simulation(const RunOptions& options, RunResult& result,
   ExecutionOptions exec_options = execution_options(scene);
   exec_options.svm = svm_mode(options.svm_mode);
   Execution execution = during_set_up([&] { return prepare_execution(devices, std::move(plan), exec_options); });
-  device::PlanExecutor& executor = *execution.executor;
+  device::PlanExecutor* executor = execution.executor.get();
   if (g_stop) throw runtime_error(kInterruptedSetUp);
 
   const io::RunInfo info = run_info(options, scene, devices, execution, exec_options);
   io::Checkpoint resumed;
   io::ResultWriter writer(scene.output.path, info, model.objects, options.resume ? &resumed : nullptr);
+  // A new choice at a frame boundary: its plan, profiled and scheduled,
+  // continues from the state `now`.
+  const auto switch_to = [&](const SolverChoice& choice, const plan::PlanState& now) {
+    apply_choice(scene, choice);
+    const solver::MethodDescription& m = solver::method(choice.method);
+    const solver::MethodSettings s = solver::method_settings(scene, m);
+    exec_options.mode = parse_schedule_mode(choice.schedule);
+    execution = prepare_execution(devices, with_stiffness_line(scene, [&] { return m.build(tuning->layout(), s); }),
+                                  exec_options);
+    executor = execution.executor.get();
+    executor->reset(now);
+    result.method = choice.method;
+    result.schedule = choice.schedule;
+  };
+  const auto write_decisions = [&] {
+    for (const DecisionEvent& e : tuning->take_events()) {
+      // (No frame ran under the row before in this process: a resumed run
+      // keeps what the file says.)
+      if (!result.decisions.empty() && std::isfinite(e.previous_measured_ms)) {
+        writer.set_decision_measured(e.previous_measured_ms);
+        result.decisions.back().measured_ms = e.previous_measured_ms;
+      }
+      writer.append_decision(e.row);
+      result.decisions.push_back(e.row);
+    }
+  };
 
   result.output_path = scene.output.path;
   result.xdmf_path = writer.xdmf_path();
@@ -279,6 +326,19 @@ void run_simulation(const RunOptions& options, RunResult& result,
   result.memory = info.schedule.memory;
   result.devices = info.devices;
   result.surface_contact = surfaces.has_value();
+  if (tuning) {
+    result.decisions = writer.decisions();  // those a resumed run kept
+    if (options.resume) {
+      // (A re-check's row is flushed with its frame's checkpoint, so the
+      // rows kept are those an uninterrupted run had made by then.)
+      const SolverChoice in_force = tuning->resume(writer.decisions(), static_cast<int>(resumed.frame));
+      if (in_force.method != result.method || in_force.iterations != sim.iterations ||
+          in_force.schedule != result.schedule) {
+        switch_to(in_force, {resumed.positions, resumed.velocities});
+      }
+    }
+    write_decisions();
+  }
   CrossingReport crossings(scene.contact.strict, options.warn);
   const auto record_contact = [&](int frame, const io::ContactFrame& c) {
     result.contact.push_back({frame, c});
@@ -286,7 +346,7 @@ void run_simulation(const RunOptions& options, RunResult& result,
   };
   int first_frame = 1;
   if (options.resume) {
-    const plan::PlanState fresh = executor.read_state();
+    const plan::PlanState fresh = executor->read_state();
     if (resumed.positions.size() != fresh.positions.size() || resumed.velocities.size() != fresh.velocities.size()) {
       throw input_error(
           fmt::format("--resume: the state in '{}' does not fit this scene's plan ({} bytes, the plan "
@@ -300,14 +360,14 @@ void run_simulation(const RunOptions& options, RunResult& result,
                       "go on",
                       writer.path(), resumed.frame));
     }
-    executor.reset({resumed.positions, resumed.velocities});
+    executor->reset({resumed.positions, resumed.velocities});
     first_frame = static_cast<int>(resumed.frame) + 1;
     // The frames kept: in the summary, not reported again.
     const auto& kept = writer.resumed_contact();
     for (std::size_t row = 0; row < kept.size(); ++row)
       result.contact.push_back({static_cast<int>(row) * scene.output.stride, kept[row]});
   }
-  plan::PlanState state = executor.read_state();
+  plan::PlanState state = executor->read_state();
   std::vector<float> xyz = xyz_of(state.positions);
   const BlowUpBounds bounds =
       blow_up_bounds(xyz, xyz_of(state.velocities), std::hypot(sim.gravity[0], sim.gravity[1], sim.gravity[2]),
@@ -328,9 +388,9 @@ void run_simulation(const RunOptions& options, RunResult& result,
     for (int frame = first_frame; frame <= sim.frames; ++frame) {
       if (g_stop) throw runtime_error(fmt::format("interrupted before frame {}", frame));
       const auto start = std::chrono::steady_clock::now();
-      run_frame(executor, colliders, sim.substeps, frame, sim.frame_dt);
+      run_frame(*executor, colliders, sim.substeps, frame, sim.frame_dt);
       before.swap(xyz);
-      executor.read_positions(xyz);
+      executor->read_positions(xyz);
       const bool written = frame % scene.output.stride == 0;
       SurfaceMeasurement surface_measurement = written ? SurfaceMeasurement(surfaces, xyz) : SurfaceMeasurement();
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -344,7 +404,7 @@ void run_simulation(const RunOptions& options, RunResult& result,
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - schedule_start).count();
       std::optional<std::string> why = find_blow_up(before, xyz, bounds, frame * sim.frame_dt, 1);
       if (!why && energy_check.enabled()) {
-        state = executor.read_state();
+        state = executor->read_state();
         EnergyGrowthCheck::Energy now = energy_check.energy(xyz, xyz_of(state.velocities));
         why = energy_check.check(energy, before, now, xyz);
         energy = std::move(now);
@@ -355,6 +415,16 @@ void run_simulation(const RunOptions& options, RunResult& result,
                         "or softer materials",
                         frame, *why));
       }
+      if (tuning) {
+        // Re-checked on the state the frame ended in, before it is written,
+        // so that its checkpoint and its /decisions row are flushed together.
+        tuning->frame_done(ms);
+        if (frame < sim.frames && tuning->due(frame)) {
+          const plan::PlanState now = executor->read_state();
+          if (const auto next = tuning->recheck(frame, now)) switch_to(*next, now);
+          write_decisions();
+        }
+      }
       const int done = frame - first_frame + 1;
       total_ms += ms;
       result.frames_simulated = frame;
@@ -364,7 +434,7 @@ void run_simulation(const RunOptions& options, RunResult& result,
       result.mean_frame_ms = total_ms / done;
       if (written) {
         record_schedule(writer, frame, used, used_waits, measured);
-        if (!energy_check.enabled()) state = executor.read_state();
+        if (!energy_check.enabled()) state = executor->read_state();
         writer.set_checkpoint(frame, state.positions, state.velocities);
         const io::ContactFrame contact = contact_frame(colliders, xyz, surface_measurement.get());
         writer.append_frame(frame * sim.frame_dt, xyz, ms, schedule_ms, contact);
@@ -384,6 +454,13 @@ void run_simulation(const RunOptions& options, RunResult& result,
             ? writer.path()
             : fmt::format("{}; the earlier {} was left as it was", writer.path(), writer.target_path());
     throw runtime_error(fmt::format("{} ({} frames kept in {})", e.what(), kept, where));
+  }
+  if (tuning && !result.decisions.empty() && std::isfinite(tuning->interval_ms())) {
+    result.decisions.back().measured_ms = tuning->interval_ms();
+    writer.set_decision_measured(result.decisions.back().measured_ms);
+  }
+  if (tuning && options.warn) {
+    if (const auto why = tuning->budget_report()) options.warn(*why);
   }
   writer.finish();
   result.frames_written = writer.frames_written();

@@ -1,6 +1,7 @@
 #pragma once
-// Wires the pipeline for `atssim run`: scene -> model -> XPBD plan ->
-// devices -> frames -> HDF5.
+// Wires the pipeline for `atssim run`: scene -> model -> the method's plan
+// -> devices -> frames -> HDF5 (with a tolerance or a budget, the probe's
+// choice first: app/accuracy_control).
 #include <cmath>
 #include <functional>
 #include <span>
@@ -23,6 +24,9 @@ struct RunOptions {
   // Called with a warning's text (no prefix, no newline), e.g. that surfaces
   // crossed; unset: printed on stderr as "atssim: warning: TEXT".
   std::function<void(const std::string&)> warn;
+  // A tolerance or a budget: the cost model's ms per µs of the reference
+  // device instead of a profile (tests decide a budget without timings); 0 = profile.
+  double cost_scale = 0.0;
 };
 
 struct RunProgress {
@@ -63,6 +67,13 @@ struct RunResult {
   // to what the energy check allows for (app/energy_growth.hpp); the run
   // fails above simulation.energy_growth_limit.
   double energy_growth = -INFINITY;
+
+  // run --tolerance / --budget (docs/accuracy.md): what was asked, and every
+  // choice made (the rows of /decisions, those a resumed run kept included).
+  bool tuned = false;
+  double tolerance = 0.0, budget_ms = 0.0;
+  int recheck = 0;
+  std::vector<io::DecisionRecord> decisions;
 };
 
 // Throws atssim::Error: input errors before anything is written; runtime

@@ -109,10 +109,9 @@ void CheckpointSlots::write(const Checkpoint& c) {
   next_slot_ = 1 - slot;
 }
 
-std::optional<Checkpoint> CheckpointSlots::take_newest(long long frames_available) {
+std::optional<Checkpoint> CheckpointSlots::newest(long long frames_available, int* slot_found) const {
   auto rows = read_index(index_);
   std::optional<Checkpoint> best;
-  int best_slot = -1;
   const hsize_t cols = std::max<std::size_t>(1, position_bytes_ + velocity_bytes_);
   for (int slot = 0; slot < kSlots; ++slot) {
     const long long* f = &rows[slot * kFields];
@@ -130,10 +129,17 @@ std::optional<Checkpoint> CheckpointSlots::take_newest(long long frames_availabl
     std::memcpy(&stored, &f[5], sizeof stored);
     if (hash_of(c) == stored) {
       best = std::move(c);
-      best_slot = slot;
+      if (slot_found != nullptr) *slot_found = slot;
     }
   }
+  return best;
+}
+
+std::optional<Checkpoint> CheckpointSlots::take_newest(long long frames_available) {
+  int best_slot = -1;
+  std::optional<Checkpoint> best = newest(frames_available, &best_slot);
   if (!best) return best;
+  auto rows = read_index(index_);
   for (int slot = 0; slot < kSlots; ++slot) {
     if (slot != best_slot) rows[slot * kFields] = -1;
   }

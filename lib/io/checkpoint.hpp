@@ -36,6 +36,8 @@ class CheckpointSlots {
   // `frames_available` frames; the other slot is emptied (a resumed run
   // writes over what came after) and is written next.
   std::optional<Checkpoint> take_newest(long long frames_available);
+  // The same without changing the file (`slot_found`: which slot it was).
+  std::optional<Checkpoint> newest(long long frames_available, int* slot_found = nullptr) const;
 
   bool valid() const { return state_.get() >= 0; }
 

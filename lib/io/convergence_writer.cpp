@@ -29,12 +29,14 @@ void write_convergence(const std::string& path, const ConvergenceResult& r) {
   H5Handle c = create_group(file, "convergence");
   write_int_attribute(c, "frames_before", r.frames_before);
   write_string_attribute(c, "newton_status", r.newton_status);
+  write_string_attribute(c, "from", r.from);
   write_int_attribute(c, "newton_iterations", r.newton_iterations);
-  const double scalars[] = {r.substep_dt, r.energy_start, r.energy_reference, r.newton_relative_gradient};
+  const double scalars[] = {r.substep_dt, r.energy_start, r.energy_reference, r.newton_relative_gradient, r.y_floor};
   write_double_array(c, "substep_dt", std::span<const double>(scalars, 1), 0);
   write_double_array(c, "energy_start", std::span<const double>(scalars + 1, 1), 0);
   write_double_array(c, "energy_reference", std::span<const double>(scalars + 2, 1), 0);
   write_double_array(c, "newton_relative_gradient", std::span<const double>(scalars + 3, 1), 0);
+  write_double_array(c, "y_floor", std::span<const double>(scalars + 4, 1), 0);
   std::vector<std::string> names;
   for (const auto& t : r.traces) names.push_back(t.variant);
   write_string_array(c, "variants", names);

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "io/decision_series.hpp"
 #include "io/h5_errors.hpp"
 #include "io/h5_handle.hpp"
 #include "util/error.hpp"
@@ -128,6 +129,28 @@ std::vector<float> read_frame_positions(const std::string& path, std::size_t fra
   std::vector<float> xyz(dims[1] * 3);
   h5_check(H5Dread(set, H5T_NATIVE_FLOAT, mem, space, H5P_DEFAULT, xyz.data()), "reading positions");
   return xyz;
+}
+
+Checkpoint read_checkpoint(const std::string& path) {
+  H5Handle file = open_file(path);
+  const std::optional<CheckpointSlots> slots = CheckpointSlots::open(file);
+  std::optional<Checkpoint> point;
+  if (slots) {
+    H5Handle set = h5_check(H5Dopen2(file, "/frames/positions", H5P_DEFAULT), H5Dclose, "/frames/positions");
+    point = slots->newest(static_cast<long long>(dims_of(set).at(0)));
+  }
+  if (!point) {
+    throw input_error(
+        fmt::format("{}: holds no checkpoint (a run killed before its first frame, or not written by "
+                    "atssim run)",
+                    path));
+  }
+  return *point;
+}
+
+std::vector<DecisionRecord> read_decisions(const std::string& path) {
+  H5Handle file = open_file(path);
+  return read_decisions(file.get());
 }
 
 }  // namespace atssim::io

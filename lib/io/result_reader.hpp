@@ -3,6 +3,9 @@
 #include <string>
 #include <vector>
 
+#include "io/checkpoint.hpp"
+#include "io/decision_series.hpp"
+
 namespace atssim::io {
 
 struct ResultSummary {
@@ -27,5 +30,10 @@ ResultSummary read_summary(const std::string& path);
 std::vector<float> read_frame_positions(const std::string& path, std::size_t frame);
 // A 1-D series as doubles, e.g. "/contact/max_penetration".
 std::vector<double> read_series(const std::string& path, const std::string& dataset);
+// The newest whole checkpoint (the state at the end of that frame); throws
+// atssim::Error (input) when the file has none.
+Checkpoint read_checkpoint(const std::string& path);
+// The rows of /decisions (run --tolerance / --budget); empty without.
+std::vector<DecisionRecord> read_decisions(const std::string& path);
 
 }  // namespace atssim::io

@@ -180,6 +180,7 @@ void ResultWriter::reopen(const RunInfo& info, Checkpoint& resume) {
                     surface_max_penetration_.get(), surface_crossings_.get()})
     truncate_rows(set, frames_);
   read_contact_rows();
+  if (H5Lexists(file_, "decisions", H5P_DEFAULT) > 0) decisions_ = DecisionSeries::open(file_, point->frame);
   sched_rows_ = static_cast<hsize_t>(point->schedule_rows);
   wait_rows_ = static_cast<hsize_t>(point->wait_rows);
   makespan_rows_ = static_cast<hsize_t>(point->makespan_rows);
@@ -315,6 +316,18 @@ void ResultWriter::append_schedule(int frame, std::span<const ScheduledTask> tas
   makespan_rows_ += 1;
 }
 
+void ResultWriter::append_decision(const DecisionRecord& row) {
+  if (broken_) return;
+  if (!decisions_.valid()) decisions_ = DecisionSeries::create(file_);
+  decisions_.append(row);
+}
+
+void ResultWriter::set_decision_measured(double measured_ms) {
+  if (!broken_ && decisions_.valid()) decisions_.set_last_measured(measured_ms);
+}
+
+const std::vector<DecisionRecord>& ResultWriter::decisions() const { return decisions_.records(); }
+
 void ResultWriter::set_checkpoint(long long frame, std::span<const std::byte> positions,
                                   std::span<const std::byte> velocities) {
   Checkpoint c;
@@ -409,6 +422,7 @@ void ResultWriter::abandon() {
   closed_ = true;
   for (const SeriesSpec& s : kSeries) (void)(this->*s.member).release();
   (void)flushed_.release();
+  decisions_.close(true);
   (void)file_.release();
   checkpoint_ = CheckpointSlots();
   xdmf_.close();
@@ -424,6 +438,7 @@ void ResultWriter::close_with(bool complete, const std::string& error) {
   write_string_attribute(file_, "error", error);
   for (const SeriesSpec& s : kSeries) (this->*s.member).reset();
   flushed_.reset();
+  decisions_.close();
   flush();
   file_.reset();
   write_xdmf_file(xdmf_path(), std::filesystem::path(writing_).filename().string(), views_, object_names_, times_);

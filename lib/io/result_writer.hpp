@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "io/checkpoint.hpp"
+#include "io/decision_series.hpp"
 #include "io/h5_handle.hpp"
 #include "io/output_health.hpp"
 #include "io/output_lock.hpp"
@@ -86,6 +87,13 @@ class ResultWriter {
   // the next append_frame's flush).
   void append_schedule(int frame, std::span<const ScheduledTask> tasks, std::span<const sched::Wait> waits,
                        double predicted_makespan_ms, double measured_makespan_ms, std::size_t bytes_moved = 0);
+  // One row of /decisions (run --tolerance / --budget), written with the
+  // next flush; the first call makes the group. set_decision_measured()
+  // writes the last row's measured frame time again.
+  void append_decision(const DecisionRecord& row);
+  void set_decision_measured(double measured_ms);
+  // The rows of /decisions, those a resumed run kept included.
+  const std::vector<DecisionRecord>& decisions() const;
   int frames_written() const { return frames_; }
   // After a resume: the contact record of every frame kept in the file.
   const std::vector<ContactFrame>& resumed_contact() const { return resumed_contact_; }
@@ -142,6 +150,7 @@ class ResultWriter {
   H5Handle contact_active_, contact_min_distance_, contact_max_penetration_;  // /contact, per frame
   H5Handle surface_pairs_, surface_max_penetration_, surface_crossings_;
   std::vector<ContactFrame> resumed_contact_;
+  DecisionSeries decisions_;
   hsize_t sched_rows_ = 0, wait_rows_ = 0, makespan_rows_ = 0;
 };
 

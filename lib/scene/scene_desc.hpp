@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/accuracy_desc.hpp"
 #include "scene/collider_desc.hpp"
 #include "scene/contact_desc.hpp"
 
@@ -142,6 +143,7 @@ struct SolverDesc {
   std::string executor = "auto";                 // auto | fused | events: how the devices run the schedule
   double wait_timeout_s = 10.0;                  // fused: a run in which no task finishes this long fails
   std::vector<MethodOptionDesc> method_options;  // every other key, in file order (then --set ones)
+  AccuracyDesc accuracy;                         // tolerance / budget_ms: atssim chooses method and iterations
 };
 
 struct OutputDesc {

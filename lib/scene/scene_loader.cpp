@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
+#include "scene/accuracy_reader.hpp"
 #include "scene/collider_reader.hpp"
 #include "scene/contact_reader.hpp"
 #include "scene/input_file.hpp"
@@ -31,8 +32,9 @@ constexpr std::array<std::string_view, 9> kSimulationKeys{
     "fps", "dt", "substeps", "iterations", "frames", "gravity", "ground", "air_drag", "energy_growth_limit"};
 // Keys under solver: that configure how the devices run a substep; every
 // other key is an option of a method (MethodOptionDesc).
-constexpr std::array<std::string_view, 8> kScheduleKeys{"method",      "schedule", "async_depth", "merge",
-                                                        "async_fetch", "replay",   "executor",    "wait_timeout"};
+constexpr std::array<std::string_view, 12> kScheduleKeys{"method",      "schedule",  "async_depth", "merge",
+                                                         "async_fetch", "replay",    "executor",    "wait_timeout",
+                                                         "tolerance",   "budget_ms", "recheck",     "methods"};
 constexpr std::array<std::string_view, 3> kExecutors{"auto", "fused", "events"};
 constexpr std::array<std::string_view, 4> kSchedules{"single", "split", "heft", "async"};
 constexpr std::array<std::string_view, 3> kMerges{"average_displacements", "average_positions", "main_precedence"};
@@ -232,6 +234,7 @@ SceneDesc parse_scene(const std::string& yaml_text, const std::string& source_na
       const YamlReader option = solver.child(key);
       scene.solver.method_options.push_back({key, option.string(), option.where()});
     }
+    scene.solver.accuracy = read_accuracy(solver);
     if (solver.has("method")) {
       const YamlReader m = solver.child("method");
       scene.solver.method = m.string();

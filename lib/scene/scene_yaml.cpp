@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "scene/accuracy_reader.hpp"
 #include "scene/collider_reader.hpp"
 #include "scene/contact_reader.hpp"
 
@@ -153,6 +154,7 @@ std::string to_resolved_yaml(const SceneDesc& scene) {
   out << YAML::Key << "replay" << YAML::Value << (solver.replay ? "true" : "false");
   out << YAML::Key << "executor" << YAML::Value << solver.executor;
   out << YAML::Key << "wait_timeout" << YAML::Value << solver.wait_timeout_s;
+  emit_accuracy(out, solver.accuracy);
   for (const MethodOptionDesc& o : solver.method_options) {
     // The value as written; text that is no YAML of its own (a quoted
     // string holding ": ") is kept as a string (found by fuzzing).

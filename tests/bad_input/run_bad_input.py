@@ -5,7 +5,7 @@ A case is a scene in cases/*.yaml whose last comment lines say what must
 happen (`# exit: 2`; `# expect: {scene}:LINE:`, the file:line the message must
 name, {scene} standing for the case's path; optionally `# says: TEXT`, what
 it must say, `# args: run {scene} …` and `# setup: NAME`), or a line of
-cli.txt. A setup (setups.py) makes files at test time or an environment
+cli.txt or of a cli-*.txt beside it. A setup (setups.py) makes files at test time or an environment
 around the case; a scene case with one is copied into the case's folder
 first, so that the files it names are found there. For each case: the exit
 code is the one expected, stderr is exactly one line, that line contains
@@ -47,13 +47,16 @@ def load_cases():
         args = meta.get("args", "run {scene} -o {out}")
         expect = [meta["expect"]] + ([meta["says"]] if "says" in meta else [])
         cases.append((name[:-5], int(meta["exit"]), expect, shlex.split(args), path, meta.get("setup")))
-    for number, line in enumerate(open(os.path.join(HERE, "cli.txt")), 1):
-        if not line.strip() or line.startswith("#"):
-            continue
-        code, expect, args = (part.strip() for part in line.split("|", 2))
-        words = shlex.split(args)
-        setup = words.pop(0)[1:] if words and words[0].startswith("@") else None
-        cases.append((f"cli.txt:{number}", int(code), [expect], words, None, setup))
+    # cli.txt and every cli-*.txt beside it (one file per area, so that
+    # branches adding cases do not edit the same lines).
+    for listing in sorted(n for n in os.listdir(HERE) if n == "cli.txt" or (n.startswith("cli-") and n.endswith(".txt"))):
+        for number, line in enumerate(open(os.path.join(HERE, listing)), 1):
+            if not line.strip() or line.startswith("#"):
+                continue
+            code, expect, args = (part.strip() for part in line.split("|", 2))
+            words = shlex.split(args)
+            setup = words.pop(0)[1:] if words and words[0].startswith("@") else None
+            cases.append((f"{listing}:{number}", int(code), [expect], words, None, setup))
     for case in cases:
         if case[5] is not None and case[5] not in SETUPS:
             sys.exit(f"{case[0]}: unknown setup '{case[5]}' (setups.py has {', '.join(SETUPS)})")

@@ -74,6 +74,33 @@ with temp_dir() as d:
     check(s["status"] == "input_error" and s["output"] is None and "substeps" in s["error"], "input error")
     refused = s
 
+    # --tolerance: `accuracy` lists the choices, as /decisions holds them.
+    h5 = os.path.join(d, "tuned.h5")
+    s, _ = run_json([scene("hanging_cloth"), "-o", h5, "--frames", "5", "--devices", "cpu", "--tolerance", "1e-2",
+                     "--recheck", "4", "--set", "objects.0.grid.resolution=[10, 10]"], 0)
+    a = s["accuracy"]
+    check(a is not None and a["tolerance"] == 0.01 and a["budget_ms"] is None and a["recheck"] == 4, f"accuracy: {a}")
+    rows = a["decisions"]
+    with h5py.File(h5, "r") as f:
+        g = f["decisions"]
+        check(len(rows) == g["frame"].shape[0] and len(rows) >= 2, f"{len(rows)} decisions in the summary")
+        for i, row in enumerate(rows):
+            check(row["frame"] == int(g["frame"][i]) and row["iterations"] == int(g["iterations"][i]), f"row {i}")
+            check(row["method"] == g["method"][i].decode().rstrip("\0"), f"row {i}: method")
+            check(row["changed"] == bool(g["changed"][i]), f"row {i}: changed")
+            y = float(g["y"][i])
+            check((row["y"] is None and np.isnan(y)) or abs(row["y"] - y) <= 1e-5 * abs(y), f"row {i}: y")
+    check(rows[0]["frame"] == 0 and rows[0]["changed"], "the probe is the first row")
+    check(s["method"] == rows[-1]["method"], "the run ends with the last choice's method")
+    check(refused["accuracy"] is None, "no accuracy object without --tolerance / --budget")
+
+    # A budget no choice fits: exit 2, nothing written, the goal and no decisions.
+    s, _ = run_json([scene("hanging_cloth"), "-o", os.path.join(d, "none.h5"), "--devices", "cpu", "--budget",
+                     "1e-9"], 2)
+    check(s["status"] == "input_error" and "no choice fits" in s["error"], f"refused budget: {s['error']}")
+    check(s["accuracy"] == {"tolerance": None, "budget_ms": 1e-9, "recheck": 30, "decisions": []}, f"{s['accuracy']}")
+    check(not os.path.exists(os.path.join(d, "none.h5")), "a refused budget writes nothing")
+
     # SIGTERM (a cluster's time limit, a sweep being stopped): the run stops
     # after the current frame, keeps its frames and says it was interrupted.
     out = os.path.join(d, "long.h5")
