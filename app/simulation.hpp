@@ -1,5 +1,5 @@
 #pragma once
-// Wires the pipeline for `atssim run`: scene -> model -> XPBD plan ->
+// Wires the pipeline for `atssim run`: scene -> model -> the method's plan ->
 // devices -> frames -> HDF5.
 #include <functional>
 #include <span>

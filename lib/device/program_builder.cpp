@@ -10,7 +10,7 @@ namespace atssim::device {
 cl::Program build_program(const cl::Context& context, const std::vector<cl::Device>& devices,
                           const std::string& program_name, const std::string& options) {
   const char* source = kernels::program_source(program_name);
-  if (source == nullptr) throw Error(fmt::format("no embedded OpenCL program named '{}'", program_name));
+  if (source == nullptr) throw internal_error(fmt::format("no embedded OpenCL program named '{}'", program_name));
   cl::Program program(context, std::string(source));
   try {
     program.build(devices, options.c_str());

@@ -70,30 +70,40 @@ CostFile read_cost_file(const std::string& path, const sched::TaskGraph& graph) 
     const auto cells = split_csv(line);
     if (cells[0] == "task") continue;  // header
     if (cells[0] == "latency_ms") {
-      if (cells.size() != 2 || !parse_ms(cells[1], file.latency_ms)) {
-        throw input_error(fmt::format("{}:{}: expected 'latency_ms,<ms ≥ 0>'", path, line_no));
+      if (cells.size() != 2 || !parse_ms(cells[1], file.latency_ms) || !(file.latency_ms < sched::kCannotRun)) {
+        throw input_error(fmt::format("{}:{}: expected 'latency_ms,<ms ≥ 0>' (a finite number)", path, line_no));
       }
       continue;
     }
     const auto it = by_name.find(cells[0]);
     if (it == by_name.end()) {
-      throw input_error(fmt::format("{}:{}: task '{}' is not in this substep's task graph; write the costs for the "
-                                    "same scene, method and schedule (atssim schedule --csv writes them)",
-                                    path, line_no, cells[0]));
+      throw input_error(
+          fmt::format("{}:{}: task '{}' is not in this substep's task graph; write the costs for the "
+                      "same scene, method and schedule (atssim schedule --csv writes them)",
+                      path, line_no, cells[0]));
     }
     if (cells.size() < 2) throw input_error(fmt::format("{}:{}: task '{}' has no cost", path, line_no, cells[0]));
     if (devices == 0) devices = cells.size() - 1;
     if (cells.size() - 1 != devices) {
-      throw input_error(fmt::format("{}:{}: {} costs, but earlier lines have {}; give one cost per device on every "
-                                    "line",
-                                    path, line_no, cells.size() - 1, devices));
+      throw input_error(
+          fmt::format("{}:{}: {} costs, but earlier lines have {}; give one cost per device on every "
+                      "line",
+                      path, line_no, cells.size() - 1, devices));
     }
     std::vector<double> row(devices);
     for (std::size_t d = 0; d < devices; ++d) {
       if (!parse_ms(cells[d + 1], row[d])) {
-        throw input_error(fmt::format("{}:{}: '{}' is not a cost in ms (a number ≥ 0, or inf)", path, line_no,
-                                      cells[d + 1]));
+        throw input_error(
+            fmt::format("{}:{}: '{}' is not a cost in ms (a number ≥ 0, or inf)", path, line_no, cells[d + 1]));
       }
+    }
+    // The scheduler takes every table it is given as sound (sched/input_checks):
+    // what a file can get wrong is refused here, at its line.
+    if (std::none_of(row.begin(), row.end(), [](double ms) { return ms < sched::kCannotRun; })) {
+      throw input_error(
+          fmt::format("{}:{}: task '{}' costs inf on every device, so no device can run it; give a "
+                      "cost in ms for at least one",
+                      path, line_no, cells[0]));
     }
     rows[it->second] = std::move(row);
     seen[it->second] = 1;
@@ -101,8 +111,7 @@ CostFile read_cost_file(const std::string& path, const sched::TaskGraph& graph) 
   for (sched::TaskId t = 0; t < graph.size(); ++t) {
     if (!seen[t]) {
       throw input_error(fmt::format("{}: no cost for task '{}' ({} of {} tasks given); list every task", path,
-                                    graph.task(t).name,
-                                    std::count(seen.begin(), seen.end(), 1), graph.size()));
+                                    graph.task(t).name, std::count(seen.begin(), seen.end(), 1), graph.size()));
     }
   }
   file.costs = sched::CostTable::from_rows(rows);
