@@ -10,6 +10,7 @@
 #include "device/device_set.hpp"
 #include "device/plan_executor.hpp"
 #include "scene/scene_loader.hpp"
+#include "support/methods.hpp"
 #include "support/scenes.hpp"
 #include "util/error.hpp"
 
@@ -36,7 +37,8 @@ std::vector<float> run(const device::DeviceSet& devices, const plan::SubstepPlan
 }  // namespace
 
 TEST_CASE("fused execution equals events execution bit for bit for every method and schedule", "[fused]") {
-  const std::string method = GENERATE("xpbd", "vbd", "sosd", "jpgd");
+  const std::string method =
+      GENERATE(from_range(test::methods_taking([](const std::string& m) { return test::cloth_and_box_yaml(m, 14); })));
   const auto mode = GENERATE(app::ScheduleMode::single, app::ScheduleMode::split, app::ScheduleMode::heft);
   const auto scene = scene::parse_scene(test::cloth_and_box_yaml(method, 14), "s.yaml", ".");
   const plan::SubstepPlan plan = app::substep_plan_for(scene);

@@ -27,6 +27,7 @@
 #include "app/simulation.hpp"
 #include "model/cloth_builder.hpp"
 #include "scene/scene_loader.hpp"
+#include "support/methods.hpp"
 #include "support/obstacle_meshes.hpp"
 #include "support/scene_runs.hpp"
 #include "support/surface_checks.hpp"
@@ -279,7 +280,13 @@ void check_methods(const std::string& name, std::initializer_list<const char*> m
   }
 }
 
-void check_every_method(const std::string& name) { check_methods(name, {"xpbd", "vbd", "sosd", "jpgd"}); }
+// Every method with contact (the paper's scenes have colliders and self-contact).
+void check_every_method(const std::string& name) {
+  for (const std::string& method :
+       test::methods_where([](const solver::MethodDescription& m) { return m.colliders; })) {
+    for (const char* schedule : {"single", "heft"}) check_scene(name, method, schedule);
+  }
+}
 
 }  // namespace
 
