@@ -19,7 +19,8 @@
   M(vbd)                      \
   M(sosd)                     \
   M(jpgd)                     \
-  M(explicit_rk)
+  M(explicit_rk)              \
+  /* a new method: one line above this one */
 // clang-format on
 
 namespace atssim::solver {
