@@ -193,8 +193,9 @@ void release_simulation_state(model::Model& model) {
 // throws an internal atssim::Error in frame 2, =exception a std::logic_error
 // (a library's exception), both after frames were written.
 void injected_fault(int frame) {
-  static const char* const fault = std::getenv("ATSSIM_TEST_FAULT");
-  if (fault == nullptr || frame != 2) return;
+  if (frame != 2) return;
+  const char* const fault = std::getenv("ATSSIM_TEST_FAULT");
+  if (fault == nullptr) return;
   const std::string_view what = fault;
   if (what == "internal") throw internal_error("ATSSIM_TEST_FAULT: an internal fault injected in frame 2");
   if (what == "exception") throw std::logic_error("ATSSIM_TEST_FAULT: a std::logic_error injected in frame 2");
