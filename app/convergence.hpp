@@ -15,12 +15,12 @@ struct ConvergeOptions {
   std::string scene_path;
   std::vector<std::string> overrides;
   std::string command_line;
-  std::vector<std::string> methods{"xpbd"};      // xpbd, vbd, sosd, jpgd
+  std::vector<std::string> methods{"xpbd"};      // names of solver::methods()
   std::vector<std::string> schedules{"single"};  // single, split, heft, async
   std::vector<std::string> merges{"average_displacements", "average_positions", "main_precedence"};
-  int max_iterations = 64;     // k = 1, 2, 4, …, max (and max itself)
-  int frames_before = 10;      // simulated first (the scene's solver.method, one device) to reach a moving state
-  int timing_repeats = 3;      // substeps timed per point; the median counts
+  int max_iterations = 64;  // k = 1, 2, 4, …, max (and max itself)
+  int frames_before = 10;   // simulated first (the scene's solver.method, one device) to reach a moving state
+  int timing_repeats = 3;   // substeps timed per point; the median counts
 };
 
 // Throws atssim::Error (input) for unknown schedules or merges, a scene
