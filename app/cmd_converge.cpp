@@ -5,6 +5,7 @@
 
 #include "app/commands.hpp"
 #include "app/convergence.hpp"
+#include "solver/method_registry.hpp"
 #include "util/error.hpp"
 
 namespace atssim::app {
@@ -19,7 +20,7 @@ Action add_converge_command(CLI::App& cli, const std::string& command_line) {
       "converge", "Speed/accuracy: relative energy error per iteration vs a Newton reference, per schedule");
   cmd->add_option("scene", o->scene_path, "Scene file (YAML)")->required();
   cmd->add_option("-o,--output", *output, "Output HDF5 file (/convergence)")->capture_default_str();
-  cmd->add_option("--methods", o->methods, "Solvers to compare: xpbd, vbd, sosd, jpgd (comma separated)")
+  cmd->add_option("--methods", o->methods, "Solvers to compare: " + solver::method_names() + " (comma separated)")
       ->delimiter(',');
   cmd->add_option("--schedules", o->schedules, "single, split, heft, async (comma separated)")->delimiter(',');
   cmd->add_option("--merges", o->merges,

@@ -8,22 +8,6 @@
 
 namespace atssim::app {
 
-namespace {
-
-std::string_view model_name(scene::SolidModel m) {
-  switch (m) {
-    case scene::SolidModel::neo_hookean:
-      return "neo_hookean";
-    case scene::SolidModel::stvk:
-      return "stvk";
-    case scene::SolidModel::springs:
-      return "springs";
-  }
-  return "?";
-}
-
-}  // namespace
-
 Action add_methods_command(CLI::App& cli) {
   CLI::App* cmd = cli.add_subcommand("methods", "List the simulation methods, their options and solid models");
   auto json = std::make_shared<bool>(false);
@@ -35,7 +19,7 @@ Action add_methods_command(CLI::App& cli) {
       const solver::MethodDescription& m = *all[i];
       std::string solids, options;
       for (scene::SolidModel s : m.solid_models) {
-        const std::string_view name = model_name(s);
+        const std::string_view name = scene::to_string(s);
         solids += *json ? fmt::format("{}\"{}\"", solids.empty() ? "" : ", ", name)
                         : fmt::format("{}{}", solids.empty() ? "" : ", ", name);
       }
@@ -46,12 +30,15 @@ Action add_methods_command(CLI::App& cli) {
                          : fmt::format("{}solver.{} = {} ({})", options.empty() ? "" : "; ", o.key, o.default_text(),
                                        o.meaning);
       }
+      std::string kinds;
+      for (const plan::TaskKind& k : m.kinds) kinds += fmt::format("{}\"{}\"", kinds.empty() ? "" : ", ", k.name());
       if (*json) {
         fmt::print(
-            "  {{\"name\": \"{}\", \"iterations\": \"{}\", \"summary\": \"{}\", \"solids\": [{}], "
+            "  {{\"name\": \"{}\", \"iterations\": \"{}\", \"summary\": \"{}\", \"program\": \"{}\", "
+            "\"kinds\": [{}], \"implicit\": {}, \"descent\": {}, \"colliders\": {}, \"solids\": [{}], "
             "\"options\": [{}]}}{}\n",
-            m.name, m.gauss_seidel ? "gauss_seidel" : "jacobi", m.summary, solids, options,
-            i + 1 < all.size() ? "," : "");
+            m.name, m.gauss_seidel ? "gauss_seidel" : "jacobi", m.summary, m.program, kinds, m.implicit, m.descent,
+            m.colliders, solids, options, i + 1 < all.size() ? "," : "");
       } else {
         fmt::print("{:<6} {} ({}; solids: {}){}\n", m.name, m.summary, m.gauss_seidel ? "Gauss-Seidel" : "Jacobi",
                    solids.empty() ? "none" : solids, options.empty() ? "" : "\n       options: " + options);

@@ -60,9 +60,10 @@ std::vector<Variant> variants_of(const ConvergeOptions& o, const ExecutionOption
     }
   }
   if (out.empty()) {
-    throw input_error(
-        "--schedules async applies to Gauss-Seidel methods only (xpbd, vbd), and --methods names none: add "
-        "single, split or heft to --schedules");
+    throw input_error(fmt::format(
+        "--schedules async applies to Gauss-Seidel methods only ({}), and --methods names none: add single, split or "
+        "heft to --schedules",
+        solver::method_names([](const solver::MethodDescription& m) { return m.gauss_seidel; })));
   }
   return out;
 }

@@ -15,7 +15,7 @@ struct ConvergeOptions {
   std::string scene_path;
   std::vector<std::string> overrides;
   std::string command_line;
-  std::vector<std::string> methods{"xpbd"};      // xpbd, vbd, sosd, jpgd
+  std::vector<std::string> methods{"xpbd"};      // names of solver::methods()
   std::vector<std::string> schedules{"single"};  // single, split, heft, async
   std::vector<std::string> merges{"average_displacements", "average_positions", "main_precedence"};
   int max_iterations = 64;  // k = 1, 2, 4, …, max (and max itself)

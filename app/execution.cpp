@@ -1,20 +1,17 @@
 #include "app/execution.hpp"
 
 #include <algorithm>
-#include <cmath>
-#include <numeric>
-#include <unordered_map>
 
 #include <fmt/format.h>
 
 #include "plan/async_graph.hpp"
+#include "plan/async_placement.hpp"
 #include "plan/split_plan.hpp"
 #include "scene/scene_desc.hpp"
-#include "sched/cost_refit.hpp"
 #include "sched/fixed_assignment.hpp"
-#include "sched/gauss_seidel_rank.hpp"
 #include "sched/heft.hpp"
-#include "sched/sync_map.hpp"
+#include "sched/profile_costs.hpp"
+#include "sched/split_shares.hpp"
 #include "util/error.hpp"
 
 namespace atssim::app {
@@ -38,18 +35,12 @@ sched::DeviceLinks measure_links(device::PlanExecutor& executor) {
   return links;
 }
 
-// Each device's share, inversely proportional to the time it needs for the
-// whole substep alone (paper §4: balance by measured speed).
-std::vector<double> speed_fractions(const sched::CostTable& costs) {
-  std::vector<double> speed(costs.devices, 0.0);
-  for (std::size_t d = 0; d < costs.devices; ++d) {
-    double total = 0.0;
-    for (std::size_t t = 0; t < costs.tasks; ++t) total += costs.at(static_cast<sched::TaskId>(t), d);
-    speed[d] = 1.0 / std::max(total, 1e-9);
-  }
-  const double sum = std::accumulate(speed.begin(), speed.end(), 0.0);
-  for (double& s : speed) s /= sum;
-  return speed;
+// Pre-profiling: the executor runs and reports, sched::ProfileCosts prices.
+sched::CostTable profile(device::PlanExecutor& executor, int repetitions) {
+  const sched::ProfileOptions options;
+  sched::ProfileCosts costs(executor.plan().graph.size(), executor.device_count(), options);
+  executor.profile(options.warmup + repetitions, costs);
+  return costs.costs();
 }
 
 void make_schedule(Execution& e, const ExecutionOptions& options, bool choose_devices) {
@@ -75,71 +66,30 @@ device::ExecutorOptions executor_options(const ExecutionOptions& o) {
   return x;
 }
 
-// Asynchronous Gauss-Seidel: HEFT with the Gauss-Seidel rank places the
-// blocks of the relaxed graph (§4.1.2, §4.2.1), the sync map decides the
-// merges (§4.2.2), and the merges become tasks of the plan that runs.
+// Asynchronous Gauss-Seidel: the relaxed graph placed (plan::place_async),
+// its merges made tasks of the plan that runs (plan::make_async_plan).
 Execution prepare_async(const device::DeviceSet& devices, const plan::SubstepPlan& base,
                         const ExecutionOptions& options) {
-  const std::size_t n = devices.size();
   Execution e;
   e.mode = ScheduleMode::async;
   const plan::SubstepPlan graph_plan = plan::async_graph(base, options.async_depth);
-  const auto& graph = graph_plan.graph;
-
   sched::CostTable costs;
   sched::DeviceLinks hop;
   {
     device::PlanExecutor probe(devices, base, executor_options(options));
     costs = options.placement_costs ? *options.placement_costs
-                                    : probe.profile(std::max(2, options.profile_repetitions / 2));
+                                    : profile(probe, std::max(2, options.profile_repetitions / 2));
     hop = options.placement_links ? *options.placement_links : measure_links(probe);
   }
-  if (costs.tasks != graph.size() || costs.devices != n) {
-    throw Error(fmt::format("async: placement costs for {} tasks on {} devices, the plan has {} on {}", costs.tasks,
-                            costs.devices, graph.size(), n));
-  }
-  // The main device keeps the stream: the fastest one runs the tasks outside
-  // the iterations (predict, the velocity update), which read and write the
-  // state no other device has.
-  std::vector<double> total(n, 0.0);
-  for (sched::TaskId t = 0; t < graph.size(); ++t) {
-    for (std::size_t d = 0; d < n; ++d) total[d] += costs.at(t, d);
-  }
-  e.main_device = static_cast<sched::DeviceId>(std::min_element(total.begin(), total.end()) - total.begin());
-  sched::TaskId predict = 0;
-  for (sched::TaskId t = 0; t < graph.size(); ++t) {
-    if (graph.task(t).iteration >= 0) continue;
-    if (plan::kind_of(graph.task(t)) == plan::TaskKind::predict) predict = t;
-    for (std::size_t d = 0; d < n; ++d) {
-      if (d != e.main_device) costs.at(t, d) = sched::kCannotRun;
-    }
-  }
-  // A hop now also publishes and merges a whole copy of the positions:
-  // about two particle sweeps, priced like the predict step.
-  sched::DeviceLinks links = hop;
-  for (std::size_t i = 0; i < links.latency_ms.size(); ++i) {
-    if (i % (n + 1) != 0) links.latency_ms[i] += 2.0 * costs.at(predict, e.main_device);
-  }
-  // Every Gauss-Seidel kind keeps its order across iterations (§4.1.2).
-  std::vector<std::vector<sched::TaskId>> orders;
-  std::vector<int> kinds;
-  for (const sched::Task& t : graph.tasks()) {
-    if (plan::traits(plan::kind_of(t)).gauss_seidel && std::find(kinds.begin(), kinds.end(), t.kind) == kinds.end()) {
-      kinds.push_back(t.kind);
-    }
-  }
-  for (int kind : kinds) orders.push_back(sched::gauss_seidel_order(graph, kind));
-  sched::HeftOptions heft;
-  heft.priority = sched::gauss_seidel_rank(graph, costs, links, orders);
-  const sched::Schedule placed = sched::schedule_heft(graph, costs, links, heft);
-  const sched::SyncMap map = sched::build_sync_map(graph, placed, hop, e.main_device, {options.async_latest});
-  plan::AsyncPlan async = plan::make_async_plan(graph_plan, placed, map, options.merge);
+  const plan::AsyncPlacement placement = plan::place_async(graph_plan, std::move(costs), hop, options.async_latest);
+  plan::AsyncPlan async = plan::make_async_plan(graph_plan, placement.placed, placement.map, options.merge);
+  e.main_device = placement.main_device;
   e.async_slots = async.slots;
-  e.async_merges = map.merges.size();
+  e.async_merges = placement.map.merges.size();
 
   e.assignment = std::move(async.device);
   e.executor = std::make_unique<device::PlanExecutor>(devices, std::move(async.plan), executor_options(options));
-  e.costs = sched::CostModel(e.executor->profile(options.profile_repetitions), hop, options.reschedule_drift);
+  e.costs = sched::CostModel(profile(*e.executor, options.profile_repetitions), hop, options.reschedule_drift);
   e.schedule = sched::schedule_fixed(e.plan().graph, e.costs.costs(), e.costs.links(), e.assignment);
   e.waits = e.schedule.cross_device_waits(e.plan().graph);
   e.executor->run_schedule(e.schedule, e.waits);
@@ -207,25 +157,21 @@ Execution prepare_execution(const device::DeviceSet& devices, plan::SubstepPlan 
   if (options.mode == ScheduleMode::split) {
     // Measure each device's speed on the whole plan, then cut every block by it.
     device::PlanExecutor probe(devices, base, executor_options(options));
-    fractions = speed_fractions(probe.profile(std::max(2, options.profile_repetitions / 2)));
+    fractions = sched::speed_fractions(profile(probe, std::max(2, options.profile_repetitions / 2)));
   } else if (options.mode == ScheduleMode::heft) {
-    fractions.assign(n, 1.0 / static_cast<double>(n));  // equal parts; HEFT places them
+    fractions = sched::equal_fractions(n);  // HEFT places the parts
   }
   e.split_fractions = fractions;
   if (fractions.size() > 1) base = plan::split_plan(base, fractions);
   e.executor = std::make_unique<device::PlanExecutor>(devices, std::move(base), executor_options(options));
-  sched::CostTable profiled = e.executor->profile(options.profile_repetitions);
+  sched::CostTable profiled = profile(*e.executor, options.profile_repetitions);
   sched::DeviceLinks links = n > 1 ? measure_links(*e.executor) : sched::DeviceLinks::unified_memory(1, 0.0);
   e.costs = sched::CostModel(std::move(profiled), std::move(links), options.reschedule_drift);
 
-  const auto& graph = e.plan().graph;
-  e.assignment.assign(graph.size(), 0);
+  e.assignment.assign(e.plan().graph.size(), 0);
   if (options.mode == ScheduleMode::split) {
-    for (sched::TaskId t = 0; t < graph.size(); ++t) {
-      e.assignment[t] = static_cast<sched::DeviceId>(std::max(0, graph.task(t).part));
-    }
-    // A fused dispatcher has no work-group size to fill: cut finer.
-    e.split_granule = e.executor->kind() == device::ExecutorKind::fused ? 8 : 64;
+    e.assignment = sched::part_devices(e.plan().graph);
+    e.split_granule = plan::part_granule(e.executor->work_group_elements());
     e.part_shares = e.executor->recut(fractions, e.split_granule);
   }
   make_schedule(e, options, true);
@@ -234,8 +180,7 @@ Execution prepare_execution(const device::DeviceSet& devices, plan::SubstepPlan 
 
 plan::SubstepPlan cut_for_mode(const plan::SubstepPlan& base, ScheduleMode mode, std::size_t devices) {
   if (mode == ScheduleMode::single || devices < 2) return base;
-  const std::vector<double> equal(devices, 1.0 / static_cast<double>(devices));
-  return plan::split_plan(base, equal);
+  return plan::split_plan(base, sched::equal_fractions(devices));
 }
 
 PlannedSchedule schedule_from_costs(const plan::SubstepPlan& base, ScheduleMode mode, const sched::CostTable& costs,
@@ -252,49 +197,26 @@ PlannedSchedule schedule_from_costs(const plan::SubstepPlan& base, ScheduleMode 
   p.plan = cut_for_mode(base, mode, n);
   p.costs = costs;
   p.links = sched::DeviceLinks::unified_memory(n, latency_ms);
-  std::vector<sched::DeviceId> assignment(p.plan.graph.size(), 0);
   if (mode == ScheduleMode::split) {
-    // Re-cut by speed; a part's cost scales with its share of the elements.
-    p.split_fractions = speed_fractions(costs);
-    const plan::SubstepPlan equal = std::move(p.plan);
+    // Re-cut by speed (every part kept: the task ids stay those of the equal
+    // cut the costs are for); a part's cost scales with its share.
+    p.split_fractions = sched::speed_fractions(costs);
     p.plan = plan::split_plan(base, p.split_fractions);
-    assignment.assign(p.plan.graph.size(), 0);  // the re-cut may drop parts that rounded to nothing
-    std::unordered_map<std::string, sched::TaskId> equal_id;
-    for (sched::TaskId t = 0; t < equal.graph.size(); ++t) equal_id[equal.graph.task(t).name] = t;
-    p.costs = sched::CostTable(p.plan.graph.size(), n);
-    for (sched::TaskId t = 0; t < p.plan.graph.size(); ++t) {
-      const sched::Task& task = p.plan.graph.task(t);
-      assignment[t] = static_cast<sched::DeviceId>(std::max(task.part, 0));
-      const auto it = equal_id.find(task.name);
-      const double scale = task.part >= 0 ? p.split_fractions[task.part] * static_cast<double>(n) : 1.0;
-      for (std::size_t d = 0; d < n; ++d) {
-        p.costs.at(t, d) = it == equal_id.end() ? costs.at(0, d) : costs.at(it->second, d) * scale;
-      }
-    }
-    p.schedule = sched::schedule_fixed(p.plan.graph, p.costs, p.links, assignment);
+    p.costs = sched::costs_for_fractions(p.plan.graph, costs, p.split_fractions);
+    p.schedule = sched::schedule_fixed(p.plan.graph, p.costs, p.links, sched::part_devices(p.plan.graph));
   } else if (mode == ScheduleMode::heft) {
     p.schedule = sched::schedule_heft_or_one_device(p.plan.graph, p.costs, p.links);
   } else {
-    p.schedule = sched::schedule_fixed(p.plan.graph, p.costs, p.links, assignment);
+    p.schedule =
+        sched::schedule_fixed(p.plan.graph, p.costs, p.links, std::vector<sched::DeviceId>(p.plan.graph.size(), 0));
   }
   p.waits = p.schedule.cross_device_waits(p.plan.graph);
   return p;
 }
 
 void replay_on_one_device(Execution& e) {
-  std::vector<sched::TaskId> order(e.plan().graph.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](sched::TaskId a, sched::TaskId b) {
-    return e.schedule.slot(a).start_ms < e.schedule.slot(b).start_ms;
-  });
-  std::vector<std::vector<sched::Slot>> lanes(e.executor->device_count());
-  double clock = 0.0;
-  for (sched::TaskId t : order) {
-    lanes[0].push_back({t, clock, clock + e.costs.costs().at(t, 0)});
-    clock += e.costs.costs().at(t, 0);
-  }
+  e.schedule = sched::replay_on_device0(e.schedule, e.costs.costs(), e.executor->device_count());
   e.assignment.assign(e.plan().graph.size(), 0);
-  e.schedule = sched::assemble_schedule(e.plan().graph.size(), std::move(lanes));
   e.waits.clear();
   e.executor->run_schedule(e.schedule, e.waits);
 }
@@ -302,11 +224,7 @@ void replay_on_one_device(Execution& e) {
 FrameMeasurement measure_frame(Execution& e) {
   FrameMeasurement m;
   m.timings = e.executor->recorded();
-  for (const auto& t : m.timings) m.makespan_ms = std::max(m.makespan_ms, t.finish_ms);
-  if (m.timings.empty()) {
-    for (const auto& l : e.executor->launches())
-      m.makespan_ms = std::max(m.makespan_ms, l.ms / std::max(1, l.substeps));
-  }
+  m.makespan_ms = sched::measured_makespan_ms(m.timings, e.executor->launches());
   return m;
 }
 
@@ -318,11 +236,7 @@ void rebalance_split(Execution& e) {
   const std::vector<double> fractions = sched::balanced_fractions(e.costs.costs(), e.assignment, e.split_fractions);
   if (fractions == e.split_fractions) return;
   const std::vector<double> shares = e.executor->recut(fractions, e.split_granule);
-  std::vector<double> factor(shares.size(), 1.0);
-  for (std::size_t t = 0; t < shares.size(); ++t) {
-    if (e.part_shares[t] > 0.0) factor[t] = shares[t] / e.part_shares[t];
-  }
-  e.costs.rescale(factor);
+  e.costs.rescale(sched::share_factors(e.part_shares, shares));
   e.split_fractions = fractions;
   e.part_shares = shares;
 }
@@ -332,12 +246,7 @@ void rebalance_split(Execution& e) {
 FrameMeasurement refit_and_reschedule(Execution& e, const ExecutionOptions& options) {
   FrameMeasurement m = measure_frame(e);
   m.bytes_moved = e.executor->take_bytes_moved();
-  if (!m.timings.empty()) {
-    e.costs.observe(m.timings, e.waits);
-    e.costs.observe_copies(e.executor->copies());
-  } else {
-    e.costs.observe_launches(e.schedule, e.executor->launches());
-  }
+  e.costs.observe_frame(m.timings, e.waits, e.executor->copies(), e.schedule, e.executor->launches());
   if (e.mode == ScheduleMode::split) rebalance_split(e);
   make_schedule(e, options, e.mode == ScheduleMode::heft && e.costs.drifted());
   return m;

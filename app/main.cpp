@@ -60,7 +60,7 @@ int main(int argc, char** argv) {
       if (sub->get_name() == "methods") return methods();
     }
   } catch (const atssim::Error& e) {
-    fmt::print(stderr, "atssim: {}\n", e.what());
+    fmt::print(stderr, "atssim: {}{}\n", e.kind() == atssim::ErrorKind::internal ? "internal error: " : "", e.what());
     return e.exit_code();
   } catch (const std::exception& e) {
     fmt::print(stderr, "atssim: internal error: {}\n", e.what());

@@ -8,15 +8,13 @@ device::DeviceSet open_scene_devices(const scene::SceneDesc& scene) {
   try {
     return device::DeviceSet::open(scene.devices, device::parse_memory_mode(scene.memory));
   } catch (const Error& e) {
-    const std::string what = e.what();
-    const std::string flag = "--devices '";
     // Only a spec written in the scene file itself names its line; a --set or
     // --devices override already names itself.
-    if (e.kind() != ErrorKind::input || scene.devices_where.empty() || what.rfind(flag, 0) != 0 ||
+    if (e.setting() != Setting::devices || scene.devices_where.empty() ||
         scene.devices_where.find("(--set") != std::string::npos) {
       throw;
     }
-    throw input_error(fmt::format("{}: devices '{}", scene.devices_where, what.substr(flag.size())));
+    throw input_error(fmt::format("{}: devices {}", scene.devices_where, e.detail()));
   }
 }
 

@@ -42,9 +42,8 @@ auto with_stiffness_line(const scene::SceneDesc& scene, Build build) -> decltype
     return build();
   } catch (const Error& e) {
     const std::string where = zero_compliance_line(scene);
-    const std::string what = e.what();
-    if (e.kind() != ErrorKind::input || where.empty() || what.find("(infinitely stiff)") == std::string::npos) throw;
-    throw input_error(where + ": " + what);
+    if (e.setting() != Setting::compliance || where.empty()) throw;
+    throw input_error(where + ": " + e.detail());
   }
 }
 

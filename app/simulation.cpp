@@ -6,9 +6,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <future>
 #include <limits>
 #include <optional>
+#include <stdexcept>
+#include <string_view>
 
 #include <fmt/format.h>
 
@@ -211,6 +214,19 @@ void release_simulation_state(model::Model& model) {
   model = model::Model{{}, {}, {}, std::move(model.objects), model.gravity, {}, model.ground};
 }
 
+// A bug on demand, so that a test drives one through the binary as a user
+// would meet it (tests/app/test_error_kinds.cpp): ATSSIM_TEST_FAULT=internal
+// throws an internal atssim::Error in frame 2, =exception a std::logic_error
+// (a library's exception), both after frames were written.
+void injected_fault(int frame) {
+  if (frame != 2) return;
+  const char* const fault = std::getenv("ATSSIM_TEST_FAULT");
+  if (fault == nullptr) return;
+  const std::string_view what = fault;
+  if (what == "internal") throw internal_error("ATSSIM_TEST_FAULT: an internal fault injected in frame 2");
+  if (what == "exception") throw std::logic_error("ATSSIM_TEST_FAULT: a std::logic_error injected in frame 2");
+}
+
 }  // namespace
 
 void request_stop() { g_stop = true; }
@@ -387,6 +403,7 @@ void run_simulation(const RunOptions& options, RunResult& result,
     if (first_contact) record_contact(0, *first_contact);
     for (int frame = first_frame; frame <= sim.frames; ++frame) {
       if (g_stop) throw runtime_error(fmt::format("interrupted before frame {}", frame));
+      injected_fault(frame);
       const auto start = std::chrono::steady_clock::now();
       run_frame(*executor, colliders, sim.substeps, frame, sim.frame_dt);
       before.swap(xyz);
@@ -453,7 +470,10 @@ void run_simulation(const RunOptions& options, RunResult& result,
         writer.path() == writer.target_path()
             ? writer.path()
             : fmt::format("{}; the earlier {} was left as it was", writer.path(), writer.target_path());
-    throw runtime_error(fmt::format("{} ({} frames kept in {})", e.what(), kept, where));
+    // The run failed after its output was created: an input error found this
+    // late is the run's failure (exit 1, frames kept); a bug stays one.
+    const ErrorKind kind = error_kind(e) == ErrorKind::internal ? ErrorKind::internal : ErrorKind::runtime;
+    throw Error(fmt::format("{} ({} frames kept in {})", e.what(), kept, where), kind);
   }
   if (tuning && !result.decisions.empty() && std::isfinite(tuning->interval_ms())) {
     result.decisions.back().measured_ms = tuning->interval_ms();

@@ -9,13 +9,8 @@
 function(atssim_add_library name)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
   get_filename_component(stage ${CMAKE_CURRENT_SOURCE_DIR} NAME)
-  set(root ${PROJECT_BINARY_DIR}/include_roots/${stage})
-  file(MAKE_DIRECTORY ${root})
-  if(NOT EXISTS ${root}/${stage})
-    file(CREATE_LINK ${CMAKE_CURRENT_SOURCE_DIR} ${root}/${stage} SYMBOLIC)
-  endif()
   add_library(${name} STATIC ${ARG_SOURCES})
-  target_include_directories(${name} PUBLIC ${root})
+  atssim_include_root(${name} PUBLIC ${stage} ${stage} ${CMAKE_CURRENT_SOURCE_DIR})
   target_link_libraries(${name} PUBLIC ${ARG_DEPS})
 endfunction()
 
@@ -23,6 +18,20 @@ endfunction()
 # -w NoTests: a ctest entry whose filter matches no test case fails (Catch2
 # v2 otherwise exits 0 having run nothing); tests/CMakeLists.txt checks it.
 set(ATSSIM_CATCH_ARGS -w NoTests)
+
+# atssim_include_root(TARGET SCOPE ROOT PREFIX DIR) — gives TARGET (with
+# SCOPE: PUBLIC, PRIVATE or INTERFACE) the include root
+# build/include_roots/ROOT, which holds only the link PREFIX -> DIR: the
+# target (and, unless PRIVATE, what links it) includes "PREFIX/…" from DIR
+# and nothing beside it.
+function(atssim_include_root target scope root prefix dir)
+  set(path ${PROJECT_BINARY_DIR}/include_roots/${root})
+  file(MAKE_DIRECTORY ${path})
+  if(NOT EXISTS ${path}/${prefix})
+    file(CREATE_LINK ${dir} ${path}/${prefix} SYMBOLIC)
+  endif()
+  target_include_directories(${target} ${scope} ${path})
+endfunction()
 
 # atssim_add_test(NAME SOURCES... DEPS...) — one Catch2 executable per stage,
 # registered with ctest test by test.

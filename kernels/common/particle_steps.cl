@@ -3,30 +3,17 @@
  * minimise the incremental potential directly (VBD, JPGD), x~ = x_t + h v +
  * h^2 g (the inertia target, also the first guess). Pinned particles (w = 0)
  * stay. */
+#include "common/particle_step.h"
 #include "common/task.h"
-/* Semi-implicit Euler for particle i: v = (v + dt g) damp, x += dt v;
- * returns the new position (pinned particles keep theirs and lose their
- * velocity). damp = 1/(1 + c dt) takes air drag c implicitly
- * (solver/layout/sim_layout.hpp); 1 without drag (exact: same bits). */
+/* Particle i's predict (common/particle_step.h); returns its new position. */
 static inline float4 predict_particle(int i, __global float4* x, __global float4* v, __global float4* x_prev, float dt,
                                       float gx, float gy, float gz, float damp) {
   const float4 p = x[i];
   x_prev[i] = p;
-  if (p.w == 0.0f) {
-    v[i] = (float4)(0.0f);
-    return p;
-  }
-  float4 vel = v[i];
-  vel.x += dt * gx;
-  vel.y += dt * gy;
-  vel.z += dt * gz;
-  vel.x *= damp;
-  vel.y *= damp;
-  vel.z *= damp;
-  v[i] = vel;
-  const float4 q = (float4)(p.x + dt * vel.x, p.y + dt * vel.y, p.z + dt * vel.z, p.w);
-  x[i] = q;
-  return q;
+  const ats_particle_state s = ats_predicted(p, v[i], dt, gx, gy, gz, damp);
+  v[i] = s.v;
+  x[i] = s.x;
+  return s.x;
 }
 
 ATS_TASK void particles_predict(int i, __global float4* x, __global float4* v, __global float4* x_prev,
@@ -36,16 +23,11 @@ ATS_TASK void particles_predict(int i, __global float4* x, __global float4* v, _
 
 ATS_TASK void particles_update_velocity(int i, __global const float4* x, __global float4* v,
                                         __global const float4* x_prev, float inv_dt) {
-  const float4 d = x[i] - x_prev[i];
-  v[i] = (float4)(d.x * inv_dt, d.y * inv_dt, d.z * inv_dt, 0.0f);
+  v[i] = ats_velocity_update(x[i], x_prev[i], inv_dt);
 }
 
-/* The ground plane y = height: a particle below it is put back on it (the
- * velocity update then removes the motion into the ground; no friction). */
-ATS_TASK void particles_ground(int i, __global float4* x, float height) {
-  const float4 p = x[i];
-  if (p.w > 0.0f && p.y < height) x[i] = (float4)(p.x, height, p.z, p.w);
-}
+/* The ground plane y = height (common/particle_step.h). */
+ATS_TASK void particles_ground(int i, __global float4* x, float height) { x[i] = ats_above_ground(x[i], height); }
 
 /* Copies positions (used where an iteration leaves its result elsewhere). */
 ATS_TASK void particles_copy(int i, __global float4* dst, __global const float4* src) { dst[i] = src[i]; }

@@ -25,11 +25,12 @@ std::string available(const std::vector<DeviceHandle>& all) {
   return s;
 }
 
+// The flag's name leads; where the spec came from a scene line, the caller
+// puts that line in its place (Setting::devices, app/scene_checks).
 [[noreturn]] void bad_spec(const std::string& spec, const std::string& why, const std::vector<DeviceHandle>& all) {
-  throw input_error(
-      fmt::format("--devices '{}': {}; available: {} (e.g. --devices cpu, --devices 0, "
-                  "--devices cpu/2)",
-                  spec, why, available(all)));
+  const std::string detail = fmt::format("'{}': {}; available: {} (e.g. --devices cpu, --devices 0, --devices cpu/2)",
+                                         spec, why, available(all));
+  throw Error("--devices " + detail, Setting::devices, detail);
 }
 
 std::vector<const DeviceHandle*> pick(const std::string& selector, const std::string& spec,

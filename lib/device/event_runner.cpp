@@ -237,8 +237,8 @@ struct EventRunner::Impl {
       wait_list.clear();
       for (sched::TaskId producer : step.waits) {
         if (events[producer] == nullptr) {
-          throw Error(fmt::format("executor: task '{}' waits for '{}', which has not been enqueued before it",
-                                  graph.task(step.task).name, graph.task(producer).name));
+          throw internal_error(fmt::format("executor: task '{}' waits for '{}', which has not been enqueued before it",
+                                           graph.task(step.task).name, graph.task(producer).name));
         }
         wait_list.push_back(events[producer]);
       }
@@ -310,7 +310,7 @@ struct EventRunner::Impl {
   }
 
   std::vector<sched::TaskTiming> timings() {
-    if (!have_record) throw Error("executor: no substep was recorded");
+    if (!have_record) throw internal_error("executor: no substep was recorded");
     finish_all();
     std::vector<sched::TaskTiming> out;
     double origin = std::numeric_limits<double>::infinity();

@@ -369,7 +369,7 @@ struct FusedRunner::Impl {
   }
 
   std::vector<sched::TaskTiming> timings() {
-    if (!have_record) throw Error("executor: no substep was recorded");
+    if (!have_record) throw internal_error("executor: no substep was recorded");
     finish();
     if (clocks.empty()) return {};
     std::vector<sched::TaskTiming> out;

@@ -40,27 +40,27 @@ std::vector<std::vector<int>> bind_launches(const plan::SubstepPlan& plan) {
       if (sig == nullptr) {
         std::string known;
         for (const auto& s : tasks) known += fmt::format("{}{}", known.empty() ? "" : ", ", s.name);
-        throw runtime_error(
-            fmt::format("internal error: task '{}' launches '{}', which program '{}' does not declare "
+        throw internal_error(
+            fmt::format("task '{}' launches '{}', which program '{}' does not declare "
                         "as a task function (it has: {})",
                         task, launch.function, plan.program, known.empty() ? "none" : known));
       }
       if (launch.args.size() != sig->kinds.size()) {
-        throw runtime_error(fmt::format("internal error: task '{}' passes {} arguments to {}({}), which takes {}", task,
-                                        launch.args.size(), sig->name, sig->parameters, sig->kinds.size()));
+        throw internal_error(fmt::format("task '{}' passes {} arguments to {}({}), which takes {}", task,
+                                         launch.args.size(), sig->name, sig->parameters, sig->kinds.size()));
       }
       for (std::size_t a = 0; a < launch.args.size(); ++a) {
         const plan::KernelArg& arg = launch.args[a];
         if (kind_letter(arg.kind) != sig->kinds[a]) {
-          throw runtime_error(fmt::format(
-              "internal error: task '{}' passes {} as argument {} of {}({}), which "
+          throw internal_error(fmt::format(
+              "task '{}' passes {} as argument {} of {}({}), which "
               "expects {}",
               task, kind_name(kind_letter(arg.kind)), a + 1, sig->name, sig->parameters, kind_name(sig->kinds[a])));
         }
         if (arg.kind == plan::KernelArg::Kind::buffer &&
             (arg.buffer < 0 || arg.buffer >= static_cast<plan::BufferId>(plan.buffers.size()))) {
-          throw runtime_error(fmt::format("internal error: task '{}' passes buffer {} to {}, the plan has {}", task,
-                                          arg.buffer, sig->name, plan.buffers.size()));
+          throw internal_error(fmt::format("task '{}' passes buffer {} to {}, the plan has {}", task, arg.buffer,
+                                           sig->name, plan.buffers.size()));
         }
       }
       // What a launch declares it writes must be one of the buffers it may
@@ -72,15 +72,15 @@ std::vector<std::vector<int>> bind_launches(const plan::SubstepPlan& plan) {
                                   launch.args[a].buffer == w.buffer && a < sig->access.size() && sig->access[a] == 'w');
         }
         if (!writable) {
-          throw runtime_error(
-              fmt::format("internal error: task '{}' declares a write to buffer {}, which {} is not "
+          throw internal_error(
+              fmt::format("task '{}' declares a write to buffer {}, which {} is not "
                           "passed as a writable argument",
                           task, w.buffer, sig->name));
         }
       }
       if (launch.range.first < 0 || launch.range.count < 0) {
-        throw runtime_error(fmt::format("internal error: task '{}' launches {} over [{}, +{})", task, sig->name,
-                                        launch.range.first, launch.range.count));
+        throw internal_error(fmt::format("task '{}' launches {} over [{}, +{})", task, sig->name, launch.range.first,
+                                         launch.range.count));
       }
       out[t].push_back(sig->index);
     }

@@ -15,7 +15,6 @@
 #include "device/program_builder.hpp"
 #include "device/svm_arena.hpp"
 #include "plan/split_plan.hpp"
-#include "sched/cost_refit.hpp"
 #include "util/error.hpp"
 
 namespace atssim::device {
@@ -71,7 +70,8 @@ struct PlanExecutor::Impl {
         sync_arena(devices.impl().contexts.at(0), true, true),
         resources{devices.impl(), plan, {}, {}, {}, {}, {}} {
     if (options.device >= set.devices.size()) {
-      throw Error(fmt::format("executor: device {} is not in the set of {}", options.device, set.devices.size()));
+      throw internal_error(
+          fmt::format("executor: device {} is not in the set of {}", options.device, set.devices.size()));
     }
     const bool fine = use_fine_grain(devices, o, kind);
     if (fine && !devices.fine_grain_svm()) {
@@ -102,14 +102,7 @@ struct PlanExecutor::Impl {
       std::vector<std::byte>().swap(spec.initial);  // the devices hold it now
     }
     resources.written = written_by_task(plan, resources.sizes);
-    // An edge carries what its producer writes (DESIGN.md: edge weights in
-    // bytes; only links between memories price them).
-    for (sched::TaskId t = 0; t < plan.graph.size(); ++t) {
-      const double bytes = static_cast<double>(resources.written[t].bytes());
-      std::vector<sched::TaskId> to;
-      for (const sched::Edge& e : plan.graph.successors(t)) to.push_back(e.to);
-      for (sched::TaskId v : to) plan.graph.add_edge(t, v, bytes);
-    }
+    plan::weigh_edges_by_writes(plan.graph, resources.written);
     const bool clock = kind == ExecutorKind::fused && options.task_clock && !cycle_clocks(set, sync_arena).empty();
     for (std::size_t m = 0; m < set.contexts.size(); ++m) {
       resources.programs.push_back(
@@ -163,46 +156,32 @@ struct PlanExecutor::Impl {
 
   std::vector<sched::TaskTiming> recorded() { return fused ? fused->timings() : events->timings(); }
 
-  // What each task of a recorded substep cost its device, alone on it: from
-  // the end of the device's previous task (events: the launch gap is part of
-  // what it costs the queue) to its end.
-  sched::CostTable profile(int repetitions) {
-    const std::size_t tasks = plan.graph.size();
+  // Runs `substeps` substeps on each device alone and reports each one's
+  // timings; what they cost is the observer's to decide.
+  void profile(int substeps, sched::TimingObserver& observer) {
     const plan::PlanState snapshot = read_state();
     const std::vector<Step> kept = steps;
-    // Fused without a task clock: per-task events less the launch gap.
+    // Fused without a task clock: per-task events, whose launch gap the
+    // observer is told about.
     const bool by_events = fused && !fused->has_clock();
-    sched::CostTable costs(tasks, set.devices.size());
     for (std::size_t d = 0; d < set.devices.size(); ++d) {
+      const auto device = static_cast<sched::DeviceId>(d);
       set_steps(all_on(d));
-      std::vector<std::vector<double>> samples(tasks);
-      for (int r = 0; r <= repetitions; ++r) {
-        std::vector<sched::TaskTiming> timings;
+      for (int r = 0; r < substeps; ++r) {
         if (by_events) {
           event_runner().enqueue(1, true);
-          timings = event_runner().timings();
+          observer.substep_alone(device, event_runner().timings());
         } else {
           // Two substeps, the last timed: a launch's first substep also
           // waits for its work-groups to be started.
           run(2, true);
-          timings = recorded();
-        }
-        if (r == 0) continue;  // warm-up: first launches may compile
-        double previous_end = timings.empty() ? 0.0 : timings.front().start_ms;
-        for (const sched::TaskTiming& t : timings) {
-          samples[t.task].push_back(std::max(t.finish_ms - previous_end, 1e-6));
-          previous_end = t.finish_ms;
+          observer.substep_alone(device, recorded());
         }
       }
-      const double gap = by_events ? event_runner().launch_gap_ms(d, 10) : 0.0;
-      for (std::size_t t = 0; t < tasks; ++t) {
-        const double cost = samples[t].empty() ? 1e-6 : sched::trimmed_mean(samples[t], 0.2);
-        costs.at(static_cast<sched::TaskId>(t), static_cast<sched::DeviceId>(d)) = std::max(cost - gap, 1e-6);
-      }
+      if (by_events) observer.launch_gap(device, event_runner().launch_gap_ms(d, 10));
     }
     reset(snapshot);
     set_steps(kept);
-    return costs;
   }
 
   std::vector<Step> all_on(std::size_t device) const {
@@ -223,7 +202,7 @@ struct PlanExecutor::Impl {
 
   void write(plan::BufferId id, std::span<const std::byte> bytes) {
     finish();
-    if (bytes.size() != resources.sizes.at(id)) throw Error("executor: write of the wrong size");
+    if (bytes.size() != resources.sizes.at(id)) throw internal_error("executor: write of the wrong size");
     for (std::size_t m = 0; m < set.contexts.size(); ++m) {
       arenas[m]->write(set.queues[first_device_of(m)], resources.buffers[m].at(id), bytes.data(), bytes.size());
     }
@@ -258,17 +237,19 @@ const plan::SubstepPlan& PlanExecutor::plan() const { return impl_->plan; }
 ExecutorKind PlanExecutor::kind() const { return impl_->kind; }
 std::size_t PlanExecutor::device_count() const { return impl_->set.devices.size(); }
 bool PlanExecutor::has_task_clock() const { return impl_->fused && impl_->fused->has_clock(); }
+std::size_t PlanExecutor::work_group_elements() const { return impl_->fused ? 0 : impl_->options.local_size; }
 
 void PlanExecutor::run_on(std::size_t device) {
-  if (device >= device_count()) throw Error(fmt::format("executor: no device {}", device));
+  if (device >= device_count()) throw internal_error(fmt::format("executor: no device {}", device));
   impl_->set_steps(impl_->all_on(device));
 }
 
 void PlanExecutor::run_schedule(const sched::Schedule& schedule, std::span<const sched::Wait> waits) {
   const auto& graph = impl_->plan.graph;
   if (schedule.task_count() != graph.size() || schedule.devices.size() > device_count()) {
-    throw Error(fmt::format("executor: a schedule of {} tasks on {} devices does not fit a plan of {} tasks on {}",
-                            schedule.task_count(), schedule.devices.size(), graph.size(), device_count()));
+    throw internal_error(
+        fmt::format("executor: a schedule of {} tasks on {} devices does not fit a plan of {} tasks on {}",
+                    schedule.task_count(), schedule.devices.size(), graph.size(), device_count()));
   }
   // Start in order of predicted start, so a producer always starts before a
   // consumer that waits for it (its start is at least the producer's finish).
@@ -311,7 +292,7 @@ std::vector<sched::LaunchTiming> PlanExecutor::launches() {
   return impl_->fused ? impl_->fused->launches() : std::vector<sched::LaunchTiming>{};
 }
 
-sched::CostTable PlanExecutor::profile(int repetitions) { return impl_->profile(repetitions); }
+void PlanExecutor::profile(int substeps, sched::TimingObserver& observer) { impl_->profile(substeps, observer); }
 
 double PlanExecutor::measure_latency_ms(std::size_t from, std::size_t to, int repetitions) {
   impl_->finish();

@@ -18,7 +18,6 @@
 #include "plan/plan_state.hpp"
 #include "plan/substep_plan.hpp"
 #include "plan/transfer_plan.hpp"
-#include "sched/cost_table.hpp"
 #include "sched/schedule.hpp"
 #include "sched/task_timing.hpp"
 
@@ -52,6 +51,10 @@ class PlanExecutor {
   std::size_t device_count() const;
   // Fused only: whether tasks are timed one by one (else only launches are).
   bool has_task_clock() const;
+  // Elements per work-group of its launches, one work-item each (events:
+  // ExecutorOptions::local_size); 0 where each work-group runs a contiguous
+  // share of a launch's range (fused).
+  std::size_t work_group_elements() const;
 
   // Every task on one device, in topological order.
   void run_on(std::size_t device);
@@ -75,11 +78,12 @@ class PlanExecutor {
   std::vector<sched::LaunchTiming> launches();
 
   // Pre-profiling (paper §5): runs the plan on each device alone for
-  // `repetitions` substeps after one warm-up, and returns the trimmed mean of
-  // what each task cost its device there (events: including the queue's
-  // launch gap; fused: the task itself). The state is restored afterwards;
-  // the current schedule is kept.
-  sched::CostTable profile(int repetitions = 5);
+  // `substeps` substeps and reports each one's task timings to `observer`
+  // (and, where tasks are timed by per-launch events inside a fused
+  // executor, the launch gap), which decides what they cost
+  // (sched::ProfileCosts). The state is restored afterwards; the current
+  // schedule is kept.
+  void profile(int substeps, sched::TimingObserver& observer);
   // Median delay from the end of work on `from` to the start of work on `to`
   // that waits for it: an event hop (events) or an SVM-atomic handshake
   // (fused).

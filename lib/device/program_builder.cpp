@@ -25,7 +25,7 @@ using ProgramKey = std::tuple<cl_context, std::vector<cl_device_id>, std::string
 cl::Program build(const cl::Context& context, const std::vector<cl::Device>& devices, const std::string& program_name,
                   const std::string& flags) {
   const char* source = kernels::program_source(program_name);
-  if (source == nullptr) throw Error(fmt::format("no embedded OpenCL program named '{}'", program_name));
+  if (source == nullptr) throw internal_error(fmt::format("no embedded OpenCL program named '{}'", program_name));
   cl::Program program(context, std::string(source));
   try {
     program.build(devices, flags.c_str());

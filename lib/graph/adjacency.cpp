@@ -10,14 +10,14 @@ namespace atssim::graph {
 
 Adjacency build_adjacency(std::span<const int> element_vertices, int arity, int particle_count) {
   if (arity <= 0 || element_vertices.size() % static_cast<std::size_t>(arity) != 0) {
-    throw Error(
+    throw internal_error(
         fmt::format("adjacency: {} indices do not form elements of {} vertices", element_vertices.size(), arity));
   }
   Adjacency adj;
   std::vector<int> count(particle_count + 1, 0);
   for (int v : element_vertices) {
     if (v < 0 || v >= particle_count) {
-      throw Error(fmt::format("adjacency: vertex {} outside 0..{}", v, particle_count - 1));
+      throw internal_error(fmt::format("adjacency: vertex {} outside 0..{}", v, particle_count - 1));
     }
     ++count[v];
   }

@@ -12,7 +12,7 @@ namespace atssim::graph {
 
 template <std::size_t Arity>
 SimdOrder schedule_simd_order(std::span<const std::array<int, Arity>> elements, int particle_count, int width) {
-  if (width < 1) throw Error(fmt::format("schedule_simd: width {} < 1", width));
+  if (width < 1) throw internal_error(fmt::format("schedule_simd: width {} < 1", width));
   const std::size_t n = elements.size();
   std::vector<int> order(n);  // order[i]: the input element now at position i
   std::iota(order.begin(), order.end(), 0);

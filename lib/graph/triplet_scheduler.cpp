@@ -37,7 +37,7 @@ struct OpenWarp {
 }  // namespace
 
 WarpSets schedule_warp(std::span<const Triplet> triplets, int particle_count, int width) {
-  if (width < 1) throw Error(fmt::format("schedule_warp: width {} < 1", width));
+  if (width < 1) throw internal_error(fmt::format("schedule_warp: width {} < 1", width));
   std::vector<int> flat;
   flat.reserve(3 * triplets.size());
   for (const Triplet& t : triplets) flat.insert(flat.end(), t.begin(), t.end());

@@ -70,8 +70,8 @@ CostFile read_cost_file(const std::string& path, const sched::TaskGraph& graph) 
     const auto cells = split_csv(line);
     if (cells[0] == "task") continue;  // header
     if (cells[0] == "latency_ms") {
-      if (cells.size() != 2 || !parse_ms(cells[1], file.latency_ms)) {
-        throw input_error(fmt::format("{}:{}: expected 'latency_ms,<ms ≥ 0>'", path, line_no));
+      if (cells.size() != 2 || !parse_ms(cells[1], file.latency_ms) || !(file.latency_ms < sched::kCannotRun)) {
+        throw input_error(fmt::format("{}:{}: expected 'latency_ms,<ms ≥ 0>' (a finite number)", path, line_no));
       }
       continue;
     }
@@ -96,6 +96,14 @@ CostFile read_cost_file(const std::string& path, const sched::TaskGraph& graph) 
         throw input_error(
             fmt::format("{}:{}: '{}' is not a cost in ms (a number ≥ 0, or inf)", path, line_no, cells[d + 1]));
       }
+    }
+    // The scheduler takes every table it is given as sound (sched/input_checks):
+    // what a file can get wrong is refused here, at its line.
+    if (std::none_of(row.begin(), row.end(), [](double ms) { return ms < sched::kCannotRun; })) {
+      throw input_error(
+          fmt::format("{}:{}: task '{}' costs inf on every device, so no device can run it; give a "
+                      "cost in ms for at least one",
+                      path, line_no, cells[0]));
     }
     rows[it->second] = std::move(row);
     seen[it->second] = 1;

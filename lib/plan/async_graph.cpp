@@ -9,7 +9,8 @@
 namespace atssim::plan {
 
 SubstepPlan async_graph(const SubstepPlan& serial, int depth) {
-  if (depth < 1) throw input_error(fmt::format("async depth {} must be at least 1", depth));
+  // The scene reader keeps solver.async_depth in 1..64.
+  if (depth < 1) throw internal_error(fmt::format("async depth {} must be at least 1", depth));
   if (depth == 1) return serial;
   SubstepPlan out = serial;
   out.graph = sched::TaskGraph();

@@ -64,7 +64,7 @@ std::string to_string(MergeStrategy strategy) {
 AsyncPlan make_async_plan(const SubstepPlan& graph_plan, const sched::Schedule& schedule, const sched::SyncMap& map,
                           MergeStrategy strategy) {
   const auto& graph = graph_plan.graph;
-  if (schedule.task_count() != graph.size()) throw Error("make_async_plan: the schedule is not of this graph");
+  if (schedule.task_count() != graph.size()) throw internal_error("make_async_plan: the schedule is not of this graph");
   const BufferId x = graph_plan.buffer(BufferRole::positions);
   const std::size_t devices = schedule.devices.size();
   const sched::DeviceId main = map.main_device;

@@ -36,7 +36,8 @@ std::vector<std::pair<std::int32_t, std::int32_t>> part_ranges(std::int32_t coun
 void check_fractions(std::span<const double> fractions) {
   const double total = std::accumulate(fractions.begin(), fractions.end(), 0.0);
   if (fractions.empty() || std::abs(total - 1.0) > 1e-9) {
-    throw Error(fmt::format("split_plan: {} fractions summing to {} (must sum to 1)", fractions.size(), total));
+    throw internal_error(
+        fmt::format("split_plan: {} fractions summing to {} (must sum to 1)", fractions.size(), total));
   }
 }
 
@@ -71,6 +72,8 @@ std::vector<double> recut_plan(SubstepPlan& plan, std::span<const double> fracti
   }
   return share;
 }
+
+std::size_t part_granule(std::size_t work_group_elements) { return work_group_elements > 0 ? work_group_elements : 8; }
 
 SubstepPlan split_plan(const SubstepPlan& plan, std::span<const double> fractions, std::size_t granule) {
   check_fractions(fractions);

@@ -23,4 +23,11 @@ SubstepPlan split_plan(const SubstepPlan& plan, std::span<const double> fraction
 // elements of its whole (1 for tasks that are not parts).
 std::vector<double> recut_plan(SubstepPlan& plan, std::span<const double> fractions, std::size_t granule = 64);
 
+// Where the boundaries between parts fall, for an executor whose launches run
+// `work_group_elements` elements per work-group (one work-item each): on
+// whole work-groups, so that no group straddles two parts. An executor whose
+// work-groups each take a contiguous share (0: the fused dispatcher) has no
+// group to fill and cuts finer, on multiples of 8 elements.
+std::size_t part_granule(std::size_t work_group_elements);
+
 }  // namespace atssim::plan

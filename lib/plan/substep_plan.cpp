@@ -30,8 +30,8 @@ BufferId SubstepPlan::find_buffer(BufferRole role) const {
   for (BufferId b = 0; b < static_cast<BufferId>(buffers.size()); ++b) {
     if (buffers[b].role != role) continue;
     if (found >= 0) {
-      throw Error(fmt::format("plan '{}': buffers '{}' and '{}' both have the role {}", program, buffers[found].name,
-                              buffers[b].name, to_string(role)));
+      throw internal_error(fmt::format("plan '{}': buffers '{}' and '{}' both have the role {}", program,
+                                       buffers[found].name, buffers[b].name, to_string(role)));
     }
     found = b;
   }
@@ -40,7 +40,7 @@ BufferId SubstepPlan::find_buffer(BufferRole role) const {
 
 BufferId SubstepPlan::buffer(BufferRole role) const {
   const BufferId b = find_buffer(role);
-  if (b < 0) throw Error(fmt::format("plan '{}' has no buffer of role {}", program, to_string(role)));
+  if (b < 0) throw internal_error(fmt::format("plan '{}' has no buffer of role {}", program, to_string(role)));
   return b;
 }
 

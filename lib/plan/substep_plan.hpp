@@ -16,7 +16,7 @@ namespace atssim::plan {
 struct SubstepPlan {
   std::string program;  // embedded OpenCL program that holds the task functions, e.g. "xpbd"
   std::vector<BufferSpec> buffers;
-  sched::TaskGraph graph;                           // labels are TaskKind values
+  sched::TaskGraph graph;                           // labels are TaskKind::label()s
   std::vector<std::vector<KernelLaunch>> launches;  // indexed by task id
   int particle_count = 0;
   // Non-empty: the plan is for one device (schedule single), and this says
@@ -35,7 +35,7 @@ struct SubstepPlan {
   // The one buffer of `role`, or -1 when the plan has none.
   BufferId find_buffer(BufferRole role) const;
   // The tasks of `kind`, in id order.
-  std::vector<sched::TaskId> tasks_of(TaskKind kind) const { return graph.tasks_of_kind(static_cast<int>(kind)); }
+  std::vector<sched::TaskId> tasks_of(const TaskKind& kind) const { return graph.tasks_of_kind(kind.label()); }
 };
 
 }  // namespace atssim::plan

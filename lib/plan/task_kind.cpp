@@ -1,6 +1,7 @@
 #include "plan/task_kind.hpp"
 
-#include <array>
+#include <map>
+#include <mutex>
 
 #include <fmt/format.h>
 
@@ -10,50 +11,44 @@ namespace atssim::plan {
 
 namespace {
 
-constexpr int kFirst = static_cast<int>(TaskKind::predict);
-constexpr int kLast = static_cast<int>(TaskKind::detection);
+// Every kind a task was made with, by label: kinds are constants of their
+// declaring code, so the table only grows, to a few dozen entries.
+struct KindTable {
+  std::mutex mutex;
+  std::map<int, KindTraits> by_label;
+};
 
-// In enum order.
-constexpr std::array<KindTraits, kLast - kFirst + 1> kTraits{{
-    {"predict", false, false, true},
-    {"stretch", true, false, false},
-    {"bend", true, false, false},
-    {"tet", true, false, false},
-    {"vertex", true, false, true},
-    {"jacobi", false, false, true},
-    {"systems", false, false, true},
-    {"main", false, false, false},
-    {"stencils", false, false, false},
-    {"combine", false, false, true},
-    {"collision", false, true, true},
-    {"copy", false, false, true},
-    {"update_velocity", false, false, true},
-    {"publish", false, false, true},
-    {"merge", false, false, true},
-    {"energy", false, false, false},
-    {"friction", false, false, true},
-    {"detection", false, false, false},
-}};
+KindTable& kind_table() {
+  static KindTable* table = new KindTable();  // never destroyed: tasks may be made during exit
+  return *table;
+}
 
 }  // namespace
 
-const KindTraits& traits(TaskKind kind) {
-  const int k = static_cast<int>(kind);
-  if (k < kFirst || k > kLast) throw Error(fmt::format("plan: task kind {} is not known", k));
-  return kTraits[k - kFirst];
+sched::Task make_task(std::string name, const TaskKind& kind, int iteration, int block) {
+  const int label = kind.label();
+  KindTable& table = kind_table();
+  {
+    const std::lock_guard<std::mutex> lock(table.mutex);
+    const auto [it, added] = table.by_label.emplace(label, kind.traits());
+    const KindTraits& known = it->second;
+    if (!added && (known.name != kind.name() || known.gauss_seidel != kind.traits().gauss_seidel ||
+                   known.serial != kind.traits().serial || known.per_particle != kind.traits().per_particle)) {
+      throw internal_error(fmt::format("task kind '{}' has the label of the kind '{}' with other traits; rename one",
+                                       kind.name(), known.name));
+    }
+  }
+  return {std::move(name), label, iteration, block, -1};
 }
-
-std::string_view to_string(TaskKind kind) { return traits(kind).name; }
 
 TaskKind kind_of(const sched::Task& task) {
-  if (task.kind < kFirst || task.kind > kLast) {
-    throw Error(fmt::format("plan: task '{}' has the label {}, which is no task kind", task.name, task.kind));
+  KindTable& table = kind_table();
+  const std::lock_guard<std::mutex> lock(table.mutex);
+  const auto it = table.by_label.find(task.kind);
+  if (it == table.by_label.end()) {
+    throw internal_error(fmt::format("plan: task '{}' has the label {}, which is no task kind", task.name, task.kind));
   }
-  return static_cast<TaskKind>(task.kind);
-}
-
-sched::Task make_task(std::string name, TaskKind kind, int iteration, int block) {
-  return {std::move(name), static_cast<int>(kind), iteration, block, -1};
+  return TaskKind(it->second);
 }
 
 }  // namespace atssim::plan

@@ -37,13 +37,14 @@ TransferPlan plan_transfers(std::span<const ExecutionStep> steps, std::span<cons
     const ExecutionStep& step = steps[s];
     const std::size_t d = step.device;
     if (d >= devices || step.task >= written.size()) {
-      throw Error(fmt::format("transfer plan: step {} names device {} or task {} outside the plan", s, d, step.task));
+      throw internal_error(
+          fmt::format("transfer plan: step {} names device {} or task {} outside the plan", s, d, step.task));
     }
     const std::size_t here = count_on[d]++;
     for (sched::TaskId p : step.waits) {
       const std::size_t o = device_of.at(p);
       if (o >= devices)
-        throw Error(fmt::format("transfer plan: task {} waits for task {}, not run before it", step.task, p));
+        throw internal_error(fmt::format("transfer plan: task {} waits for task {}, not run before it", step.task, p));
       if (o == d) continue;
       Transfer t{o, d, p, s, {}};
       auto& pending = queue[o * devices + d];
@@ -78,6 +79,19 @@ TransferPlan plan_transfers(std::span<const ExecutionStep> steps, std::span<cons
     }
   }
   return out;
+}
+
+void weigh_edges_by_writes(sched::TaskGraph& graph, std::span<const ElementSets> written) {
+  if (written.size() != graph.size()) {
+    throw internal_error(
+        fmt::format("edge weights: writes of {} tasks for a graph of {}", written.size(), graph.size()));
+  }
+  for (sched::TaskId t = 0; t < graph.size(); ++t) {
+    const double bytes = static_cast<double>(written[t].bytes());
+    std::vector<sched::TaskId> to;
+    for (const sched::Edge& e : graph.successors(t)) to.push_back(e.to);
+    for (sched::TaskId v : to) graph.add_edge(t, v, bytes);
+  }
 }
 
 }  // namespace atssim::plan

@@ -9,6 +9,7 @@
 
 #include "plan/element_sets.hpp"
 #include "sched/ids.hpp"
+#include "sched/task_graph.hpp"
 
 namespace atssim::plan {
 
@@ -53,5 +54,10 @@ struct TransferPlan {
 // `written[t]` is what task t writes (written_elements of its launches).
 TransferPlan plan_transfers(std::span<const ExecutionStep> steps, std::span<const ElementSets> written,
                             std::size_t devices);
+
+// DESIGN.md: an edge weighs the bytes its producer writes (only links between
+// memories price them, DeviceLinks::ms_per_weight). Raises every edge from
+// task t to written[t].bytes(); a heavier weight stays (TaskGraph::add_edge).
+void weigh_edges_by_writes(sched::TaskGraph& graph, std::span<const ElementSets> written);
 
 }  // namespace atssim::plan

@@ -4,6 +4,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "scene/accuracy_desc.hpp"
@@ -43,8 +44,10 @@ struct TransformDesc {
   Vec3 scale{1.0, 1.0, 1.0};
 };
 
-// A tetrahedral body's elasticity model (issue #6); the solvers come later.
+// A tetrahedral body's elasticity model (issue #6).
 enum class SolidModel { neo_hookean, stvk, springs };
+// Its name in a scene (material.model): "neo_hookean", "stvk", "springs".
+std::string_view to_string(SolidModel model);
 
 // Cloth bending model (`bend_model`): automatic = dihedral when the rest
 // shape is curved (some rest dihedral angle above 1e-4 rad), else isometric.

@@ -29,18 +29,6 @@ const char* bend_model_name(BendModel model) {
   return "auto";
 }
 
-const char* solid_model_name(SolidModel model) {
-  switch (model) {
-    case SolidModel::stvk:
-      return "stvk";
-    case SolidModel::springs:
-      return "springs";
-    case SolidModel::neo_hookean:
-      break;
-  }
-  return "neo_hookean";
-}
-
 void emit_object(YAML::Emitter& out, const ObjectDesc& obj) {
   out << YAML::BeginMap << YAML::Key << "name" << YAML::Value << obj.name;
   const bool solid = obj.type == ObjectType::solid;
@@ -76,7 +64,7 @@ void emit_object(YAML::Emitter& out, const ObjectDesc& obj) {
   if (solid) {
     out << YAML::Key << "youngs_modulus" << YAML::Value << m.youngs_modulus;
     out << YAML::Key << "poisson_ratio" << YAML::Value << m.poisson_ratio;
-    out << YAML::Key << "model" << YAML::Value << solid_model_name(m.solid_model);
+    out << YAML::Key << "model" << YAML::Value << std::string(to_string(m.solid_model));
   }
   if (m.has_stretch) out << YAML::Key << "stretch_compliance" << YAML::Value << m.stretch_compliance;
   if (m.has_bending) out << YAML::Key << "bend_compliance" << YAML::Value << m.bend_compliance;
@@ -116,6 +104,18 @@ void emit_object(YAML::Emitter& out, const ObjectDesc& obj) {
 }
 
 }  // namespace
+
+std::string_view to_string(SolidModel model) {
+  switch (model) {
+    case SolidModel::stvk:
+      return "stvk";
+    case SolidModel::springs:
+      return "springs";
+    case SolidModel::neo_hookean:
+      break;
+  }
+  return "neo_hookean";
+}
 
 std::string to_resolved_yaml(const SceneDesc& scene) {
   YAML::Emitter out;

@@ -106,6 +106,15 @@ std::vector<double> balanced_fractions(const CostTable& costs, std::span<const D
   return out;
 }
 
+double measured_makespan_ms(std::span<const TaskTiming> timings, std::span<const LaunchTiming> launches) {
+  double makespan = 0.0;
+  for (const TaskTiming& t : timings) makespan = std::max(makespan, t.finish_ms);
+  if (timings.empty()) {
+    for (const LaunchTiming& l : launches) makespan = std::max(makespan, l.ms / std::max(1, l.substeps));
+  }
+  return makespan;
+}
+
 void CostModel::rescale(std::span<const double> factor) {
   for (TaskId t = 0; t < costs_.tasks && t < factor.size(); ++t) {
     for (DeviceId d = 0; d < costs_.devices; ++d) {
@@ -148,6 +157,17 @@ void CostModel::observe_copies(std::span<const CopyTiming> copies) {
 
 void CostModel::observe_launches(const Schedule& predicted, std::span<const LaunchTiming> launches) {
   refit_from_launches(costs_, predicted, launches);
+}
+
+void CostModel::observe_frame(std::span<const TaskTiming> timings, std::span<const Wait> waits,
+                              std::span<const CopyTiming> copies, const Schedule& predicted,
+                              std::span<const LaunchTiming> launches) {
+  if (!timings.empty()) {
+    observe(timings, waits);
+    observe_copies(copies);
+  } else {
+    observe_launches(predicted, launches);
+  }
 }
 
 bool CostModel::drifted() const {

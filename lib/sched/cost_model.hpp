@@ -60,6 +60,10 @@ void refit_from_launches(CostTable& costs, const Schedule& predicted, std::span<
 std::vector<double> balanced_fractions(const CostTable& costs, std::span<const DeviceId> assignment,
                                        std::span<const double> fractions, double tolerance = 0.03);
 
+// The substep's makespan a recorded frame measured: the latest task end, or
+// without task timings (fused, no task clock) the longest launch per substep.
+double measured_makespan_ms(std::span<const TaskTiming> timings, std::span<const LaunchTiming> launches);
+
 class CostModel {
  public:
   CostModel() = default;
@@ -76,6 +80,12 @@ class CostModel {
   void observe_copies(std::span<const CopyTiming> copies);
   // One frame's launches (fused without a task clock).
   void observe_launches(const Schedule& predicted, std::span<const LaunchTiming> launches);
+  // One recorded frame, whatever the executor could time: its tasks (with
+  // their waits) and copies where it timed tasks, else its launches of the
+  // schedule `predicted`.
+  void observe_frame(std::span<const TaskTiming> timings, std::span<const Wait> waits,
+                     std::span<const CopyTiming> copies, const Schedule& predicted,
+                     std::span<const LaunchTiming> launches);
   // Whether the costs, or a link's cost per byte, moved by more than the
   // threshold since plan_made().
   bool drifted() const;

@@ -12,25 +12,24 @@ namespace atssim::sched {
 
 void refit_costs(CostTable& costs, std::span<const Measurement> measurements, const RefitOptions& options) {
   if (!(options.weight > 0.0 && options.weight <= 1.0)) {
-    throw Error(fmt::format("cost refit: smoothing weight must be in (0, 1], got {}", options.weight));
+    throw internal_error(fmt::format("cost refit: smoothing weight must be in (0, 1], got {}", options.weight));
   }
   for (const Measurement& m : measurements) {
     if (m.task >= costs.tasks || m.device >= costs.devices) {
-      throw Error(fmt::format("cost refit: measurement of task {} on device {} is outside the "
-                              "{} × {} cost table",
-                              m.task, m.device, costs.tasks, costs.devices),
-                  ErrorKind::runtime);
+      throw internal_error(
+          fmt::format("cost refit: measurement of task {} on device {} is outside the {} × {} cost table", m.task,
+                      m.device, costs.tasks, costs.devices));
     }
-    if (!std::isfinite(m.ms) || m.ms < 0.0) {
+    if (!std::isfinite(m.ms) || m.ms < 0.0) {  // a device's clock, not atssim, went wrong
       throw Error(fmt::format("cost refit: task {} on device {} measured {} ms", m.task, m.device, m.ms),
                   ErrorKind::runtime);
     }
     double& cost = costs.at(m.task, m.device);
     if (!(cost < kCannotRun)) {
-      throw Error(fmt::format("cost refit: task {} was measured on device {}, which the cost "
-                              "table says cannot run it",
-                              m.task, m.device),
-                  ErrorKind::runtime);
+      throw internal_error(
+          fmt::format("cost refit: task {} was measured on device {}, which the cost table says "
+                      "cannot run it",
+                      m.task, m.device));
     }
     cost += options.weight * (m.ms - cost);
   }
@@ -52,9 +51,9 @@ double cost_drift(const CostTable& planned, const CostTable& now) {
 }
 
 double trimmed_mean(std::vector<double> samples, double trim) {
-  if (samples.empty()) throw Error("trimmed mean of no samples");
+  if (samples.empty()) throw internal_error("trimmed mean of no samples");
   if (!(trim >= 0.0 && trim < 0.5)) {
-    throw Error(fmt::format("trimmed mean: trim must be in [0, 0.5), got {}", trim));
+    throw internal_error(fmt::format("trimmed mean: trim must be in [0, 0.5), got {}", trim));
   }
   std::sort(samples.begin(), samples.end());
   const auto drop = static_cast<std::size_t>(std::floor(trim * samples.size()));

@@ -16,7 +16,7 @@ CostTable CostTable::from_rows(const std::vector<std::vector<double>>& rows) {
   CostTable table(rows.size(), width);
   for (std::size_t t = 0; t < rows.size(); ++t) {
     if (rows[t].size() != width) {
-      throw Error(fmt::format("cost table: row {} has {} devices, row 0 has {}", t, rows[t].size(), width));
+      throw internal_error(fmt::format("cost table: row {} has {} devices, row 0 has {}", t, rows[t].size(), width));
     }
     std::copy(rows[t].begin(), rows[t].end(), table.ms.begin() + t * width);
   }

@@ -46,10 +46,9 @@ std::vector<TaskId> execution_order(const Schedule& s, const TaskGraph& graph) {
     }
   }
   if (order.size() != n) {
-    throw Error(
+    throw internal_error(
         "schedule: queue order contradicts the task graph (a task runs before its input "
-        "on the same device); validate() the schedule first",
-        ErrorKind::runtime);
+        "on the same device); validate() the schedule first");
   }
   return order;
 }
@@ -60,11 +59,11 @@ std::vector<Wait> Schedule::cross_device_waits(const TaskGraph& graph) const {
   const std::size_t n = graph.size();
   const std::size_t nd = devices.size();
   if (placement.size() != n) {
-    throw Error(fmt::format("schedule: covers {} tasks, the graph has {}", placement.size(), n), ErrorKind::runtime);
+    throw internal_error(fmt::format("schedule: covers {} tasks, the graph has {}", placement.size(), n));
   }
   for (TaskId t = 0; t < n; ++t) {
     if (placement[t].device >= nd) {
-      throw Error(fmt::format("schedule: task '{}' is not scheduled", graph.task(t).name), ErrorKind::runtime);
+      throw internal_error(fmt::format("schedule: task '{}' is not scheduled", graph.task(t).name));
     }
   }
   // after[t * nd + d]: highest position on d known complete once t completes.

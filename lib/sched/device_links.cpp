@@ -24,13 +24,13 @@ DeviceLinks DeviceLinks::weighted(std::size_t devices, double latency, double pe
 
 void DeviceLinks::set_link(DeviceId from, DeviceId to, double latency, double per_weight) {
   if (from >= devices || to >= devices) {
-    throw Error(
+    throw internal_error(
         fmt::format("device links: link {} -> {} names a device that does not exist "
                     "({} devices)",
                     from, to, devices));
   }
   if (!(latency >= 0.0) || !(per_weight >= 0.0)) {
-    throw Error(
+    throw internal_error(
         fmt::format("device links: link {} -> {} needs latency and ms per weight >= 0, "
                     "got {} and {}",
                     from, to, latency, per_weight));

@@ -25,7 +25,7 @@ void DeviceTimeline::reserve(double start, double finish) {
   // The gap holding `start`: the last one that begins at or before it.
   auto it = std::upper_bound(gaps_.begin(), gaps_.end(), start, [](double s, const Gap& g) { return s < g.start; });
   if (it == gaps_.begin() || finish > std::prev(it)->end || finish < start) {
-    throw runtime_error("device timeline: reserved interval is not inside an idle gap");
+    throw internal_error("device timeline: reserved interval is not inside an idle gap");
   }
   --it;
   const Gap before{it->start, start};

@@ -11,8 +11,8 @@ namespace atssim::sched {
 Schedule schedule_fixed(const TaskGraph& graph, const CostTable& costs, const DeviceLinks& links,
                         const std::vector<DeviceId>& device, const std::vector<double>& device_ready_ms) {
   if (device.size() != graph.size() || costs.tasks != graph.size()) {
-    throw Error(fmt::format("schedule_fixed: {} assignments and {} cost rows for {} tasks", device.size(), costs.tasks,
-                            graph.size()));
+    throw internal_error(fmt::format("schedule_fixed: {} assignments and {} cost rows for {} tasks", device.size(),
+                                     costs.tasks, graph.size()));
   }
   std::vector<double> ready = device_ready_ms;
   ready.resize(costs.devices, 0.0);
@@ -21,8 +21,8 @@ Schedule schedule_fixed(const TaskGraph& graph, const CostTable& costs, const De
   for (TaskId t : graph.topological_order()) {
     const DeviceId d = device[t];
     if (d >= costs.devices || !costs.can_run(t, d)) {
-      throw Error(fmt::format("schedule_fixed: task '{}' is assigned to device {}, which cannot run it",
-                              graph.task(t).name, d));
+      throw internal_error(fmt::format("schedule_fixed: task '{}' is assigned to device {}, which cannot run it",
+                                       graph.task(t).name, d));
     }
     double start = ready[d];
     for (const Edge& e : graph.predecessors(t)) {

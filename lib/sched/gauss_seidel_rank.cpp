@@ -22,7 +22,7 @@ std::vector<TaskId> chained_topological_order(const TaskGraph& graph, std::span<
   try {
     return chained.topological_order();
   } catch (const Error& e) {
-    throw Error(std::string("Gauss-Seidel order contradicts the task graph: ") + e.what());
+    throw Error(std::string("Gauss-Seidel order contradicts the task graph: ") + e.what(), e.kind());
   }
 }
 
@@ -35,7 +35,8 @@ std::vector<double> gauss_seidel_rank(const TaskGraph& graph, const CostTable& c
   for (const auto& order : orders) {
     for (std::size_t k = 0; k < order.size(); ++k) {
       if (order[k] >= graph.size()) {
-        throw Error(fmt::format("Gauss-Seidel order names task {}, the graph has {} tasks", order[k], graph.size()));
+        throw internal_error(
+            fmt::format("Gauss-Seidel order names task {}, the graph has {} tasks", order[k], graph.size()));
       }
       if (k > 0) next[order[k - 1]].push_back(order[k]);
     }

@@ -19,12 +19,12 @@ Schedule schedule_heft(const TaskGraph& graph, const CostTable& costs, const Dev
   if (options.priority.empty()) {
     rank = upward_rank(compact, costs, links);
   } else if (options.priority.size() != graph.size()) {
-    throw Error(fmt::format("HEFT: {} priorities given for {} tasks", options.priority.size(), graph.size()));
+    throw internal_error(fmt::format("HEFT: {} priorities given for {} tasks", options.priority.size(), graph.size()));
   } else {
     for (TaskId t = 0; t < graph.size(); ++t) {
       if (!std::isfinite(options.priority[t])) {
-        throw Error(fmt::format("HEFT: task '{}' has priority {}; priorities must be finite", graph.task(t).name,
-                                options.priority[t]));
+        throw internal_error(fmt::format("HEFT: task '{}' has priority {}; priorities must be finite",
+                                         graph.task(t).name, options.priority[t]));
       }
     }
   }

@@ -80,7 +80,7 @@ void ScheduleBuilder::earliest_finish_all(TaskId task, std::vector<SlotChoice>& 
 
 void ScheduleBuilder::place(TaskId task, const SlotChoice& choice) {
   if (choice.device >= costs_.devices || !(choice.finish_ms < kCannotRun)) {
-    throw runtime_error("list scheduling: task '" + graph_.task(task).name + "' has no device to run on");
+    throw internal_error("list scheduling: task '" + graph_.task(task).name + "' has no device to run on");
   }
   timelines_[choice.device].reserve(choice.start_ms, choice.finish_ms);
   device_[task] = choice.device;

@@ -1,6 +1,7 @@
 #include "sched/schedule.hpp"
 
 #include <algorithm>
+#include <numeric>
 
 #include <fmt/format.h>
 
@@ -11,7 +12,7 @@ namespace atssim::sched {
 const Slot& Schedule::slot(TaskId task) const {
   const Placement& p = placement.at(task);
   if (p.device == kNoDevice) {
-    throw Error(fmt::format("schedule: task {} is not scheduled", task), ErrorKind::runtime);
+    throw internal_error(fmt::format("schedule: task {} is not scheduled", task));
   }
   return devices.at(p.device).at(p.index);
 }
@@ -34,6 +35,20 @@ Schedule assemble_schedule(std::size_t task_count, std::vector<std::vector<Slot>
     }
   }
   return s;
+}
+
+Schedule replay_on_device0(const Schedule& schedule, const CostTable& costs, std::size_t devices) {
+  std::vector<TaskId> order(schedule.task_count());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](TaskId a, TaskId b) { return schedule.slot(a).start_ms < schedule.slot(b).start_ms; });
+  std::vector<std::vector<Slot>> lanes(std::max<std::size_t>(devices, 1));
+  double clock = 0.0;
+  for (TaskId t : order) {
+    lanes[0].push_back({t, clock, clock + costs.at(t, 0)});
+    clock += costs.at(t, 0);
+  }
+  return assemble_schedule(order.size(), std::move(lanes));
 }
 
 }  // namespace atssim::sched

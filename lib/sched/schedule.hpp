@@ -64,7 +64,7 @@ struct Schedule {
   // plus the communication delay; the makespan is the latest finish.
   // Times compare with a tolerance of 1e-9 · max(1, makespan).
   std::vector<std::string> validate(const TaskGraph& graph, const CostTable& costs, const DeviceLinks& links) const;
-  // Throws atssim::Error (runtime) listing the problems, if any.
+  // Throws atssim::Error (internal: a scheduler broke its promise) listing the problems, if any.
   void throw_if_invalid(const TaskGraph& graph, const CostTable& costs, const DeviceLinks& links) const;
 };
 
@@ -73,5 +73,10 @@ struct Schedule {
 // tests, and to turn measured start/finish times back into a Schedule.
 Schedule assemble_schedule(std::size_t task_count, std::vector<std::vector<Slot>> devices,
                            std::vector<double> device_ready_ms = {});
+
+// The replay of an async schedule (solver.replay): every task on device 0
+// alone, in the order of its predicted start in `schedule` (ties keep task
+// order), each for its cost on device 0; the other `devices` lanes empty.
+Schedule replay_on_device0(const Schedule& schedule, const CostTable& costs, std::size_t devices);
 
 }  // namespace atssim::sched

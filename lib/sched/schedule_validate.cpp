@@ -126,7 +126,7 @@ void Schedule::throw_if_invalid(const TaskGraph& graph, const CostTable& costs, 
   if (problems.empty()) return;
   std::string message = fmt::format("invalid schedule ({} problems):", problems.size());
   for (const auto& p : problems) message += "\n  " + p;
-  throw Error(message, ErrorKind::runtime);
+  throw internal_error(message);
 }
 
 }  // namespace atssim::sched

@@ -19,10 +19,11 @@ TaskId TaskGraph::add_task(Task task) {
 
 void TaskGraph::add_edge(TaskId from, TaskId to, double comm) {
   if (from >= size() || to >= size()) {
-    throw Error(fmt::format("task graph: edge {} -> {} names a task that does not exist ({} tasks)", from, to, size()));
+    throw internal_error(
+        fmt::format("task graph: edge {} -> {} names a task that does not exist ({} tasks)", from, to, size()));
   }
   if (from == to) {
-    throw Error(fmt::format("task graph: task '{}' cannot depend on itself", tasks_[from].name));
+    throw internal_error(fmt::format("task graph: task '{}' cannot depend on itself", tasks_[from].name));
   }
   for (Edge& e : out_[from]) {
     if (e.to == to) {
@@ -100,7 +101,7 @@ std::vector<TaskId> TaskGraph::topological_order() const {
     const auto cycle = find_cycle(*this, indegree);
     for (TaskId id : cycle) names += tasks_[id].name + " -> ";
     names += tasks_[cycle.front()].name;
-    throw Error("task graph has a cycle: " + names);
+    throw internal_error("task graph has a cycle: " + names);
   }
   return order;
 }

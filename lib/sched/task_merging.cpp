@@ -18,13 +18,14 @@ constexpr TaskId kUngrouped = std::numeric_limits<TaskId>::max();
 std::vector<TaskId> group_index(const TaskGraph& graph, std::span<const std::vector<TaskId>> groups) {
   std::vector<TaskId> group_of(graph.size(), kUngrouped);
   for (TaskId g = 0; g < groups.size(); ++g) {
-    if (groups[g].empty()) throw Error(fmt::format("task merging: group {} is empty", g));
+    if (groups[g].empty()) throw internal_error(fmt::format("task merging: group {} is empty", g));
     for (TaskId t : groups[g]) {
       if (t >= graph.size()) {
-        throw Error(fmt::format("task merging: group {} names task {}, the graph has {} tasks", g, t, graph.size()));
+        throw internal_error(
+            fmt::format("task merging: group {} names task {}, the graph has {} tasks", g, t, graph.size()));
       }
       if (group_of[t] != kUngrouped) {
-        throw Error(fmt::format("task merging: task '{}' is in more than one group", graph.task(t).name));
+        throw internal_error(fmt::format("task merging: task '{}' is in more than one group", graph.task(t).name));
       }
       group_of[t] = g;
     }
@@ -51,7 +52,8 @@ Task merged_task(const TaskGraph& graph, std::span<const TaskId> members) {
 
 MergedGraph merge_tasks(const TaskGraph& graph, const CostTable& costs, std::span<const std::vector<TaskId>> groups) {
   if (costs.tasks != graph.size()) {
-    throw Error(fmt::format("task merging: the cost table has {} tasks, the graph {}", costs.tasks, graph.size()));
+    throw internal_error(
+        fmt::format("task merging: the cost table has {} tasks, the graph {}", costs.tasks, graph.size()));
   }
   const auto group_of = group_index(graph, groups);
   const auto topo = graph.topological_order();
@@ -94,15 +96,16 @@ MergedGraph merge_tasks(const TaskGraph& graph, const CostTable& costs, std::spa
   try {
     out.graph.topological_order();
   } catch (const Error& e) {
-    throw Error(std::string("task merging: the groups create a cycle (a group's members are "
-                            "linked through an outside task): ") +
-                e.what());
+    throw Error(std::string("task merging: the groups create a cycle (a group's members are linked through an "
+                            "outside task): ") +
+                    e.what(),
+                e.kind());
   }
   return out;
 }
 
 std::vector<std::vector<TaskId>> consecutive_groups(std::span<const TaskId> sequence, std::size_t group_size) {
-  if (group_size == 0) throw Error("task merging: group size must be at least 1");
+  if (group_size == 0) throw internal_error("task merging: group size must be at least 1");
   std::vector<std::vector<TaskId>> groups;
   for (std::size_t i = 0; i < sequence.size(); i += group_size) {
     const std::size_t end = std::min(sequence.size(), i + group_size);

@@ -2,6 +2,7 @@
 // What an executor reports about a substep it ran: plain records, no policy
 // (STYLE.md: the executor observes, the cost model decides).
 #include <cstddef>
+#include <span>
 
 #include "sched/ids.hpp"
 
@@ -31,6 +32,21 @@ struct CopyTiming {
   DeviceId to = 0;
   std::size_t bytes = 0;
   double ms = 0.0;
+};
+
+// Receives what an executor measured while it profiles a plan (as Taskflow's
+// executor reports to an ObserverInterface): the executor only reports, the
+// observer (sched::ProfileCosts) decides what the numbers cost.
+class TimingObserver {
+ public:
+  virtual ~TimingObserver() = default;
+  // One substep run with every task on `device` alone, the tasks in the order
+  // they ran, on one clock.
+  virtual void substep_alone(DeviceId device, std::span<const TaskTiming> timings) = 0;
+  // The gap the executor leaves between two launches on `device`, when its
+  // timings include it (tasks timed by per-launch events); reported after
+  // the device's substeps.
+  virtual void launch_gap(DeviceId device, double ms) = 0;
 };
 
 }  // namespace atssim::sched

@@ -10,7 +10,7 @@ namespace atssim::solver {
 
 double MethodSettings::option(std::string_view key) const {
   const auto it = options.find(key);
-  if (it == options.end()) throw Error(fmt::format("internal error: method option '{}' was not resolved", key));
+  if (it == options.end()) throw internal_error(fmt::format("method option '{}' was not resolved", key));
   return it->second;
 }
 

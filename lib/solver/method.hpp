@@ -1,9 +1,12 @@
 #pragma once
 // What a simulation method tells the rest of atssim about itself: its name,
-// how its iterations run, the options it reads under `solver:`, the solid
-// models it simulates, and how it builds a substep plan. Each method folder
-// (lib/solver/<method>/) exports one MethodDescription; the registry
-// (method_registry.hpp) lists them, and nothing else names a method.
+// the program its plans run, its task kinds, how its iterations run, the
+// options it reads under `solver:`, what it can simulate, and how it builds
+// a substep plan. Each method folder (lib/solver/<method>/) defines one
+// MethodDescription, <method>::kDescription in <method>_method.cpp; the
+// registry (method_registry.cpp) lists them, one line each. The pipeline,
+// the commands and the "every method" tests ask the registry
+// (solver::methods()) by capability instead of naming methods.
 #include <map>
 #include <set>
 #include <span>
@@ -11,6 +14,7 @@
 #include <string_view>
 
 #include "plan/substep_plan.hpp"
+#include "plan/task_kind.hpp"
 #include "scene/scene_desc.hpp"
 #include "solver/layout/sim_layout.hpp"
 
@@ -48,8 +52,8 @@ struct MethodSettings {
   std::map<std::string, double, std::less<>> options;
   std::set<std::string, std::less<>> given;  // the options the scene sets
 
-  // The value of one of the method's options; throws atssim::Error for a
-  // key the method does not declare (a bug, not an input error).
+  // The value of one of the method's options; throws atssim::Error
+  // (internal) for a key the method does not declare.
   double option(std::string_view key) const;
   // The scene's value, or `fallback` where the scene leaves the option to
   // the method (a default that depends on the scene).
@@ -59,11 +63,24 @@ struct MethodSettings {
 struct MethodDescription {
   std::string_view name;     // solver.method
   std::string_view summary;  // one line for `atssim methods` and docs
+  // The embedded program its plans run (SubstepPlan::program): the file
+  // kernels/<program>/<program>.cl, which the build finds.
+  std::string_view program;
+  // The task kinds of its own that its plans use, besides the shared ones
+  // (plan::TaskKind::predict, …); declared in its folder.
+  std::span<const plan::TaskKind> kinds{};
   // Gauss-Seidel iterations (async Gauss-Seidel relaxes them), or Jacobi
   // sweeps that already run on every device with one synchronisation each.
   bool gauss_seidel = false;
-  std::span<const MethodOption> options;
-  std::span<const scene::SolidModel> solid_models;  // the tetrahedral models it simulates
+  // Each substep is a backward Euler step: its iterations approach the
+  // minimiser of the incremental potential (solver/energy). False: it
+  // integrates the forces explicitly, and needs a stable step.
+  bool implicit = true;
+  // Each of its iterations lowers the incremental potential (a descent
+  // method): `converge` measures how close it comes to the Newton minimiser.
+  bool descent = false;
+  std::span<const MethodOption> options{};
+  std::span<const scene::SolidModel> solid_models{};  // the tetrahedral models it simulates
   plan::SubstepPlan (*build)(const SimLayout& layout, const MethodSettings& settings) = nullptr;
   // Whether its plan keeps particles out of the scene's colliders (contact
   // and friction tasks); a scene with colliders is refused otherwise.

@@ -7,40 +7,36 @@
 #include <fmt/format.h>
 
 #include "model/cloth_builder.hpp"
-#include "solver/explicit/explicit_method.hpp"
-#include "solver/jpgd/jpgd_method.hpp"
-#include "solver/sosd/sosd_method.hpp"
-#include "solver/vbd/vbd_method.hpp"
-#include "solver/xpbd/xpbd_method.hpp"
 #include "util/did_you_mean.hpp"
 #include "util/error.hpp"
 
+// Every method, one line each, in the order `atssim methods` lists them:
+// M(ns) names the description its folder defines as
+// atssim::solver::ns::kDescription (lib/solver/<method>/<method>_method.cpp).
+// clang-format off
+#define ATSSIM_EACH_METHOD(M) \
+  M(xpbd)                     \
+  M(vbd)                      \
+  M(sosd)                     \
+  M(jpgd)                     \
+  M(explicit_rk)              \
+  /* a new method: one line above this one */
+// clang-format on
+
 namespace atssim::solver {
+
+#define ATSSIM_DECLARE_METHOD(ns)              \
+  namespace ns {                               \
+  extern const MethodDescription kDescription; \
+  }
+ATSSIM_EACH_METHOD(ATSSIM_DECLARE_METHOD)
+#undef ATSSIM_DECLARE_METHOD
 
 namespace {
 
-// One line per method.
-const MethodDescription* const kMethods[] = {
-    &xpbd::kDescription, &vbd::kDescription, &sosd::kDescription, &jpgd::kDescription, &explicit_rk::kDescription,
-};
-
-std::string names() {
-  std::string out;
-  for (const MethodDescription* m : kMethods) out += fmt::format("{}{}", out.empty() ? "" : ", ", m->name);
-  return out;
-}
-
-std::string_view model_name(scene::SolidModel m) {
-  switch (m) {
-    case scene::SolidModel::neo_hookean:
-      return "neo_hookean";
-    case scene::SolidModel::stvk:
-      return "stvk";
-    case scene::SolidModel::springs:
-      return "springs";
-  }
-  return "?";
-}
+#define ATSSIM_METHOD_ENTRY(ns) &ns::kDescription,
+const MethodDescription* const kMethods[] = {ATSSIM_EACH_METHOD(ATSSIM_METHOD_ENTRY)};
+#undef ATSSIM_METHOD_ENTRY
 
 const MethodOption* find_option(const MethodDescription& m, std::string_view key) {
   for (const MethodOption& o : m.options) {
@@ -104,7 +100,7 @@ void check_solids(const scene::SceneDesc& scene, const MethodDescription& method
                               : !scene.solver.method_where.empty()
                                   ? scene.solver.method_where
                                   : fmt::format("{}:{}", scene.source_path, o.source_line);
-    const std::string_view model = model_name(o.material.solid_model);
+    const std::string_view model = scene::to_string(o.material.solid_model);
     if (others.empty()) {
       throw input_error(
           fmt::format("{}: solid '{}' has model {}, which no solver simulates yet; use neo_hookean or "
@@ -113,7 +109,7 @@ void check_solids(const scene::SceneDesc& scene, const MethodDescription& method
     }
     std::string own;
     for (scene::SolidModel m : method.solid_models)
-      own += fmt::format("{}{}", own.empty() ? "" : " or ", model_name(m));
+      own += fmt::format("{}{}", own.empty() ? "" : " or ", scene::to_string(m));
     throw input_error(
         fmt::format("{}: solid '{}' is {}{}, and solver.method {} does not simulate it; set its "
                     "material.model to {}, or use solver.method {}",
@@ -136,7 +132,7 @@ const MethodDescription* find_method(std::string_view name) {
 const MethodDescription& method(std::string_view name, std::string_view where) {
   if (const MethodDescription* m = find_method(name)) return *m;
   throw input_error(fmt::format("{}unknown solver method '{}'; available: {}",
-                                where.empty() ? "" : fmt::format("{}: ", where), name, names()));
+                                where.empty() ? "" : fmt::format("{}: ", where), name, method_names()));
 }
 
 void check_scene(const scene::SceneDesc& scene, const MethodDescription& method) {
@@ -180,6 +176,14 @@ MethodSettings method_settings(const scene::SceneDesc& scene, const MethodDescri
 plan::SubstepPlan build_plan(const scene::SceneDesc& scene, const MethodDescription& method) {
   const MethodSettings settings = method_settings(scene, method);
   return method.build(make_sim_layout(model::build_model(scene)), settings);
+}
+
+std::string method_names(bool (*capable)(const MethodDescription&)) {
+  std::string out;
+  for (const MethodDescription* m : kMethods) {
+    if (capable == nullptr || capable(*m)) out += fmt::format("{}{}", out.empty() ? "" : ", ", m->name);
+  }
+  return out;
 }
 
 }  // namespace atssim::solver

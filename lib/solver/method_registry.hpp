@@ -1,8 +1,9 @@
 #pragma once
 // Every method this build knows, and what the pipeline asks of them. Adding
-// a method is one folder under lib/solver/, its kernels, and one line in
-// method_registry.cpp (docs/architecture.md lists the files).
+// a method is one folder under lib/solver/, its program under kernels/, and
+// one line in method_registry.cpp (docs/architecture.md shows such a change).
 #include <span>
+#include <string>
 #include <string_view>
 
 #include "scene/scene_desc.hpp"
@@ -30,5 +31,9 @@ MethodSettings method_settings(const scene::SceneDesc& scene, const MethodDescri
 
 // The scene's plan: model -> layout -> the method's plan builder.
 plan::SubstepPlan build_plan(const scene::SceneDesc& scene, const MethodDescription& method);
+
+// The names of the methods for which `capable` holds (all when null), in
+// registry order, comma separated: for help texts and messages.
+std::string method_names(bool (*capable)(const MethodDescription&) = nullptr);
 
 }  // namespace atssim::solver

@@ -13,6 +13,7 @@
 #include "app/simulation.hpp"
 #include "io/result_reader.hpp"
 #include "support/descent_checks.hpp"
+#include "support/methods.hpp"
 #include "support/scene_runs.hpp"
 #include "support/temp_dir.hpp"
 
@@ -91,7 +92,7 @@ using test::options;
 
 TEST_CASE("cloth dropped on a sphere, a capsule and a box stays out of them (every method, single and heft)",
           "[contact]") {
-  const std::string method = GENERATE("xpbd", "vbd", "sosd", "jpgd");
+  const std::string method = GENERATE(from_range(test::methods_taking(kDrape)));
   const std::string schedule = GENERATE("single", "heft");
   INFO(method << "/" << schedule);
   test::TempDir dir;
@@ -122,7 +123,7 @@ TEST_CASE("cloth dropped on a sphere, a capsule and a box stays out of them (eve
 
 TEST_CASE("a patch on a plane tilted by 20 degrees stays put when mu_s > tan 20 (every method, single and heft)",
           "[contact][friction]") {
-  const std::string method = GENERATE("xpbd", "vbd", "sosd", "jpgd");
+  const std::string method = GENERATE(from_range(test::methods_taking(tilted_patch(20.0, 0.6, 0.5))));
   const std::string schedule = GENERATE("single", "heft");
   INFO(method << "/" << schedule);
   test::TempDir dir;
@@ -139,7 +140,7 @@ TEST_CASE("a patch on a plane tilted by 20 degrees stays put when mu_s > tan 20 
 
 TEST_CASE("a patch on a plane tilted by 20 degrees slides with g (sin - mu_k cos) when mu_k < tan 20",
           "[contact][friction]") {
-  const std::string method = GENERATE("xpbd", "vbd", "sosd", "jpgd");
+  const std::string method = GENERATE(from_range(test::methods_taking(tilted_patch(20.0, 0.2, 0.2))));
   const std::string schedule = GENERATE("single", "heft");
   INFO(method << "/" << schedule);
   const double degrees = 20.0, mu = 0.2;
@@ -174,7 +175,7 @@ std::string tilted_patch_materials(double plane, double cloth) {
 
 TEST_CASE("friction per material: a plane without friction takes the cloth's, with both their mean (every method)",
           "[contact][friction]") {
-  const std::string method = GENERATE("xpbd", "vbd", "sosd", "jpgd");
+  const std::string method = GENERATE(from_range(test::methods_taking(tilted_patch_materials(-1.0, 0.6))));
   INFO(method);
   {
     test::TempDir dir;  // the plane sets none: the cloth's 0.6 holds the patch

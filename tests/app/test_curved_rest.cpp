@@ -45,6 +45,14 @@ struct Run {
   std::vector<std::vector<float>> frames;  // frame 0 = the initial state
 };
 
+// The methods that take a curved-mesh scene of these tests (an explicit
+// method refuses one substep a frame: above its stable step).
+std::vector<std::string> methods_taking_mesh(const test::ObjMesh& mesh, const std::string& gravity, double y) {
+  test::TempDir dir;
+  dir.write("mesh.obj", mesh.obj_text());
+  return test::methods_taking(mesh_scene("mesh.obj", gravity, 1, "auto", y, 0.01), {}, dir.path().string());
+}
+
 // bend_stiffness 0: no elastic element at all (free particles).
 Run run(const test::TempDir& dir, const test::ObjMesh& mesh, const std::string& method, const std::string& gravity,
         int frames, const std::string& bend_model = "auto", double y = 0.0, double bend_stiffness = 0.01) {
@@ -110,7 +118,8 @@ TEST_CASE("the isometric model does not keep a curved rest shape (the control of
 
 TEST_CASE("a free-falling curved cap's centroid follows free fall, under every method at 8 iterations",
           "[bending][curved]") {
-  const std::string method = GENERATE(as<std::string>{}, "xpbd", "vbd", "sosd", "jpgd");
+  const std::string method =
+      GENERATE(from_range(methods_taking_mesh(test::spherical_cap(0.5, 0.3, 12), "[0, -9.81, 0]", 0.6)));
   test::TempDir dir;
   const test::ObjMesh cap = test::spherical_cap(0.5, 0.3, 12);
   const Run r = run(dir, cap, method, "[0, -9.81, 0]", 30, "auto", 0.6);

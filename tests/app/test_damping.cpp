@@ -10,6 +10,7 @@
 #include "app/simulation.hpp"
 #include "io/result_reader.hpp"
 #include "support/curved_meshes.hpp"
+#include "support/methods.hpp"
 #include "support/temp_dir.hpp"
 
 using namespace atssim;
@@ -109,7 +110,7 @@ double implicit_euler_ratio(double w2, double c, double h) {
 
 TEST_CASE("air drag: a falling cap drops as the implicit drag recurrence says, and near (g/c)(t - (1 - e^-ct)/c)",
           "[damping]") {
-  const std::string method = GENERATE(as<std::string>{}, "xpbd", "vbd", "sosd", "jpgd");
+  const std::string method = GENERATE(from_range(test::methods_where(test::implicit)));
   test::TempDir dir;
   dir.write("cap.obj", test::spherical_cap(0.5, 0.3, 8).obj_text());
   const double c = 2.0, g = 9.81, h = 1.0 / 240.0;
@@ -134,7 +135,7 @@ TEST_CASE("air drag: a falling cap drops as the implicit drag recurrence says, a
 TEST_CASE(
     "air drag: a spring-mass oscillator's amplitude ratio per period is exp(-c T/2) (implicit Euler's own to 1 %)",
     "[damping]") {
-  const std::string method = GENERATE(as<std::string>{}, "xpbd", "vbd", "sosd", "jpgd");
+  const std::string method = GENERATE(from_range(test::methods_where(test::implicit)));
   const double k = 1.0, m = 0.2 * kA * kB / 3.0, c = 1.0;  // w = 17 1/s, T = 0.37 s
   const double fps = 600.0;
   const int substeps = 4;

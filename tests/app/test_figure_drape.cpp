@@ -21,6 +21,7 @@
 
 #include "app/simulation.hpp"
 #include "io/result_reader.hpp"
+#include "support/methods.hpp"
 #include "support/obstacle_meshes.hpp"
 #include "support/scene_runs.hpp"
 #include "support/temp_dir.hpp"
@@ -83,7 +84,7 @@ TEST_CASE(
   const test::SimpleMesh figure = read_off(kFigure);
   INFO("the figure mesh " << kFigure << " comes with assimp-testmodels: run bash scripts/setup.sh");
   REQUIRE(figure.triangles.size() == 3732);
-  const std::string method = GENERATE("xpbd", "vbd", "sosd", "jpgd");
+  const std::string method = GENERATE(from_range(test::methods_taking(drape_on_figure())));
   const std::string schedule = GENERATE("single", "heft");
   INFO(method << "/" << schedule);
   test::TempDir dir;

@@ -15,6 +15,7 @@
 
 #include "app/simulation.hpp"
 #include "io/result_reader.hpp"
+#include "support/methods.hpp"
 #include "support/obstacle_meshes.hpp"
 #include "support/scene_runs.hpp"
 #include "support/temp_dir.hpp"
@@ -74,7 +75,7 @@ double mean_x(const std::vector<Vector3d>& x) {
 
 TEST_CASE("a sphere moving into a pinned cloth keeps every vertex outside it (every method, single and heft)",
           "[contact][kinematic]") {
-  const std::string method = GENERATE("xpbd", "vbd", "sosd", "jpgd");
+  const std::string method = GENERATE(from_range(test::methods_taking(kPush)));
   const std::string schedule = GENERATE("single", "heft");
   INFO(method << "/" << schedule);
   test::TempDir dir;
@@ -97,7 +98,7 @@ TEST_CASE("a sphere moving into a pinned cloth keeps every vertex outside it (ev
 
 TEST_CASE("a patch on a box moving sideways is carried at its speed with friction, and stays behind without",
           "[contact][kinematic][friction]") {
-  const std::string method = GENERATE("xpbd", "vbd", "sosd", "jpgd");
+  const std::string method = GENERATE(from_range(test::methods_taking(carried_patch(2.0))));
   const std::string schedule = GENERATE("single", "heft");
   INFO(method << "/" << schedule);
   {
@@ -170,7 +171,10 @@ std::string mesh_drape(const test::TempDir& dir) {
 
 TEST_CASE("cloth dropped on a closed and an open mesh obstacle stays out of both (every method, single and heft)",
           "[contact][mesh]") {
-  const std::string method = GENERATE("xpbd", "vbd", "sosd", "jpgd");
+  const std::string method = GENERATE(from_range([] {
+    test::TempDir d;  // the meshes the scene names
+    return test::methods_taking(mesh_drape(d), {}, d.path().string());
+  }()));
   const std::string schedule = GENERATE("single", "heft");
   INFO(method << "/" << schedule);
   test::TempDir dir;
@@ -247,7 +251,7 @@ TEST_CASE(
     "a sphere on keyframes pushes cloth into a funnel mesh, no vertex gets into the funnel's or the sphere's "
     "thickness (every method, single and heft)",
     "[contact][mesh][kinematic]") {
-  const std::string method = GENERATE("xpbd", "vbd", "sosd", "jpgd");
+  const std::string method = GENERATE(from_range(test::methods_taking(small_funnel())));
   const std::string schedule = GENERATE("single", "heft");
   INFO(method << "/" << schedule);
   test::TempDir dir;

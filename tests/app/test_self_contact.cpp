@@ -23,6 +23,7 @@
 #include "scene/scene_loader.hpp"
 #include "support/cli_runs.hpp"
 #include "support/descent_checks.hpp"
+#include "support/methods.hpp"
 #include "support/scene_runs.hpp"
 #include "support/surface_checks.hpp"
 #include "support/temp_dir.hpp"
@@ -179,7 +180,7 @@ TEST_CASE(
     "two cloth layers dropped onto a sphere keep half the thickness apart, never cross, and with "
     "self-contact on stay out of the sphere (every method, single and heft)",
     "[contact][self]") {
-  const std::string method = GENERATE("xpbd", "vbd", "sosd", "jpgd");
+  const std::string method = GENERATE(from_range(test::methods_taking(kLayers)));
   const std::string schedule = GENERATE("single", "heft");
   INFO(method << "/" << schedule);
   test::TempDir dir;
@@ -207,7 +208,7 @@ TEST_CASE(
 
 TEST_CASE("a sheet falling on its edge with self-contact stays intersection-free (every method, single and heft)",
           "[contact][self]") {
-  const std::string method = GENERATE("xpbd", "vbd", "sosd", "jpgd");
+  const std::string method = GENERATE(from_range(test::methods_taking(kFold)));
   const std::string schedule = GENERATE("single", "heft");
   INFO(method << "/" << schedule);
   test::TempDir dir;
@@ -229,7 +230,7 @@ TEST_CASE("a sheet falling on its edge with self-contact stays intersection-free
 // its own colour from the iteration's start, two runs on the whole 2-CU
 // device ended 8 cm apart after 20 frames.
 TEST_CASE("with self-contact every method gives the same bits on one device and cut over two", "[contact][self]") {
-  const std::string method = GENERATE("jpgd", "sosd", "vbd", "xpbd");
+  const std::string method = GENERATE(from_range(test::methods_taking(kLayers)));
   const std::string schedule = GENERATE("split", "heft");
   INFO(method << "/" << schedule);
   test::TempDir dir;
@@ -261,11 +262,17 @@ std::vector<std::string> small_pillows(const test::TempDir& dir, const std::stri
                                 "objects.1.box.resolution=[3, 1, 2]",
                                 "objects.2.box.resolution=[3, 1, 2]",
                                 std::string("contact.self=") + (contact ? "true" : "false")};
-  if (method == "xpbd") {  // XPBD simulates StVK solids only
+  // The pillows are neo-Hookean where the method simulates it, else StVK (XPBD).
+  if (!solver::method(method).simulates(scene::SolidModel::neo_hookean)) {
     o.push_back("objects.1.material.model=stvk");
     o.push_back("objects.2.material.model=stvk");
   }
   return o;
+}
+
+// The methods that run the pillows: contact, and neo-Hookean or StVK solids.
+bool takes_pillows(const solver::MethodDescription& m) {
+  return m.colliders && (m.simulates(scene::SolidModel::neo_hookean) || m.simulates(scene::SolidModel::stvk));
 }
 
 // Height of the cloth surface below (x, z): the first cloth triangle whose
@@ -299,7 +306,7 @@ TEST_CASE(
     "pillows rest on the cloth: every pillow vertex above the cloth beneath it, and the cloth sags under "
     "them (every method, single and heft)",
     "[contact][self][pillows]") {
-  pillows_rest_on_the_cloth(GENERATE("xpbd", "vbd", "sosd", "jpgd"), GENERATE("single", "heft"));
+  pillows_rest_on_the_cloth(GENERATE(from_range(test::methods_where(takes_pillows))), GENERATE("single", "heft"));
 }
 
 namespace {

@@ -15,6 +15,7 @@
 #include "kernels/embedded_programs.hpp"
 #include "plan/element_sets.hpp"
 #include "scene/scene_loader.hpp"
+#include "support/methods.hpp"
 #include "support/scenes.hpp"
 
 using namespace atssim;
@@ -74,7 +75,8 @@ Outcome run(const device::DeviceSet& devices, const plan::SubstepPlan& plan, app
 }  // namespace
 
 TEST_CASE("devices with memories of their own reproduce the shared-memory result bit for bit", "[memory]") {
-  const std::string method = GENERATE("xpbd", "vbd", "sosd", "jpgd");
+  const std::string method =
+      GENERATE(from_range(test::methods_taking([](const std::string& m) { return test::cloth_and_box_yaml(m, 12); })));
   const auto mode = GENERATE(app::ScheduleMode::split, app::ScheduleMode::heft);
   INFO(method << " " << app::to_string(mode));
   const auto scene = scene::parse_scene(test::cloth_and_box_yaml(method, 12), "s.yaml", ".");
@@ -152,7 +154,8 @@ TEST_CASE("every launch of every method names what it writes, also cut into part
   // An undeclared writable argument counts as written whole: right for a
   // task that alone writes the buffer, but a part of a cut task would then
   // send the other parts' stale elements along. Every method declares.
-  const std::string method = GENERATE("xpbd", "vbd", "sosd", "jpgd");
+  const std::string method =
+      GENERATE(from_range(test::methods_taking([](const std::string& m) { return test::cloth_and_box_yaml(m, 12); })));
   INFO(method);
   const auto scene = scene::parse_scene(test::cloth_and_box_yaml(method, 12), "s.yaml", ".");
   const plan::SubstepPlan plan = app::cut_for_mode(app::substep_plan_for(scene), app::ScheduleMode::split, 2);

@@ -14,6 +14,7 @@
 #include "io/result_reader.hpp"
 #include "model/cloth_builder.hpp"
 #include "scene/scene_loader.hpp"
+#include "support/methods.hpp"
 #include "support/temp_dir.hpp"
 
 using namespace atssim;
@@ -92,7 +93,7 @@ std::vector<Eigen::Vector3d> static_equilibrium(const model::Model& m, std::vect
 }  // namespace
 
 TEST_CASE("a hanging spring cloth settles to the static equilibrium of a dense Newton solve", "[cloth_springs]") {
-  const std::string method = GENERATE(as<std::string>{}, "explicit", "vbd", "xpbd", "sosd", "jpgd");
+  const std::string method = GENERATE(from_range(test::methods_taking(kScene)));
   test::TempDir dir;
   const model::Model m = model::build_model(scene::parse_scene(kScene, "s.yaml", "."));
   REQUIRE(m.stretch.size() == 24 + 18 + 16);

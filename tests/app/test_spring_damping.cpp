@@ -16,6 +16,7 @@
 #include "app/simulation.hpp"
 #include "io/result_reader.hpp"
 #include "solver/explicit/stability_limit.hpp"
+#include "support/methods.hpp"
 #include "support/scenes.hpp"
 #include "support/temp_dir.hpp"
 
@@ -45,6 +46,25 @@ std::string oscillator_yaml(double k, double beta, double fps, int substeps, int
       "    pins: {{vertices: [0, 1, 2]}}\n"
       "solver: {{method: {}, integrator: {}}}\n",
       fps, substeps, frames, k, beta, method, integrator);
+}
+
+struct OscillatorCase {
+  std::string method, integrator;
+};
+
+// Every method; one with a choice of integrator (solver.integrator: the
+// explicit one) once with each.
+std::vector<OscillatorCase> oscillator_cases() {
+  std::vector<OscillatorCase> out;
+  for (const solver::MethodDescription* m : solver::methods()) {
+    std::size_t before = out.size();
+    for (const solver::MethodOption& o : m->options) {
+      if (o.key != "integrator") continue;
+      for (std::string_view choice : o.choices) out.push_back({std::string(m->name), std::string(choice)});
+    }
+    if (out.size() == before) out.push_back({std::string(m->name), "semi_euler"});
+  }
+  return out;
 }
 
 std::vector<double> oscillator_z(const test::TempDir& dir, const std::string& yaml, int frames) {
@@ -96,12 +116,7 @@ std::complex<double> step_eigenvalue(const std::string& integrator, double w2, d
 
 TEST_CASE("spring damping: a damped oscillator's amplitude ratio per period is the integrator's own, within 1 %",
           "[damping][spring_damping]") {
-  struct Case {
-    std::string method, integrator;
-  };
-  const Case c = GENERATE(Case{"explicit", "semi_euler"}, Case{"explicit", "midpoint"}, Case{"explicit", "rk4"},
-                          Case{"vbd", "semi_euler"}, Case{"xpbd", "semi_euler"}, Case{"sosd", "semi_euler"},
-                          Case{"jpgd", "semi_euler"});
+  const OscillatorCase c = GENERATE(from_range(oscillator_cases()));
   const double k = 100.0, beta = 0.002;  // w = 54.8 1/s, g = 6 1/s: e^(-g T/2) = 0.71
   const double fps = 600.0;
   const int substeps = 4, frames = 600;  // h = 1/2400 s, 1 s
@@ -112,7 +127,7 @@ TEST_CASE("spring damping: a damped oscillator's amplitude ratio per period is t
   const std::vector<double> p = peaks(z, z[0] + kMass * 9.81 / k);
   REQUIRE(p.size() >= 4);
   const double measured = std::pow(p[3] / p[0], 1.0 / 3.0);
-  const bool implicit = c.method != "explicit";
+  const bool implicit = solver::method(c.method).implicit;
   const double own = ratio_per_period(step_eigenvalue(implicit ? "implicit" : c.integrator, w2, g, h));
   const double undamped = ratio_per_period(step_eigenvalue(implicit ? "implicit" : c.integrator, w2, 0.0, h));
   const double continuous = std::exp(-0.5 * g * 2.0 * kPi / std::sqrt(w2 - 0.25 * g * g));
@@ -157,7 +172,8 @@ TEST_CASE("spring damping: the stable step of semi-implicit Euler is (sqrt(g² +
 
 TEST_CASE("spring damping: damping 0 is the undamped run, bit for bit, under every method",
           "[damping][spring_damping]") {
-  const std::string method = GENERATE(as<std::string>{}, "xpbd", "vbd", "sosd", "jpgd", "explicit");
+  const std::string method =
+      GENERATE(from_range(test::methods_where([](const solver::MethodDescription&) { return true; })));
   const std::string base =
       "simulation: {fps: 60, substeps: 40, iterations: 4, frames: 5}\n"
       "objects:\n"

@@ -14,6 +14,7 @@
 
 #include "app/simulation.hpp"
 #include "io/result_reader.hpp"
+#include "support/methods.hpp"
 #include "support/scene_runs.hpp"
 #include "support/temp_dir.hpp"
 
@@ -95,7 +96,7 @@ double most_moved(const std::string& out) {
 // it (the smaller side alone would let it slide).
 TEST_CASE("friction per material: the mean of the two surfaces' coefficients holds the patch (every method)",
           "[contact][self][friction]") {
-  const std::string method = GENERATE("xpbd", "vbd", "sosd", "jpgd");
+  const std::string method = GENERATE(from_range(test::methods_taking(patch_on_tilted_cloth_materials(0.2, 1.0))));
   INFO(method);
   test::TempDir dir;
   app::run_simulation(options(dir, patch_on_tilted_cloth_materials(0.2, 1.0), method, "single"));
@@ -104,7 +105,7 @@ TEST_CASE("friction per material: the mean of the two surfaces' coefficients hol
 
 TEST_CASE("a patch on a cloth tilted by 20 degrees stays put when mu_s > tan 20 (every method, single and heft)",
           "[contact][self][friction]") {
-  const std::string method = GENERATE("xpbd", "vbd", "sosd", "jpgd");
+  const std::string method = GENERATE(from_range(test::methods_taking(patch_on_tilted_cloth(0.6, 0.5))));
   const std::string schedule = GENERATE("single", "heft");
   INFO(method << "/" << schedule);
   test::TempDir dir;
@@ -144,7 +145,7 @@ void slides_with_coulomb(const std::string& method, double mu, const std::string
 
 TEST_CASE("without friction a patch on a cloth tilted by 20 degrees slides with g sin 20 (every method)",
           "[contact][self][friction]") {
-  slides_with_coulomb(GENERATE("xpbd", "vbd", "sosd", "jpgd"), 0.0);
+  slides_with_coulomb(GENERATE(from_range(test::methods_taking(patch_on_tilted_cloth(0.0, 0.0)))), 0.0);
 }
 
 // Before the vertex solves of VBD and JPGD took the pairs that their step
@@ -157,12 +158,13 @@ TEST_CASE("without friction a patch on a cloth tilted by 20 degrees slides with 
 // deep, were pushed off the base's edges, and the patch slid diagonally.
 TEST_CASE("a patch on a cloth tilted by 20 degrees slides with g (sin - mu_k cos) when mu_k < tan 20 (every method)",
           "[contact][self][friction]") {
-  slides_with_coulomb(GENERATE("xpbd", "vbd", "sosd", "jpgd"), 0.2);
+  slides_with_coulomb(GENERATE(from_range(test::methods_taking(patch_on_tilted_cloth(0.2, 0.2)))), 0.2);
 }
 
 // Per material: the patch 0.4, the base 0; the mean 0.2 (the larger side
 // alone, 0.4 > tan 20, would hold it; the smaller would give g sin 20).
 TEST_CASE("friction per material: the patch slides with the mean coefficient (every method)",
           "[contact][self][friction]") {
-  slides_with_coulomb(GENERATE("xpbd", "vbd", "sosd", "jpgd"), 0.2, patch_on_tilted_cloth_materials(0.0, 0.4));
+  slides_with_coulomb(GENERATE(from_range(test::methods_taking(patch_on_tilted_cloth_materials(0.0, 0.4)))), 0.2,
+                      patch_on_tilted_cloth_materials(0.0, 0.4));
 }

@@ -23,7 +23,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     (void)atssim::scene::parse_scene(text, "fuzz.yaml", "/nonexistent-atssim-fuzz", overrides);
   } catch (const atssim::Error& e) {
     if (e.kind() != atssim::ErrorKind::input) {
-      std::fprintf(stderr, "runtime error from the parser: %s\n", e.what());
+      std::fprintf(stderr, "%s error from the parser: %s\n",
+                   e.kind() == atssim::ErrorKind::internal ? "internal" : "runtime", e.what());
       std::abort();
     }
   } catch (const std::exception& e) {

@@ -52,13 +52,13 @@ TEST_CASE("async depth n keeps each kind's order and lets at most n iterations o
   const auto async = plan::async_graph(serial, depth);
   const auto& g = async.graph;
   REQUIRE(g.size() == serial.graph.size());
-  for (const plan::TaskKind kind : {plan::TaskKind::stretch, plan::TaskKind::bend}) {
-    const auto order = sched::gauss_seidel_order(g, static_cast<int>(kind));
+  for (const plan::TaskKind& kind : {solver::xpbd::kStretch, solver::xpbd::kBend}) {
+    const auto order = sched::gauss_seidel_order(g, kind.label());
     for (std::size_t i = 1; i < order.size(); ++i) CHECK(reaches(g, order[i - 1], order[i]));
   }
   // Iteration k needs all of iteration k - depth, but nothing of k - depth + 1 of the other kind.
-  const auto stretch = sched::gauss_seidel_order(g, static_cast<int>(plan::TaskKind::stretch));
-  const auto bend = sched::gauss_seidel_order(g, static_cast<int>(plan::TaskKind::bend));
+  const auto stretch = sched::gauss_seidel_order(g, solver::xpbd::kStretch.label());
+  const auto bend = sched::gauss_seidel_order(g, solver::xpbd::kBend.label());
   auto first_of = [&](const std::vector<sched::TaskId>& o, int it) {
     for (auto t : o)
       if (g.task(t).iteration == it) return t;
@@ -75,8 +75,8 @@ TEST_CASE("async depth n keeps each kind's order and lets at most n iterations o
     CHECK_FALSE(reaches(g, first_of(bend, it - depth + 1), first_of(stretch, it)));
   }
   // Predict before everything, update velocity after everything.
-  const auto predict = g.tasks_of_kind(static_cast<int>(plan::TaskKind::predict)).front();
-  const auto update = g.tasks_of_kind(static_cast<int>(plan::TaskKind::update_velocity)).front();
+  const auto predict = g.tasks_of_kind(plan::TaskKind::predict.label()).front();
+  const auto update = g.tasks_of_kind(plan::TaskKind::update_velocity.label()).front();
   for (sched::TaskId t = 0; t < g.size(); ++t) {
     if (t != predict) CHECK(reaches(g, predict, t));
     if (t != update) CHECK(reaches(g, t, update));

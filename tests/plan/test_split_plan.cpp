@@ -126,3 +126,9 @@ TEST_CASE("a block smaller than a granule still gets one part per fraction, the 
   }
   CHECK(coverage(split) == coverage(plan));
 }
+
+TEST_CASE("parts end on whole work-groups, or on multiples of 8 where a work-group takes a share") {
+  CHECK(plan::part_granule(64) == 64);  // events: one work-item per element, groups of 64
+  CHECK(plan::part_granule(32) == 32);
+  CHECK(plan::part_granule(0) == 8);  // fused: no group to fill
+}

@@ -90,3 +90,18 @@ TEST_CASE("data reaches a third device through the one it waited for") {
   CHECK(p.within[1].to == 2);
   CHECK(indices_of(p.within[1], 0) == std::vector<std::int32_t>{0, 1});
 }
+
+TEST_CASE("an edge weighs the bytes its producer writes, and keeps a heavier weight it had") {
+  sched::TaskGraph g;
+  for (int t = 0; t < 3; ++t) g.add_task({"t" + std::to_string(t)});
+  g.add_edge(0, 1);
+  g.add_edge(0, 2, 1000.0);
+  g.add_edge(1, 2);
+  const std::vector<ElementSets> written{writes(0, {0, 1, 2}), writes(1, {4}, 4), ElementSets{}};
+  plan::weigh_edges_by_writes(g, written);
+  CHECK(g.successors(0)[0].comm == 48.0);    // three 16-byte particles
+  CHECK(g.successors(0)[1].comm == 1000.0);  // heavier already
+  CHECK(g.successors(1)[0].comm == 4.0);
+  CHECK(g.predecessors(2)[1].comm == 4.0);  // both directions of the edge agree
+  CHECK_THROWS_WITH(plan::weigh_edges_by_writes(g, std::vector<ElementSets>(2)), Catch::Contains("writes of 2 tasks"));
+}

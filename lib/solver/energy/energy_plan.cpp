@@ -36,7 +36,7 @@ EnergyOutput energy_output(const SimLayout& layout) {
 plan::SubstepPlan make_energy_plan(const SimLayout& layout, const std::vector<Float4>& predicted, double h,
                                    EnergyBuffers* ids) {
   if (predicted.size() != layout.x.size()) {
-    throw input_error(
+    throw internal_error(
         fmt::format("energy plan: {} predicted positions for {} particles", predicted.size(), layout.x.size()));
   }
   require_finite_stiffness(layout);  // the device would compute inf or NaN

@@ -15,10 +15,13 @@ void check(const std::vector<Constraint>& constraints, const char* kind) {
   for (std::size_t i = 0; i < constraints.size(); ++i) {
     const float compliance = constraints[i].compliance;
     if (compliance > 0.0f) continue;
-    throw input_error(fmt::format(
+    // The layout has no scene lines: the caller that has them names the one
+    // that set the compliance (Setting::compliance, app/scene_checks).
+    std::string message = fmt::format(
         "{} constraint {} has compliance {} (infinitely stiff): its energy is undefined, and converging to the "
         "energy minimum needs finite stiffness; give the material a finite {}_stiffness",
-        kind, i, compliance, kind));
+        kind, i, compliance, kind);
+    throw Error(message, Setting::compliance, message);
   }
 }
 

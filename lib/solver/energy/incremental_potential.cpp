@@ -11,8 +11,8 @@ namespace atssim::solver::energy {
 IncrementalPotential make_incremental_potential(const SimLayout& layout, const std::vector<Float4>& predicted, double h,
                                                 const std::vector<Float4>* start) {
   if (predicted.size() != layout.x.size()) {
-    throw input_error(fmt::format("incremental potential: {} predicted positions for {} particles", predicted.size(),
-                                  layout.x.size()));
+    throw internal_error(fmt::format("incremental potential: {} predicted positions for {} particles", predicted.size(),
+                                     layout.x.size()));
   }
   require_finite_stiffness(layout);
   require_valid_tets(layout);
@@ -26,7 +26,7 @@ IncrementalPotential make_incremental_potential(const SimLayout& layout, const s
   }
   const std::vector<Float4>& x0 = start != nullptr ? *start : layout.x;
   if (x0.size() != layout.x.size()) {
-    throw input_error(
+    throw internal_error(
         fmt::format("incremental potential: {} start positions for {} particles", x0.size(), layout.x.size()));
   }
   p.stretch.reserve(layout.stretch.size());

@@ -1,7 +1,6 @@
-#include "solver/explicit/explicit_method.hpp"
-
 #include "solver/explicit/explicit_plan.hpp"
 #include "solver/explicit/stability_limit.hpp"
+#include "solver/method.hpp"
 
 namespace atssim::solver::explicit_rk {
 
@@ -25,10 +24,15 @@ plan::SubstepPlan build(const SimLayout& layout, const MethodSettings& s) {
 
 }  // namespace
 
-const MethodDescription kDescription{
-    "explicit", "explicit integration of the elastic forces: semi-implicit Euler, midpoint or RK4 (seed 001 Eqs. 2-4)",
-    false,      kOptions,
-    kSolids,    build,
-    false};  // no contact tasks yet: a scene with colliders is refused
+// The registry's line for explicit (solver/method_registry.cpp).
+extern const MethodDescription kDescription{
+    .name = "explicit",
+    .summary = "explicit integration of the elastic forces: semi-implicit Euler, midpoint or RK4 (seed 001 Eqs. 2-4)",
+    .program = kProgram,
+    .implicit = false,
+    .options = kOptions,
+    .solid_models = kSolids,
+    .build = build,
+    .colliders = false};  // no contact tasks yet: a scene with colliders is refused
 
 }  // namespace atssim::solver::explicit_rk

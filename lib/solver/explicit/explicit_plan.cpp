@@ -35,7 +35,7 @@ int evaluations(Integrator integrator) {
 plan::SubstepPlan make_explicit_plan(const SimLayout& layout, const ExplicitSettings& settings, ExplicitBuffers* ids) {
   const vertex::VertexLayout vertices = vertex::make_vertex_layout(layout);
   plan::SubstepPlan plan;
-  plan.program = "explicit";
+  plan.program = std::string(kProgram);
   const int n = static_cast<int>(layout.x.size());
   plan.particle_count = n;
   using plan::BufferRole;

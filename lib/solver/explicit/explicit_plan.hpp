@@ -13,6 +13,9 @@
 
 namespace atssim::solver::explicit_rk {
 
+// The embedded program its plans run: kernels/explicit/explicit.cl.
+inline constexpr std::string_view kProgram = "explicit";
+
 enum class Integrator { semi_euler, midpoint, rk4 };
 
 inline constexpr std::string_view kIntegratorNames[] = {"semi_euler", "midpoint", "rk4"};

@@ -7,6 +7,7 @@
 #include <tbb/task_arena.h>
 
 #define ats_float4 ::atssim::solver::Float4
+#include "common/particle_step.h"
 #include "common/vertex_force.h"
 #include "util/error.hpp"
 
@@ -65,12 +66,9 @@ void ExplicitReference::substep() {
   if (settings_.integrator == Integrator::semi_euler) {
     forces(x, v);
     sweep([&](int i) {
-      if (x[i].w == 0.0f) {
-        v[i] = {};
-        return;
-      }
-      v[i] = {v[i].x + h * accel_[i].x, v[i].y + h * accel_[i].y, v[i].z + h * accel_[i].z, 0.0f};
-      x[i] = {x[i].x + h * v[i].x, x[i].y + h * v[i].y, x[i].z + h * v[i].z, x[i].w};
+      const ats_particle_state s = ats_semi_euler(x[i], v[i], accel_[i], h);
+      x[i] = s.x;
+      v[i] = s.v;
     });
     return;
   }
@@ -86,25 +84,19 @@ void ExplicitReference::substep() {
     forces(first ? x : xs_, first ? v : vs_);
     if (s + 1 < stages) {
       sweep([&](int i) {
-        const Float4 kx = first ? v[i] : vs_[i], kv = accel_[i];
-        const Float4 sx = first ? Float4{} : sum_x_[i], sv = first ? Float4{} : sum_v_[i];
-        sum_x_[i] = {sx.x + w[s] * kx.x, sx.y + w[s] * kx.y, sx.z + w[s] * kx.z, 0.0f};
-        sum_v_[i] = {sv.x + w[s] * kv.x, sv.y + w[s] * kv.y, sv.z + w[s] * kv.z, 0.0f};
-        const float ch = c[s] * h;
-        xs_[i] = {x[i].x + ch * kx.x, x[i].y + ch * kx.y, x[i].z + ch * kx.z, x[i].w};
-        vs_[i] = {v[i].x + ch * kv.x, v[i].y + ch * kv.y, v[i].z + ch * kv.z, 0.0f};
+        const ats_rk_stage_state r =
+            ats_rk_stage(x[i], v[i], first ? v[i] : vs_[i], accel_[i], first ? Float4{} : sum_x_[i],
+                         first ? Float4{} : sum_v_[i], w[s], c[s] * h);
+        sum_x_[i] = r.sum_x;
+        sum_v_[i] = r.sum_v;
+        xs_[i] = r.xs;
+        vs_[i] = r.vs;
       });
     } else {
       sweep([&](int i) {
-        if (x[i].w == 0.0f) {
-          v[i] = {};
-          return;
-        }
-        const Float4 kx = vs_[i], kv = accel_[i], sx = sum_x_[i], sv = sum_v_[i];
-        x[i] = {x[i].x + h_sum * (sx.x + w[s] * kx.x), x[i].y + h_sum * (sx.y + w[s] * kx.y),
-                x[i].z + h_sum * (sx.z + w[s] * kx.z), x[i].w};
-        v[i] = {v[i].x + h_sum * (sv.x + w[s] * kv.x), v[i].y + h_sum * (sv.y + w[s] * kv.y),
-                v[i].z + h_sum * (sv.z + w[s] * kv.z), 0.0f};
+        const ats_particle_state r = ats_rk_finish(x[i], v[i], vs_[i], accel_[i], sum_x_[i], sum_v_[i], w[s], h_sum);
+        x[i] = r.x;
+        v[i] = r.v;
       });
     }
   }

@@ -1,6 +1,5 @@
-#include "solver/jpgd/jpgd_method.hpp"
-
 #include "solver/jpgd/jpgd_plan.hpp"
+#include "solver/method.hpp"
 #include "solver/vertex/stiffness_ratio.hpp"
 
 namespace atssim::solver::jpgd {
@@ -37,9 +36,14 @@ plan::SubstepPlan build(const SimLayout& layout, const MethodSettings& s) {
 
 }  // namespace
 
-const MethodDescription kDescription{
-    "jpgd",  "block-Jacobi preconditioned gradient descent with Chebyshev or heavy-ball acceleration (Wang 2015)",
-    false,   kOptions,
-    kSolids, build};
+// The registry's line for jpgd (solver/method_registry.cpp).
+extern const MethodDescription kDescription{
+    .name = "jpgd",
+    .summary = "block-Jacobi preconditioned gradient descent with Chebyshev or heavy-ball acceleration (Wang 2015)",
+    .program = kProgram,
+    .descent = true,
+    .options = kOptions,
+    .solid_models = kSolids,
+    .build = build};
 
 }  // namespace atssim::solver::jpgd

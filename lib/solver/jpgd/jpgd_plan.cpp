@@ -25,7 +25,7 @@ std::vector<double> chebyshev_weights(int iterations, double rho) {
 plan::SubstepPlan make_jpgd_plan(const SimLayout& layout, const JpgdSettings& settings, vertex::VertexBuffers* ids) {
   const vertex::VertexLayout vertices = vertex::make_vertex_layout(layout);
   plan::SubstepPlan plan;
-  plan.program = "jpgd";
+  plan.program = std::string(kProgram);
   vertex::VertexBuffers b;
   sched::TaskId last = vertex::begin_vertex_plan(plan, layout, vertices, settings.substep_dt, b);
   const int n = plan.particle_count;

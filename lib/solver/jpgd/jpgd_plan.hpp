@@ -3,11 +3,16 @@
 // (Wang & Yang 2016) as a substep plan: predict, then one task per
 // iteration that moves every vertex at once (cut-able between devices with
 // one synchronisation per iteration), then the velocity update.
+#include <string_view>
+
 #include "plan/substep_plan.hpp"
 #include "solver/layout/sim_layout.hpp"
 #include "solver/vertex/vertex_plan.hpp"
 
 namespace atssim::solver::jpgd {
+
+// The embedded program its plans run: kernels/jpgd/jpgd.cl.
+inline constexpr std::string_view kProgram = "jpgd";
 
 struct JpgdSettings {
   double substep_dt = 1.0 / 960.0;

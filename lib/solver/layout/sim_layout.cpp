@@ -82,7 +82,8 @@ SimLayout make_sim_layout(const model::Model& model) {
     out.tet_blocks = blocks.offsets;
     for (int t : blocks.order) {
       if (model.tets.energy[t] == model::TetEnergy::springs) {
-        throw input_error("solids with model: springs are not simulated yet; use neo_hookean or stvk");
+        // The model stage turns spring solids into stretch springs (model/tet_builder).
+        throw internal_error("a spring solid reached the layout as tetrahedra; the model stage makes them springs");
       }
       ats_tet_c c{};
       for (int k = 0; k < 4; ++k) c.v[k] = model.tets.tets[t][k];

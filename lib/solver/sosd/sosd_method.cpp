@@ -1,11 +1,12 @@
-#include "solver/sosd/sosd_method.hpp"
-
+#include "solver/method.hpp"
 #include "solver/sosd/sosd_plan.hpp"
 #include "solver/vertex/stiffness_ratio.hpp"
 
 namespace atssim::solver::sosd {
 
 namespace {
+
+constexpr plan::TaskKind kKinds[] = {kSystems, kMainBlock, kStencils, kCombine};
 
 // springs: tet-edge springs in the stretch set (model/tet_builder.cpp).
 constexpr scene::SolidModel kSolids[] = {scene::SolidModel::neo_hookean, scene::SolidModel::stvk,
@@ -33,9 +34,15 @@ plan::SubstepPlan build(const SimLayout& layout, const MethodSettings& s) {
 
 // Hybrid: its Gauss-Seidel part is the main block's precedence in one
 // combine step per iteration; its stencil solves are Jacobi sweeps.
-const MethodDescription kDescription{
-    "sosd",  "second-order stencil descent: per-element Newton solves, Jacobi across stencils (Lan et al. 2023)",
-    false,   kOptions,
-    kSolids, build};
+// The registry's line for sosd (solver/method_registry.cpp).
+extern const MethodDescription kDescription{
+    .name = "sosd",
+    .summary = "second-order stencil descent: per-element Newton solves, Jacobi across stencils (Lan et al. 2023)",
+    .program = kProgram,
+    .kinds = kKinds,
+    .descent = true,
+    .options = kOptions,
+    .solid_models = kSolids,
+    .build = build};
 
 }  // namespace atssim::solver::sosd

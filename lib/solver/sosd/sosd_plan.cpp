@@ -32,7 +32,7 @@ plan::SubstepPlan make_sosd_plan(const SimLayout& layout, double substep_dt, int
                                  vertex::VertexBuffers* ids) {
   const vertex::VertexLayout vertices = vertex::make_vertex_layout(layout);
   plan::SubstepPlan plan;
-  plan.program = "sosd";
+  plan.program = std::string(kProgram);
   vertex::VertexBuffers b;
   sched::TaskId last = vertex::begin_vertex_plan(plan, layout, vertices, substep_dt, b);
   const int n = plan.particle_count;
@@ -74,7 +74,7 @@ plan::SubstepPlan make_sosd_plan(const SimLayout& layout, double substep_dt, int
                                  damping[1]};
     system_args.insert(system_args.end(), sc_args.begin(), sc_args.end());
     const sched::TaskId systems_task = plan.add_task_after(
-        last, plan::make_task(fmt::format("it{}/systems", it + 1), plan::TaskKind::systems, it),
+        last, plan::make_task(fmt::format("it{}/systems", it + 1), kSystems, it),
         {"sosd_vertex_systems", {0, n}, std::move(system_args), {plan::WriteSpan::per_element(systems, 4 * kFloat4)}});
     // All stencils read the same x^k and vertex systems, so a block matters
     // only as the main one: one task for it, and per kind one task for the
@@ -92,10 +92,9 @@ plan::SubstepPlan make_sosd_plan(const SimLayout& layout, double substep_dt, int
     };
     if (main.kind >= 0) {
       const int color = static_cast<int>(it % blocks.size()) - first_block[main.kind];
-      stencil_tasks.push_back(
-          plan.add_task(plan::make_task(fmt::format("it{}/main/{}/c{}", it + 1, kKinds[main.kind], color),
-                                        plan::TaskKind::main_block, it, color),
-                        {launch(main.kind, main.first, main.end)}));
+      stencil_tasks.push_back(plan.add_task(
+          plan::make_task(fmt::format("it{}/main/{}/c{}", it + 1, kKinds[main.kind], color), kMainBlock, it, color),
+          {launch(main.kind, main.first, main.end)}));
     }
     for (int kind = 0; kind < 3; ++kind) {
       if (kind_count[kind] == 0) continue;
@@ -108,12 +107,11 @@ plan::SubstepPlan make_sosd_plan(const SimLayout& layout, double substep_dt, int
       }
       if (rest.empty()) continue;
       stencil_tasks.push_back(
-          plan.add_task(plan::make_task(fmt::format("it{}/{}", it + 1, kKinds[kind]), plan::TaskKind::stencils, it),
-                        std::move(rest)));
+          plan.add_task(plan::make_task(fmt::format("it{}/{}", it + 1, kKinds[kind]), kStencils, it), std::move(rest)));
     }
     for (sched::TaskId t : stencil_tasks) plan.graph.add_edge(systems_task, t);
     const sched::TaskId combine = plan.add_task(
-        plan::make_task(fmt::format("it{}/combine", it + 1), plan::TaskKind::combine, it),
+        plan::make_task(fmt::format("it{}/combine", it + 1), kCombine, it),
         {{"sosd_combine",
           {0, n},
           {Arg::of_buffer(b.x), Arg::of_buffer(b.adjacency_offsets), Arg::of_buffer(b.adjacency), Arg::of_buffer(d[0]),

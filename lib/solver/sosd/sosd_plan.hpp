@@ -7,11 +7,25 @@
 // task in which the main block takes precedence; then the velocity update.
 // Every launch is a range over independent items, so `split` cuts them
 // between devices exactly.
+#include <string_view>
+
 #include "plan/substep_plan.hpp"
+#include "plan/task_kind.hpp"
 #include "solver/layout/sim_layout.hpp"
 #include "solver/vertex/vertex_plan.hpp"
 
 namespace atssim::solver::sosd {
+
+// The embedded program its plans run: kernels/sosd/sosd.cl.
+inline constexpr std::string_view kProgram = "sosd";
+
+// SOSD's task kinds (all of one iteration read the same x^k: no chain).
+inline constexpr plan::TaskKind kSystems{{"systems", false, false, true}};  // per-vertex force and Hessian block
+inline constexpr plan::TaskKind kMainBlock{{"main", false, false, false}};  // the iteration's main stencil block
+inline constexpr plan::TaskKind kStencils{
+    {"stencils", false, false, false}};  // the Jacobi stencil solves of one element kind
+inline constexpr plan::TaskKind kCombine{
+    {"combine", false, false, true}};  // the stencils' displacements combined per vertex
 
 // The stencil blocks in the order the main Gauss-Seidel block rotates
 // through them: stretch colors, bending colors, tetrahedron colors.

@@ -12,7 +12,7 @@ plan::SubstepPlan make_vbd_plan(const SimLayout& layout, double substep_dt, int 
                                 vertex::VertexBuffers* ids) {
   const vertex::VertexLayout vertices = vertex::make_vertex_layout(layout);
   plan::SubstepPlan plan;
-  plan.program = "vbd";
+  plan.program = std::string(kProgram);
   vertex::VertexBuffers b;
   sched::TaskId last = vertex::begin_vertex_plan(plan, layout, vertices, substep_dt, b);
   const double hi = inertia_dt(layout, substep_dt);  // air drag weighs the inertia (sim_layout.hpp)
@@ -65,7 +65,7 @@ plan::SubstepPlan make_vbd_plan(const SimLayout& layout, double substep_dt, int 
       args.push_back(Arg::of_buffer(x_iter));
       args.push_back(Arg::of_buffer(color));
       last = plan.add_task_after(
-          last, plan::make_task(fmt::format("it{}/vertex/c{}", it + 1, c), plan::TaskKind::vertex, it, c),
+          last, plan::make_task(fmt::format("it{}/vertex/c{}", it + 1, c), kVertex, it, c),
           {"vbd_solve", {first, count}, std::move(args), {plan::WriteSpan::per_index(b.x, kParticleBytes, 1, order)}});
     }
     last = add_ground_task(plan, last, layout, b.x, it);

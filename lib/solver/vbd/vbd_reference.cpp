@@ -11,6 +11,7 @@
 
 // The kernels' particle type is float4; here the layout's own (same fields).
 #define ats_float4 ::atssim::solver::Float4
+#include "common/particle_step.h"
 #include "common/vertex_solve.h"
 #include "common/vertex_system.h"
 
@@ -74,23 +75,11 @@ void VbdReference::predict() {
   const float damp = velocity_damping(layout_, substep_dt_);
   const Float4 g = layout_.gravity;
   sweep(0, static_cast<int>(layout_.x.size()), [&](int i) {
-    Float4& p = layout_.x[i];
-    Float4& v = layout_.v[i];
-    x_prev_[i] = p;
-    if (p.w != 0.0f) {
-      v.x += dt * g.x;
-      v.y += dt * g.y;
-      v.z += dt * g.z;
-      v.x *= damp;
-      v.y *= damp;
-      v.z *= damp;
-      p.x += dt * v.x;
-      p.y += dt * v.y;
-      p.z += dt * v.z;
-    } else {
-      v = {};
-    }
-    x_tilde_[i] = p;
+    x_prev_[i] = layout_.x[i];
+    const ats_particle_state s = ats_predicted(layout_.x[i], layout_.v[i], dt, g.x, g.y, g.z, damp);
+    layout_.x[i] = s.x;
+    layout_.v[i] = s.v;
+    x_tilde_[i] = s.x;
   });
 }
 
@@ -123,21 +112,16 @@ void VbdReference::solve_color(int color) {
 
 // particles_ground (kernels/common/particle_steps.cl).
 void VbdReference::project_ground() {
-  sweep(0, static_cast<int>(layout_.x.size()), [&](int i) {
-    Float4& p = layout_.x[i];
-    if (p.w > 0.0f && p.y < layout_.ground_y) p.y = layout_.ground_y;
-  });
+  sweep(0, static_cast<int>(layout_.x.size()),
+        [&](int i) { layout_.x[i] = ats_above_ground(layout_.x[i], layout_.ground_y); });
 }
 
 // particles_update_velocity (kernels/common/particle_steps.cl), with the
 // plan's 1/h rounded from double.
 void VbdReference::update_velocity() {
   const float inv_dt = static_cast<float>(1.0 / substep_dt_);
-  sweep(0, static_cast<int>(layout_.x.size()), [&](int i) {
-    const Float4& p = layout_.x[i];
-    const Float4& q = x_prev_[i];
-    layout_.v[i] = {(p.x - q.x) * inv_dt, (p.y - q.y) * inv_dt, (p.z - q.z) * inv_dt, 0.0f};
-  });
+  sweep(0, static_cast<int>(layout_.x.size()),
+        [&](int i) { layout_.v[i] = ats_velocity_update(layout_.x[i], x_prev_[i], inv_dt); });
 }
 
 }  // namespace atssim::solver::vbd

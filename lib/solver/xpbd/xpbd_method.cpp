@@ -1,10 +1,11 @@
-#include "solver/xpbd/xpbd_method.hpp"
-
+#include "solver/method.hpp"
 #include "solver/xpbd/xpbd_plan.hpp"
 
 namespace atssim::solver::xpbd {
 
 namespace {
+
+constexpr plan::TaskKind kKinds[] = {kStretch, kBend, kTet};
 
 // The strain constraints (common/xpbd_tet.h) minimise the StVK energy only.
 // springs: tet-edge springs in the stretch set (model/tet_builder.cpp).
@@ -25,9 +26,15 @@ plan::SubstepPlan build(const SimLayout& layout, const MethodSettings& s) {
 
 }  // namespace
 
-const MethodDescription kDescription{
-    "xpbd",  "extended position-based dynamics: Gauss-Seidel over constraint color blocks (Macklin et al. 2016)",
-    true,    kOptions,
-    kSolids, build};
+// The registry's line for xpbd (solver/method_registry.cpp).
+extern const MethodDescription kDescription{
+    .name = "xpbd",
+    .summary = "extended position-based dynamics: Gauss-Seidel over constraint color blocks (Macklin et al. 2016)",
+    .program = kProgram,
+    .kinds = kKinds,
+    .gauss_seidel = true,
+    .options = kOptions,
+    .solid_models = kSolids,
+    .build = build};
 
 }  // namespace atssim::solver::xpbd

@@ -22,8 +22,8 @@ using Arg = plan::KernelArg;
 // Each writes its elements' particles and its multipliers (`lambda_bytes`
 // per element).
 sched::TaskId add_blocks(plan::SubstepPlan& plan, sched::TaskId last, const std::vector<int>& blocks,
-                         plan::TaskKind kind, const std::string& function, plan::BufferId x, plan::BufferId elements,
-                         plan::BufferId lambda, float dt, int iteration,
+                         const plan::TaskKind& kind, const std::string& function, plan::BufferId x,
+                         plan::BufferId elements, plan::BufferId lambda, float dt, int iteration,
                          const std::shared_ptr<const std::vector<std::int32_t>>& particles, int arity,
                          std::uint32_t lambda_bytes, const std::vector<Arg>& extra = {}) {
   for (int b = 0; b + 1 < static_cast<int>(blocks.size()); ++b) {
@@ -44,7 +44,7 @@ sched::TaskId add_blocks(plan::SubstepPlan& plan, sched::TaskId last, const std:
 // solver.ordering: batches. One task sweeps the whole padded set batch after
 // batch in one work-item (range {0, 1}); `extra` as for add_blocks, then the
 // batch count and the particle count (a lane at or past it is the dummy).
-sched::TaskId add_batch_sweep(plan::SubstepPlan& plan, sched::TaskId last, int batches, plan::TaskKind kind,
+sched::TaskId add_batch_sweep(plan::SubstepPlan& plan, sched::TaskId last, int batches, const plan::TaskKind& kind,
                               const std::string& function, plan::BufferId x, plan::BufferId elements,
                               plan::BufferId lambda, float dt, int iteration, const std::vector<Arg>& extra = {}) {
   const std::string name = fmt::format("it{}/{}/batches", iteration + 1, plan::to_string(kind));
@@ -66,7 +66,7 @@ void check_tets_are_stvk(const SimLayout& layout) {
       throw input_error(
           "solver.method xpbd simulates solids with material model: stvk only (its strain "
           "constraints are the StVK energy); set the solid's material.model to stvk, or use "
-          "solver.method vbd, sosd or jpgd for neo_hookean");
+          "another solver.method for neo_hookean (atssim methods lists the models each simulates)");
     }
   }
 }
@@ -75,7 +75,7 @@ void check_tets_are_stvk(const SimLayout& layout) {
 
 plan::SubstepPlan make_xpbd_plan(const SimLayout& layout, const XpbdSettings& settings, XpbdBuffers* ids) {
   plan::SubstepPlan plan;
-  plan.program = "xpbd";
+  plan.program = std::string(kProgram);
   plan.particle_count = static_cast<int>(layout.x.size());
   XpbdBuffers b;
   using plan::BufferRole;
@@ -129,22 +129,22 @@ plan::SubstepPlan make_xpbd_plan(const SimLayout& layout, const XpbdSettings& se
   const auto tet_particles = particles_of(layout.tets);
   for (int it = 0; it < settings.iterations; ++it) {
     if (b.stretch >= 0 && batched) {
-      last = add_batch_sweep(plan, last, stretch_batches.batches(), plan::TaskKind::stretch, "xpbd_stretch_batches",
-                             b.x, b.stretch, b.stretch_lambda, dt, it, spring_damping);
+      last = add_batch_sweep(plan, last, stretch_batches.batches(), kStretch, "xpbd_stretch_batches", b.x, b.stretch,
+                             b.stretch_lambda, dt, it, spring_damping);
     } else if (b.stretch >= 0) {
-      last = add_blocks(plan, last, layout.stretch_blocks, plan::TaskKind::stretch, "xpbd_stretch", b.x, b.stretch,
-                        b.stretch_lambda, dt, it, stretch_particles, 2, sizeof(float), spring_damping);
+      last = add_blocks(plan, last, layout.stretch_blocks, kStretch, "xpbd_stretch", b.x, b.stretch, b.stretch_lambda,
+                        dt, it, stretch_particles, 2, sizeof(float), spring_damping);
     }
     if (b.bend >= 0 && batched) {
-      last = add_batch_sweep(plan, last, bend_batches.batches(), plan::TaskKind::bend, "xpbd_bend_batches", b.x, b.bend,
-                             b.bend_lambda, dt, it);
+      last = add_batch_sweep(plan, last, bend_batches.batches(), kBend, "xpbd_bend_batches", b.x, b.bend, b.bend_lambda,
+                             dt, it);
     } else if (b.bend >= 0) {
-      last = add_blocks(plan, last, layout.bend_blocks, plan::TaskKind::bend, "xpbd_bend", b.x, b.bend, b.bend_lambda,
-                        dt, it, bend_particles, 4, 4 * sizeof(float));
+      last = add_blocks(plan, last, layout.bend_blocks, kBend, "xpbd_bend", b.x, b.bend, b.bend_lambda, dt, it,
+                        bend_particles, 4, 4 * sizeof(float));
     }
     if (b.tet >= 0) {
-      last = add_blocks(plan, last, layout.tet_blocks, plan::TaskKind::tet, "xpbd_tet", b.x, b.tet, b.tet_lambda, dt,
-                        it, tet_particles, 4, ATS_TET_LAMBDA_STRIDE * sizeof(float));
+      last = add_blocks(plan, last, layout.tet_blocks, kTet, "xpbd_tet", b.x, b.tet, b.tet_lambda, dt, it,
+                        tet_particles, 4, ATS_TET_LAMBDA_STRIDE * sizeof(float));
     }
     last = add_self_contact_projection(plan, last, layout, sc, b.x_prev, b.x, it);
     last = add_ground_task(plan, last, layout, b.x, it);

@@ -3,11 +3,23 @@
 // predict -> per iteration: stretch color blocks (or batches), then bending color blocks,
 // then tetrahedron (StVK strain) color blocks, in Gauss-Seidel order ->
 // update velocity. Only the element sets the model has produce tasks.
+#include <string_view>
+
 #include "model/model.hpp"
 #include "plan/substep_plan.hpp"
+#include "plan/task_kind.hpp"
 #include "solver/layout/sim_layout.hpp"
 
 namespace atssim::solver::xpbd {
+
+// The embedded program its plans run: kernels/xpbd/xpbd.cl.
+inline constexpr std::string_view kProgram = "xpbd";
+
+// XPBD's task kinds: color blocks (or batch sweeps) of constraints, each kind
+// a Gauss-Seidel chain.
+inline constexpr plan::TaskKind kStretch{{"stretch", true, false, false}};  // distance constraints
+inline constexpr plan::TaskKind kBend{{"bend", true, false, false}};        // bending constraints
+inline constexpr plan::TaskKind kTet{{"tet", true, false, false}};          // tetrahedra (StVK strain)
 
 // The order of the stretch and bending constraints (solver.ordering):
 // colors = one task per color block, the blocks one after another;

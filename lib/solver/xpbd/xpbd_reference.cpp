@@ -8,10 +8,14 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "util/error.hpp"
+
+// The kernels' particle type is float4; here the layout's own (same fields).
+#define ats_float4 ::atssim::solver::Float4
+#include "common/particle_step.h"
 #include "common/xpbd_bending.h"
 #include "common/xpbd_distance.h"
 #include "common/xpbd_tet.h"
-#include "util/error.hpp"
 
 namespace atssim::solver::xpbd {
 
@@ -87,27 +91,16 @@ void XpbdReference::substep_here() {
   update_velocity();
 }
 
+// xpbd_predict (kernels/xpbd/xpbd.cl), with make_xpbd_plan's arguments.
 void XpbdReference::predict() {
   const float dt = static_cast<float>(settings_.substep_dt);
   const float damp = velocity_damping(layout_, settings_.substep_dt);
   const Float4 g = layout_.gravity;
   sweep(0, static_cast<int>(layout_.x.size()), [&](int i) {
-    Float4& p = layout_.x[i];
-    Float4& v = layout_.v[i];
-    x_prev_[i] = p;
-    if (p.w == 0.0f) {
-      v = {};
-      return;
-    }
-    v.x += dt * g.x;
-    v.y += dt * g.y;
-    v.z += dt * g.z;
-    v.x *= damp;
-    v.y *= damp;
-    v.z *= damp;
-    p.x += dt * v.x;
-    p.y += dt * v.y;
-    p.z += dt * v.z;
+    x_prev_[i] = layout_.x[i];
+    const ats_particle_state s = ats_predicted(layout_.x[i], layout_.v[i], dt, g.x, g.y, g.z, damp);
+    layout_.x[i] = s.x;
+    layout_.v[i] = s.v;
   });
 }
 
@@ -192,20 +185,17 @@ void XpbdReference::solve_tets(bool reset) {
   }
 }
 
+// particles_ground (kernels/common/particle_steps.cl).
 void XpbdReference::project_ground() {
-  sweep(0, static_cast<int>(layout_.x.size()), [&](int i) {
-    Float4& p = layout_.x[i];
-    if (p.w > 0.0f && p.y < layout_.ground_y) p.y = layout_.ground_y;
-  });
+  sweep(0, static_cast<int>(layout_.x.size()),
+        [&](int i) { layout_.x[i] = ats_above_ground(layout_.x[i], layout_.ground_y); });
 }
 
+// particles_update_velocity, with make_xpbd_plan's 1/h (rounded in float).
 void XpbdReference::update_velocity() {
   const float inv_dt = 1.0f / static_cast<float>(settings_.substep_dt);
-  sweep(0, static_cast<int>(layout_.x.size()), [&](int i) {
-    const Float4& p = layout_.x[i];
-    const Float4& q = x_prev_[i];
-    layout_.v[i] = {(p.x - q.x) * inv_dt, (p.y - q.y) * inv_dt, (p.z - q.z) * inv_dt, 0.0f};
-  });
+  sweep(0, static_cast<int>(layout_.x.size()),
+        [&](int i) { layout_.v[i] = ats_velocity_update(layout_.x[i], x_prev_[i], inv_dt); });
 }
 
 double XpbdReference::residual_rms() const {

@@ -44,11 +44,11 @@ TEST_CASE("an SOSD iteration is vertex systems, the main block beside the Jacobi
   const auto layout = make_sim_layout(m);
   const auto plan = sosd::make_sosd_plan(layout, 1.0 / 240.0, iterations);
   const auto blocks = sosd::stencil_blocks(layout);
-  const auto systems = plan.tasks_of(plan::TaskKind::systems);
-  const auto combines = plan.tasks_of(plan::TaskKind::combine);
+  const auto systems = plan.tasks_of(solver::sosd::kSystems);
+  const auto combines = plan.tasks_of(solver::sosd::kCombine);
   REQUIRE(systems.size() == std::size_t(iterations));
   REQUIRE(combines.size() == std::size_t(iterations));
-  CHECK(plan.tasks_of(plan::TaskKind::main_block).size() == std::size_t(iterations));
+  CHECK(plan.tasks_of(solver::sosd::kMainBlock).size() == std::size_t(iterations));
   const int counts[2] = {static_cast<int>(layout.stretch.size()), static_cast<int>(layout.bend.size())};
   for (int it = 0; it < iterations; ++it) {
     // The stencil tasks of one iteration follow its systems task only and all
@@ -58,7 +58,7 @@ TEST_CASE("an SOSD iteration is vertex systems, the main block beside the Jacobi
     for (sched::TaskId t = 0; t < plan.graph.size(); ++t) {
       const auto& task = plan.graph.task(t);
       const plan::TaskKind k = plan::kind_of(task);
-      if (task.iteration != it || (k != plan::TaskKind::stencils && k != plan::TaskKind::main_block)) continue;
+      if (task.iteration != it || (k != solver::sosd::kStencils && k != solver::sosd::kMainBlock)) continue;
       REQUIRE(plan.graph.predecessors(t).size() == 1);
       CHECK(plan.graph.predecessors(t).front().from == systems[it]);
       REQUIRE(plan.graph.successors(t).size() == 1);
@@ -68,7 +68,7 @@ TEST_CASE("an SOSD iteration is vertex systems, the main block beside the Jacobi
         REQUIRE((l.function == "sosd_stretch" || l.function == "sosd_bend"));
         const int first = l.range.first, count = l.range.count;
         for (int e = first; e < first + count; ++e) ++solved[kind][e];
-        if (k == plan::TaskKind::main_block) {  // the iteration's main block, rotating through the blocks
+        if (k == solver::sosd::kMainBlock) {  // the iteration's main block, rotating through the blocks
           const auto& b = blocks[it % blocks.size()];
           CHECK(b.kind == kind);
           CHECK(first == b.first);
@@ -82,6 +82,6 @@ TEST_CASE("an SOSD iteration is vertex systems, the main block beside the Jacobi
   }
   // Every task but the Jacobi rest of the main block's kind has one launch: split may cut it.
   for (sched::TaskId t = 0; t < plan.graph.size(); ++t) {
-    if (plan::kind_of(plan.graph.task(t)) != plan::TaskKind::stencils) CHECK(plan.launches[t].size() == 1);
+    if (plan::kind_of(plan.graph.task(t)) != solver::sosd::kStencils) CHECK(plan.launches[t].size() == 1);
   }
 }

@@ -79,10 +79,10 @@ TEST_CASE("the batches plan: one stretch and one bending sweep per iteration, fo
   const int iterations = 3;
   XpbdBuffers ids;
   const auto plan = make_xpbd_plan(layout, {1.0 / 240.0, iterations, XpbdOrdering::batches}, &ids);
-  CHECK(plan.tasks_of(plan::TaskKind::stretch).size() == std::size_t(iterations));
-  CHECK(plan.tasks_of(plan::TaskKind::bend).size() == std::size_t(iterations));
+  CHECK(plan.tasks_of(solver::xpbd::kStretch).size() == std::size_t(iterations));
+  CHECK(plan.tasks_of(solver::xpbd::kBend).size() == std::size_t(iterations));
   CHECK(plan.graph.size() == std::size_t(2 + 2 * iterations));
-  for (sched::TaskId t : plan.tasks_of(plan::TaskKind::stretch)) {
+  for (sched::TaskId t : plan.tasks_of(solver::xpbd::kStretch)) {
     REQUIRE(plan.launches[t].size() == 1);
     CHECK(plan.launches[t][0].function == "xpbd_stretch_batches");
     CHECK(plan.launches[t][0].range.count == 1);  // one work-item sweeps the set

@@ -21,8 +21,8 @@ plan::SubstepPlan plan_for(double stretch, double bend, int iterations) {
 
 TEST_CASE("a scene with bending stiffness 0 has no bending task") {
   const auto plan = plan_for(1e4, 0.0, 4);
-  CHECK(plan.tasks_of(plan::TaskKind::bend).empty());
-  CHECK_FALSE(plan.tasks_of(plan::TaskKind::stretch).empty());
+  CHECK(plan.tasks_of(solver::xpbd::kBend).empty());
+  CHECK_FALSE(plan.tasks_of(solver::xpbd::kStretch).empty());
   for (const auto& b : plan.buffers) CHECK(b.name.find("bend") == std::string::npos);
 }
 
@@ -34,8 +34,8 @@ TEST_CASE("the XPBD substep graph is predict, iterations of color blocks, update
   const int stretch_blocks = static_cast<int>(layout.stretch_blocks.size()) - 1;
   const int bend_blocks = static_cast<int>(layout.bend_blocks.size()) - 1;
   CHECK(plan.graph.size() == std::size_t(2 + iterations * (stretch_blocks + bend_blocks)));
-  CHECK(plan.tasks_of(plan::TaskKind::stretch).size() == std::size_t(iterations * stretch_blocks));
-  CHECK(plan.tasks_of(plan::TaskKind::bend).size() == std::size_t(iterations * bend_blocks));
+  CHECK(plan.tasks_of(solver::xpbd::kStretch).size() == std::size_t(iterations * stretch_blocks));
+  CHECK(plan.tasks_of(solver::xpbd::kBend).size() == std::size_t(iterations * bend_blocks));
   // A Gauss-Seidel chain: the topological order is unique and starts/ends right.
   const auto order = plan.graph.topological_order();
   CHECK(plan::kind_of(plan.graph.task(order.front())) == plan::TaskKind::predict);
