@@ -6,7 +6,6 @@
 #ifndef ATS_SELF_CONTACT_TERMS_H
 #define ATS_SELF_CONTACT_TERMS_H
 
-
 /* A pair's Hessian block of vertex i in its solve: k w_i^2 n n^T, times
  * SC_SPREAD (1 but in SOSD's, below). */
 #define SC_VERTEX_TERMS_BODY                                                                        \

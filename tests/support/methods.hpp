@@ -95,7 +95,6 @@ inline std::string cloth_and_box_yaml(const std::string& method, int resolution)
          method + "}\n";
 }
 
-
 // Every method's name; with `keep`, those it accepts (issue 26's form of
 // methods_where).
 template <typename Keep>
