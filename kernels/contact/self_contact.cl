@@ -135,6 +135,13 @@ static inline float4 sc_out_of_colliders(float4 p, __global const ats_collider_c
   return p;
 }
 
+/* Whether sc_apply moved the vertex: only a move it made can have taken it
+ * into a collider (the clamp and the colliders' own tasks held it out
+ * before), and a mesh collider's distance is a tree walk, too dear for
+ * every vertex of every iteration (XPBD applies its surface projection
+ * after each; most vertices have no pair to move them). */
+static inline int sc_moved(float4 a, float4 b) { return a.x != b.x || a.y != b.y || a.z != b.z; }
+
 static inline float4 sc_bounded(float4 p, float4 q, float b) {
   const float4 d = (float4)(p.x - q.x, p.y - q.y, p.z - q.z, 0.0f);
   const float len = length(d);
@@ -239,7 +246,8 @@ ATS_TASK void sc_project(int i, __global const float4* x, __global float4* x_out
 
 ATS_TASK void sc_apply(int i, __global float4* x, __global const float4* x_out, __global const float4* x_start,
                        __global const float* bound, __global const ats_collider_c* colliders, int collider_count) {
-  x[i] = sc_out_of_colliders(sc_bounded(x_out[i], x_start[i], bound[i]), colliders, collider_count, 1);
+  const float4 q = sc_bounded(x_out[i], x_start[i], bound[i]);
+  x[i] = sc_out_of_colliders(q, colliders, collider_count, sc_moved(q, x[i]));
 }
 
 /* Coulomb friction of every pair of vertex i in contact (d < 1.01 r), after
