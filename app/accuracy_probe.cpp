@@ -187,7 +187,7 @@ struct AccuracyProbe::Impl {
     if (!ms_per_us.empty()) return;
     const plan::SubstepPlan plan = build(*methods.front(), std::min(8, scene.simulation.iterations));
     device::PlanExecutor probe(devices, plan, calibration);
-    const sched::CostTable measured = probe.profile(3);
+    const sched::CostTable measured = profile(probe, 3);
     const std::size_t n = devices.size();
     std::vector<double> scale(n, 1e-3);
     for (std::size_t d = 0; d < n; ++d) {

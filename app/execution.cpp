@@ -35,14 +35,6 @@ sched::DeviceLinks measure_links(device::PlanExecutor& executor) {
   return links;
 }
 
-// Pre-profiling: the executor runs and reports, sched::ProfileCosts prices.
-sched::CostTable profile(device::PlanExecutor& executor, int repetitions) {
-  const sched::ProfileOptions options;
-  sched::ProfileCosts costs(executor.plan().graph.size(), executor.device_count(), options);
-  executor.profile(options.warmup + repetitions, costs);
-  return costs.costs();
-}
-
 void make_schedule(Execution& e, const ExecutionOptions& options, bool choose_devices) {
   const auto& graph = e.plan().graph;
   if (e.mode == ScheduleMode::async && options.replay) return;  // the replay order is fixed
@@ -98,6 +90,13 @@ Execution prepare_async(const device::DeviceSet& devices, const plan::SubstepPla
 }
 
 }  // namespace
+
+sched::CostTable profile(device::PlanExecutor& executor, int repetitions) {
+  const sched::ProfileOptions options;
+  sched::ProfileCosts costs(executor.plan().graph.size(), executor.device_count(), options);
+  executor.profile(options.warmup + repetitions, costs);
+  return costs.costs();
+}
 
 ScheduleMode parse_schedule_mode(const std::string& text) {
   if (text == "single") return ScheduleMode::single;

@@ -73,6 +73,10 @@ struct Execution {
   const plan::SubstepPlan& plan() const { return executor->plan(); }
 };
 
+// Pre-profiling: the executor runs `repetitions` substeps after the warm-up
+// and reports each task's time; sched::ProfileCosts prices them.
+sched::CostTable profile(device::PlanExecutor& executor, int repetitions);
+
 // Builds, profiles and schedules (the executor ends up owning the plan, so
 // pass it moved when it is not needed afterwards). Throws atssim::Error
 // (input) when the mode needs more devices than the set has.

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
+#include "app/execution.hpp"
 #include "app/scene_checks.hpp"
 #include "app/simulation.hpp"
 #include "device/plan_executor.hpp"
@@ -37,7 +38,7 @@ int main(int argc, char** argv) {
     settings.iterations = iterations;
     const device::DeviceSet devices = app::open_scene_devices(scene);
     device::PlanExecutor executor(devices, method.build(solver::make_sim_layout(model::build_model(scene)), settings));
-    const sched::CostTable costs = executor.profile(repetitions);
+    const sched::CostTable costs = app::profile(executor, repetitions);
     const plan::SubstepPlan& p = executor.plan();
     struct Row {
       int tasks = 0;

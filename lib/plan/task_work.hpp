@@ -25,7 +25,7 @@ struct WorkWeights {
 
 // Microseconds per element (or particle) of a launch of `kind` on the
 // reference device.
-double work_per_item_us(TaskKind kind);
+double work_per_item_us(const TaskKind& kind);
 
 // The modelled cost of task `task` of `plan`: task_us + items × weight.
 double task_work_us(const SubstepPlan& plan, sched::TaskId task, const WorkWeights& weights = {});

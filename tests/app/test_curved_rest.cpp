@@ -50,7 +50,7 @@ struct Run {
 std::vector<std::string> methods_taking_mesh(const test::ObjMesh& mesh, const std::string& gravity, double y) {
   test::TempDir dir;
   dir.write("mesh.obj", mesh.obj_text());
-  return test::methods_taking(mesh_scene("mesh.obj", gravity, 1, "auto", y, 0.01), {}, dir.path().string());
+  return test::methods_taking(mesh_scene("mesh.obj", gravity, 1, "auto", y, 0.01, 1), {}, dir.path().string());
 }
 
 // bend_stiffness 0: no elastic element at all (free particles).
