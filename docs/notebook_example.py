@@ -108,8 +108,10 @@ for new in atssim.follow_frames(work / "live.h5", interval=0.1):
     last = new.first + len(new.time)
     seen.append((last, float(new.positions[-1, :, 1].min())))  # frames so far, lowest point of the newest
     retried += new.retries
-    complete = new.complete
 proc.wait()
+# follow_frames ends once the run has ended and every frame was yielded; the
+# read that sees the end may bring no new frame, so ask the file itself.
+complete = atssim.read_frames(work / "live.h5", seen[-1][0] if seen else 0).complete
 print(f"{retried} reads caught the writer mid-flush and were retried inside read_frames")
 print(f"read {len(seen)} growing states while the run wrote; complete afterwards: {complete}")
 ax = axes[1, 1]

@@ -135,11 +135,10 @@ static inline float4 sc_out_of_colliders(float4 p, __global const ats_collider_c
   return p;
 }
 
-/* Whether sc_apply moved the vertex: only a move it made can have taken it
- * into a collider (the clamp and the colliders' own tasks held it out
- * before), and a mesh collider's distance is a tree walk, too dear for
- * every vertex of every iteration (XPBD applies its surface projection
- * after each; most vertices have no pair to move them). */
+/* Whether sc_apply (the friction's write-back) moved the vertex: only a move
+ * it made can have taken it into a collider (the clamp and the colliders'
+ * own tasks held it out before), and a mesh collider's distance is a tree
+ * walk, too dear for every vertex when most have no pair to move them. */
 static inline int sc_moved(float4 a, float4 b) { return a.x != b.x || a.y != b.y || a.z != b.z; }
 
 static inline float4 sc_bounded(float4 p, float4 q, float b) {

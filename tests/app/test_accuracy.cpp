@@ -194,15 +194,15 @@ double vbd_substep_us(const SceneCase& c, int iterations) {
 
 }  // namespace
 
-TEST_CASE("--tolerance 1e-2 holds at every re-check of the hanging cloth, measured by converge", "[accuracy]") {
+TEST_CASE("run --tolerance 1e-2 holds at every re-check of the hanging cloth, measured by converge", "[accuracy]") {
   check_tolerance_holds(small_hanging_cloth());
 }
 
-TEST_CASE("--tolerance 1e-2 holds at every re-check of the drape, measured by converge", "[accuracy]") {
+TEST_CASE("run --tolerance 1e-2 holds at every re-check of the drape, measured by converge", "[accuracy]") {
   check_tolerance_holds(small_drape());
 }
 
-TEST_CASE("--tolerance 1e-2 holds at every re-check of the soft box, measured by converge", "[accuracy]") {
+TEST_CASE("run --tolerance 1e-2 holds at every re-check of the soft box, measured by converge", "[accuracy]") {
   check_tolerance_holds(small_box());
 }
 
