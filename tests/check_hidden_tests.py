@@ -3,6 +3,9 @@
 ctest never runs) without a comment in the five lines above its tags naming
 the issue of the project that will un-hide it ("issue #N"). A known failure
 is an expected failure ("[!shouldfail]", run and counted), not hidden.
+Also fails on a test whose name starts with '-': ctest passes the name to
+the binary as its filter, and Catch2 takes it for an option (the test then
+runs nothing).
 
 usage: tests/check_hidden_tests.py TESTS_DIR"""
 import pathlib
@@ -11,6 +14,7 @@ import sys
 
 HIDDEN = re.compile(r'"[^"\n]*\[(\.|!hide)[^"\n]*"')
 ISSUE = re.compile(r"issue #\d+")
+DASH = re.compile(r'TEST_CASE\(\s*"-')
 
 
 def main() -> int:
@@ -24,9 +28,11 @@ def main() -> int:
         for k, line in enumerate(lines):
             if HIDDEN.search(line) and not any(ISSUE.search(l) for l in lines[max(0, k - 5):k + 1]):
                 bad.append(f"{src}:{k + 1}: hidden test without a comment naming the issue that will un-hide it")
+            if DASH.search(line):
+                bad.append(f"{src}:{k + 1}: a test name starting with '-' (Catch2 takes the ctest filter for an option)")
     for b in bad:
         print(b)
-    print(f"{len(bad)} hidden tests without an issue")
+    print(f"{len(bad)} hidden tests without an issue or names taken for options")
     return 1 if bad else 0
 
 
