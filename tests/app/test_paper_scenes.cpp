@@ -272,18 +272,10 @@ TEST_CASE("the collider checker measures a box turned by keyframes and the insid
 
 namespace {
 
-// One test case per scene (each its own ctest entry): every method, single and heft.
-void check_methods(const std::string& name, std::initializer_list<const char*> methods) {
-  for (const char* method : methods) {
-    for (const char* schedule : {"single", "heft"}) check_scene(name, method, schedule);
-  }
-}
-
-// Every method with contact on one device, and one method (a different one
-// per scene) under HEFT on the two sub-devices: with contact every method
-// gives the same bits on one device and cut over two
-// (tests/app/test_self_contact.cpp), so the other HEFT runs would repeat the
-// single runs' checks, at two to three times their cost (issue 24: CI time).
+// One test case per scene (each its own ctest entry). Every method with contact on one device, and one method (a
+// different one per scene) under HEFT on the two sub-devices: with contact every method gives the same bits on one
+// device and cut over two (tests/app/test_self_contact.cpp), so the other HEFT runs would repeat the single runs'
+// checks, at two to three times their cost (issue 24: CI time).
 void check_every_method(const std::string& name, const char* heft_method) {
   for (const std::string& method :
        test::methods_where([](const solver::MethodDescription& m) { return m.colliders; })) {
