@@ -2,7 +2,7 @@
  * collision detection at the start of every substep, on x_t (Chen et al.
  * 2024, VBD §3.7), as tasks that range over independent elements:
  *   sc_motion, sc_decide_detection: whether the lists made earlier still
- *     serve (relative motion, common/self_contact_bvh.h sc_decide);
+ *     serve (relative motion, common/self_contact_lists.h sc_decide);
  *   sc_leaf_boxes, sc_refit_level, sc_refit_top: refit the BVH over the
  *     surface triangles (built once on the host, solver/layout/
  *     self_contact_layout), one task per level up to the small top levels;
@@ -29,10 +29,10 @@
 #include "common/ats_math.h"
 #include "common/collider_distance.h"
 #include "common/self_contact.h"
-#include "common/self_contact_bvh.h"
+#include "common/self_contact_lists.h"
 #include "common/task.h"
 
-/* state: the frame_state of common/self_contact_bvh.h (sc_decide); the
+/* state: the frame_state of common/self_contact_lists.h (sc_decide); the
  * detection tasks do nothing in a substep that keeps the lists. */
 ATS_TASK void sc_leaf_boxes(int t, __global const float4* x, __global const int4* tris, __global float4* nodes,
                             __global const int* state) {
@@ -80,7 +80,7 @@ ATS_TASK void sc_query_groups(int g, __global const float4* x, __global const in
                    root, as_float(state[2]), vt, tv, ee);
 }
 
-/* Once per substep, after the lists (common/self_contact_bvh.h): every
+/* Once per substep, after the lists (common/self_contact_lists.h): every
  * listed pair's distance at x_t, per vertex, triangle and edge list; then
  * the bound (below) and the near lists the iterations and friction read. */
 ATS_TASK void sc_vertex_distances_task(int i, __global const float4* x, __global const int4* tris,
@@ -208,7 +208,7 @@ ATS_TASK void sc_clamp(int i, __global float4* x, __global const float4* x_start
   }
 
 /* VBD's conservative displacement bound of vertex i (§3.7), from the
- * distances above (common/self_contact_bvh.h sc_vertex_bound). */
+ * distances above (common/self_contact_lists.h sc_vertex_bound). */
 ATS_TASK void sc_bound(int i, __global const int* inc, int n, __global const int* vt, __global const int* tv,
                        __global const int* ee, __global const float* vt_d, __global const float* tv_d,
                        __global const float* ee_d, __global const int* state, float gamma, __global float* bound) {

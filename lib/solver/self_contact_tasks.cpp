@@ -10,7 +10,7 @@
 #include "solver/layout/particle_tables.hpp"
 
 #define ats_float4 ::atssim::solver::Float4
-#include "common/self_contact_bvh.h"
+#include "common/self_contact_lists.h"
 
 namespace atssim::solver {
 
@@ -71,7 +71,7 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
   const int n = static_cast<int>(layout.x.size());
   const int tris = static_cast<int>(s.tris.size());
   const auto detect = [](const std::string& name) { return plan::make_task(name, plan::TaskKind::detection); };
-  // Whether this substep rebuilds the lists (common/self_contact_bvh.h
+  // Whether this substep rebuilds the lists (common/self_contact_lists.h
   // sc_decide): the displacement since they were made and the predicted
   // step, per block, then one work-item decides; the rebuild's tasks do
   // nothing in a substep that keeps them.
@@ -148,7 +148,7 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
         WriteSpan::per_index(b.ee, kListInts * 4, 3 * ATS_SC_GROUP, owned(4, 3))}});
   // Every listed pair's distance at x_t once (each list's entries), then
   // the bound per vertex from them, then the entries the iterations can meet
-  // (common/self_contact_bvh.h sc_near_vertex): a list holds up to 8 pairs
+  // (common/self_contact_lists.h sc_near_vertex): a list holds up to 8 pairs
   // within the query radius, a few of which come within the thickness in one
   // substep.
   const int edges = static_cast<int>(s.edges.size());

@@ -19,7 +19,7 @@ struct SelfContactBuffers {
   plan::BufferId tris = -1, edges = -1, leaves = -1, nodes = -1, levels = -1, incidence = -1, vt = -1, tv = -1, ee = -1,
                  bound = -1, x_out = -1,  // x_out: XPBD's projection
       motion = -1,             // per block the boxes of the displacements since x_det and of the predicted steps
-      x_det = -1, state = -1,  // where the lists were made; whether they serve (common/self_contact_bvh.h)
+      x_det = -1, state = -1,  // where the lists were made; whether they serve (common/self_contact_lists.h)
       vt_d = -1, tv_d = -1, ee_d = -1,           // the listed pairs' distances at x_t
       vt_near = -1, tv_near = -1, ee_near = -1,  // the entries that can come within the thickness this substep
       colliders = -1;  // the layout's colliders, which every clamp to the bound puts the positions back out of

@@ -135,7 +135,7 @@ TEST_CASE("self-contact detection on the device finds the brute force's nearest 
   const std::vector<int> tv = ints_of(exec.read(buffer_named(plan, "sc_tv")));
   const std::vector<int> ee = ints_of(exec.read(buffer_named(plan, "sc_ee")));
   // A frame's first substep detects, at the largest radius
-  // (contact.query_radius; common/self_contact_bvh.h sc_decide).
+  // (contact.query_radius; common/self_contact_lists.h sc_decide).
   const std::vector<int> state = ints_of(exec.read(buffer_named(plan, "sc_state")));
   CHECK(state[1] == 1);
   float radius = 0.0f;
@@ -258,7 +258,7 @@ TEST_CASE("two layers falling as a whole keep their lists, and fall freely", "[s
   // one gravity and no pins, substeps of 1/60 s in one frame (no begin_frame
   // between them): every vertex moves by the same vector, which changes no
   // distance between primitives, so after the frame's first substep the
-  // lists are kept (common/self_contact_bvh.h sc_decide), although from the
+  // lists are kept (common/self_contact_lists.h sc_decide), although from the
   // sixth substep on the layers have fallen further since then than the
   // query radius's slack, (3 r - 1.5 r) / 2 = 7.5 mm; and the bound (0.4 of
   // the 11-12 mm between the layers) truncates no step: each substep ends at

@@ -9,6 +9,7 @@
 #include "broad_phase/bvh_pairs.hpp"
 #include "broad_phase/crumpled_sheet.hpp"
 #include "broad_phase/hash_pairs.hpp"
+#include "common/self_contact_lists.h"  // after bvh_pairs.hpp, which defines ats_float4
 
 using namespace atssim;
 using namespace atssim::bench;
@@ -95,7 +96,7 @@ TEST_CASE("the radius a substep needs follows its largest predicted step, betwee
   CHECK(sc_needed_radius(0.002f, r, cap) == Approx(0.003));     // the cap
 }
 
-// One motion block (common/self_contact_bvh.h sc_block_motion): the box of the
+// One motion block (common/self_contact_lists.h sc_block_motion): the box of the
 // displacements since the lists were made, then the box of the predicted steps.
 namespace {
 std::vector<float> block(ats_vec3 moved_lo, ats_vec3 moved_hi, ats_vec3 step_lo, ats_vec3 step_hi) {

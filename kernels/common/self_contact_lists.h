@@ -1,0 +1,248 @@
+/* The pair lists between substeps (kernels/contact/self_contact.cl), in the
+ * common subset of C, C++ and OpenCL C like common/self_contact_bvh.h, whose
+ * lists they keep and read: when a substep rebuilds them (the motion of
+ * the surface since they were made, sc_decide), each listed pair's
+ * distance once per substep, the per-vertex bound, and the near lists the
+ * iterations and friction read. */
+#ifndef ATS_SELF_CONTACT_LISTS_H
+#define ATS_SELF_CONTACT_LISTS_H
+
+#include "common/self_contact_bvh.h"
+
+/* When the lists are rebuilt. A frame's first substep detects (the
+ * frame_state buffer `state` is restored then: state[0] = 0), on x_t with
+ * the radius R_det = r_max (contact.query_radius, 3 r by default), and
+ * remembers x_t as x_det. Distances between primitives do not change when
+ * every vertex moves by one common vector, so motion is measured relative
+ * to one: with u_i = x_t - x_det (since the lists were made) and s_i = x~ -
+ * x_t (this substep's predicted step) over the surface vertices, D and
+ * delta are the half diagonals of the boxes holding every u_i and every s_i
+ * (each u_i is within D of its box's centre, so any two differ by at most
+ * 2 D). A later substep of the frame keeps the lists while they still hold
+ * every pair it needs: a pair closer than R at x_t was closer than R + 2 D
+ * at x_det, so the lists serve while R + 2 D <= R_det. R ties the
+ * substep's need to its relative motion: VBD's bound keeps each vertex
+ * within gamma R of x_t, so an unlisted pair stays at least (1 - 2 gamma) R
+ * apart (no crossing, for any R); R >= 5 delta keeps the bound from slowing
+ * the relative predicted step (it may double), R >= r + 2.5 delta keeps a
+ * pair closing at the predicted speed from reaching the thickness r
+ * unlisted, and R >= 1.5 r keeps touching pairs listed. A cloth falling or
+ * carried as a whole keeps its lists.
+ * state: [0] lists valid, [1] detect in this substep, [2] R_det (float
+ * bits), [3] D (float bits), [4] detections in this frame. */
+#define ATS_SC_MOTION_BLOCK 256
+#define ATS_SC_MOTION_FLOATS 12
+#define ATS_SC_STATE_INTS 8
+
+ATS_FN void sc_box_add(sc_box* b, ats_vec3 p) {
+  b->lo = sc_min3(b->lo, p);
+  b->hi = sc_max3(b->hi, p);
+}
+ATS_FN sc_box sc_box_empty(void) {
+  sc_box b;
+  b.lo = ats_v3(1e30f, 1e30f, 1e30f);
+  b.hi = ats_v3(-1e30f, -1e30f, -1e30f);
+  return b;
+}
+ATS_FN void sc_store_box(ATS_GLOBAL float* out, sc_box b) {
+  out[0] = b.lo.x;
+  out[1] = b.lo.y;
+  out[2] = b.lo.z;
+  out[3] = b.hi.x;
+  out[4] = b.hi.y;
+  out[5] = b.hi.z;
+}
+ATS_FN sc_box sc_load_box(ATS_GLOBAL const float* in) {
+  sc_box b;
+  b.lo = ats_v3(in[0], in[1], in[2]);
+  b.hi = ats_v3(in[3], in[4], in[5]);
+  return b;
+}
+/* Half the diagonal of a box (0 for an empty one). */
+ATS_FN float sc_half_diagonal(sc_box b) { return b.hi.x < b.lo.x ? 0.0f : 0.5f * ats_length(ats_sub(b.hi, b.lo)); }
+
+/* Block b of ATS_SC_MOTION_BLOCK particles: block_max[12 b ..]: the box of
+ * x_t - x_det, then the box of x~ - x_t, over its surface vertices. */
+ATS_FN void sc_block_motion(int b, ATS_GLOBAL const ats_float4* x_det, ATS_GLOBAL const ats_float4* x_start,
+                            ATS_GLOBAL const ats_float4* x_guess, ATS_GLOBAL const int* inc, int n,
+                            ATS_GLOBAL float* block_max) {
+  sc_box moved = sc_box_empty(), step = sc_box_empty();
+  const int end = (b + 1) * ATS_SC_MOTION_BLOCK < n ? (b + 1) * ATS_SC_MOTION_BLOCK : n;
+  for (int i = b * ATS_SC_MOTION_BLOCK; i < end; ++i) {
+    if (!sc_is_surface(inc, i)) continue;
+    sc_box_add(&moved, ats_sub(sc_v(x_start[i]), sc_v(x_det[i])));
+    sc_box_add(&step, ats_sub(sc_v(x_guess[i]), sc_v(x_start[i])));
+  }
+  sc_store_box(block_max + ATS_SC_MOTION_FLOATS * b, moved);
+  sc_store_box(block_max + ATS_SC_MOTION_FLOATS * b + 6, step);
+}
+
+/* The radius a substep needs for its largest relative predicted step delta. */
+ATS_FN float sc_needed_radius(float delta, float r, float r_max) {
+  return fmin(fmax(1.5f * r, fmax(r + 2.5f * delta, 5.0f * delta)), r_max);
+}
+
+ATS_FN void sc_decide(ATS_GLOBAL const float* block_max, int blocks, float r, float r_max, ATS_GLOBAL int* state) {
+  sc_box moved_box = sc_box_empty(), step_box = sc_box_empty();
+  for (int b = 0; b < blocks; ++b) {
+    const sc_box m = sc_load_box(block_max + ATS_SC_MOTION_FLOATS * b);
+    const sc_box s = sc_load_box(block_max + ATS_SC_MOTION_FLOATS * b + 6);
+    moved_box.lo = sc_min3(moved_box.lo, m.lo);
+    moved_box.hi = sc_max3(moved_box.hi, m.hi);
+    step_box.lo = sc_min3(step_box.lo, s.lo);
+    step_box.hi = sc_max3(step_box.hi, s.hi);
+  }
+  const float moved = sc_half_diagonal(moved_box), delta = sc_half_diagonal(step_box);
+  const int detect = state[0] == 0 || sc_needed_radius(delta, r, r_max) + 2.0f * moved > sc_bits_float(state[2]);
+  state[0] = 1;
+  state[1] = detect;
+  if (detect) {
+    state[2] = sc_float_bits(r_max);
+    state[3] = sc_float_bits(0.0f);
+    state[4] += 1;
+  } else {
+    state[3] = sc_float_bits(moved);
+  }
+}
+
+/* The nearest any primitive vertex i does not have listed can be: the
+ * smallest horizon of its lists (as a point, through its triangles, through
+ * its edges) less twice the displacement D since the lists were made. */
+ATS_FN float sc_unlisted_distance(int i, ATS_GLOBAL const int* inc, int n, ATS_GLOBAL const int* vt,
+                                  ATS_GLOBAL const int* tv, ATS_GLOBAL const int* ee, float moved) {
+  float d = sc_bits_float(vt[i * ATS_SC_STRIDE + 1]);
+  for (int k = inc[i]; k < inc[i + 1]; ++k) d = fmin(d, sc_bits_float(tv[inc[k] * ATS_SC_STRIDE + 1]));
+  for (int k = inc[n + 1 + i]; k < inc[n + 2 + i]; ++k) d = fmin(d, sc_bits_float(ee[inc[k] * ATS_SC_STRIDE + 1]));
+  return d - 2.0f * moved;
+}
+
+/* The distances of a list's entries at x, once per substep: out[2 + m]
+ * entry m's, out[0] the smallest (1e30 for an empty list). The bound and the
+ * near lists read them, so each listed pair's geometry is evaluated once
+ * here rather than by each of its vertices. Same layout as the lists. */
+ATS_FN void sc_store_distances(ATS_GLOBAL const int* list, const float* d, ATS_GLOBAL float* out) {
+  float least = 1e30f;
+  for (int m = 0; m < list[0]; ++m) {
+    out[2 + m] = d[m];
+    least = fmin(least, d[m]);
+  }
+  out[0] = least;
+}
+
+ATS_FN void sc_vertex_distances(int i, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* tris,
+                                ATS_GLOBAL const int* vt, ATS_GLOBAL float* vt_d) {
+  ATS_GLOBAL const int* l = vt + i * ATS_SC_STRIDE;
+  float d[ATS_SC_CAPACITY];
+  const ats_vec3 p = sc_v(x[i]);
+  for (int m = 0; m < l[0]; ++m) {
+    ATS_GLOBAL const int* f = tris + 4 * l[2 + m];
+    d[m] = ats_point_triangle(p, sc_v(x[f[0]]), sc_v(x[f[1]]), sc_v(x[f[2]])).d;
+  }
+  sc_store_distances(l, d, vt_d + i * ATS_SC_STRIDE);
+}
+
+ATS_FN void sc_triangle_distances(int t, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* tris,
+                                  ATS_GLOBAL const int* tv, ATS_GLOBAL float* tv_d) {
+  ATS_GLOBAL const int* l = tv + t * ATS_SC_STRIDE;
+  ATS_GLOBAL const int* f = tris + 4 * t;
+  float d[ATS_SC_CAPACITY];
+  const ats_vec3 a = sc_v(x[f[0]]), b = sc_v(x[f[1]]), c = sc_v(x[f[2]]);
+  for (int m = 0; m < l[0]; ++m) d[m] = ats_point_triangle(sc_v(x[l[2 + m]]), a, b, c).d;
+  sc_store_distances(l, d, tv_d + t * ATS_SC_STRIDE);
+}
+
+ATS_FN void sc_edge_distances(int e, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* edges,
+                              ATS_GLOBAL const int* ee, ATS_GLOBAL float* ee_d) {
+  ATS_GLOBAL const int* l = ee + e * ATS_SC_STRIDE;
+  float d[ATS_SC_CAPACITY];
+  const ats_vec3 a = sc_v(x[edges[2 * e]]), b = sc_v(x[edges[2 * e + 1]]);
+  for (int m = 0; m < l[0]; ++m) {
+    const int o = l[2 + m];
+    d[m] = ats_edge_edge(a, b, sc_v(x[edges[2 * o]]), sc_v(x[edges[2 * o + 1]])).d;
+  }
+  sc_store_distances(l, d, ee_d + e * ATS_SC_STRIDE);
+}
+
+/* VBD's conservative displacement bound of vertex i (§3.7): gamma times the
+ * distance to the nearest primitive it could meet, on x_t: its listed pairs'
+ * distances now (as a point, through its triangles, through its edges), and
+ * what its lists' horizons leave for the rest (sc_unlisted_distance). */
+ATS_FN float sc_vertex_bound(int i, ATS_GLOBAL const int* inc, int n, ATS_GLOBAL const int* vt,
+                             ATS_GLOBAL const int* tv, ATS_GLOBAL const int* ee, ATS_GLOBAL const float* vt_d,
+                             ATS_GLOBAL const float* tv_d, ATS_GLOBAL const float* ee_d, float moved, float gamma) {
+  if (!sc_is_surface(inc, i)) return 1e30f;
+  float d = fmin(sc_unlisted_distance(i, inc, n, vt, tv, ee, moved), vt_d[i * ATS_SC_STRIDE]);
+  for (int k = inc[i]; k < inc[i + 1]; ++k) d = fmin(d, tv_d[inc[k] * ATS_SC_STRIDE]);
+  for (int k = inc[n + 1 + i]; k < inc[n + 2 + i]; ++k) d = fmin(d, ee_d[inc[k] * ATS_SC_STRIDE]);
+  return gamma * fmax(d, 0.0f);
+}
+
+/* The near lists: the entries of a list that can come within the thickness
+ * r in this substep. Every vertex stays within its bound b of x_t while a
+ * substep's solve evaluates the pairs (VBD truncates each step to it, XPBD,
+ * JPGD and SOSD clamp to it before each evaluation), and a pair's distance
+ * moves by at most the largest bound on each of its two sides, so an entry
+ * with d(x_t) - b_first - b_second >= r stays out of the contact energy and
+ * the constraints the whole substep. The iterations and friction read the
+ * near lists. Same layout as the lists ([1]: the list's horizon, but see
+ * sc_near_vertex). */
+ATS_FN float sc_side_bound(ATS_GLOBAL const float* bound, int a, int b, int c) {
+  const float m = fmax(bound[a], bound[b]);
+  return c >= 0 ? fmax(m, bound[c]) : m;
+}
+
+ATS_FN int sc_near_store(ATS_GLOBAL const int* list, const int* keep, ATS_GLOBAL int* out) {
+  int count = 0;
+  for (int m = 0; m < list[0]; ++m)
+    if (keep[m]) out[2 + count++] = list[2 + m];
+  out[0] = count;
+  out[1] = list[1];
+  return count;
+}
+
+/* Vertex i's near list, after its triangles' and edges' (sc_near_triangle,
+ * sc_near_edge): [1] holds how many near entries vertex i is in, as a point,
+ * through its triangles and through its edges, so that a vertex without any
+ * skips the gathers (contact/self_contact.cl SC_FOR_EACH_PAIR). */
+ATS_FN void sc_near_vertex(int i, ATS_GLOBAL const int* inc, int n, ATS_GLOBAL const int* tris,
+                           ATS_GLOBAL const int* vt, ATS_GLOBAL const float* vt_d, ATS_GLOBAL const float* bound,
+                           float r, ATS_GLOBAL const int* tv_near, ATS_GLOBAL const int* ee_near,
+                           ATS_GLOBAL int* vt_near) {
+  ATS_GLOBAL const int* l = vt + i * ATS_SC_STRIDE;
+  ATS_GLOBAL const float* d = vt_d + i * ATS_SC_STRIDE;
+  int keep[ATS_SC_CAPACITY];
+  for (int m = 0; m < l[0]; ++m) {
+    ATS_GLOBAL const int* f = tris + 4 * l[2 + m];
+    keep[m] = d[2 + m] - bound[i] - sc_side_bound(bound, f[0], f[1], f[2]) < r;
+  }
+  int total = sc_near_store(l, keep, vt_near + i * ATS_SC_STRIDE);
+  for (int k = inc[i]; k < inc[i + 1]; ++k) total += tv_near[inc[k] * ATS_SC_STRIDE];
+  for (int k = inc[n + 1 + i]; k < inc[n + 2 + i]; ++k) total += ee_near[inc[k] * ATS_SC_STRIDE];
+  vt_near[i * ATS_SC_STRIDE + 1] = total;
+}
+
+ATS_FN void sc_near_triangle(int t, ATS_GLOBAL const int* tris, ATS_GLOBAL const int* tv, ATS_GLOBAL const float* tv_d,
+                             ATS_GLOBAL const float* bound, float r, ATS_GLOBAL int* tv_near) {
+  ATS_GLOBAL const int* l = tv + t * ATS_SC_STRIDE;
+  ATS_GLOBAL const float* d = tv_d + t * ATS_SC_STRIDE;
+  ATS_GLOBAL const int* f = tris + 4 * t;
+  int keep[ATS_SC_CAPACITY];
+  const float reach = sc_side_bound(bound, f[0], f[1], f[2]);
+  for (int m = 0; m < l[0]; ++m) keep[m] = d[2 + m] - reach - bound[l[2 + m]] < r;
+  sc_near_store(l, keep, tv_near + t * ATS_SC_STRIDE);
+}
+
+ATS_FN void sc_near_edge(int e, ATS_GLOBAL const int* edges, ATS_GLOBAL const int* ee, ATS_GLOBAL const float* ee_d,
+                         ATS_GLOBAL const float* bound, float r, ATS_GLOBAL int* ee_near) {
+  ATS_GLOBAL const int* l = ee + e * ATS_SC_STRIDE;
+  ATS_GLOBAL const float* d = ee_d + e * ATS_SC_STRIDE;
+  int keep[ATS_SC_CAPACITY];
+  const float reach = sc_side_bound(bound, edges[2 * e], edges[2 * e + 1], -1);
+  for (int m = 0; m < l[0]; ++m) {
+    const int o = l[2 + m];
+    keep[m] = d[2 + m] - reach - sc_side_bound(bound, edges[2 * o], edges[2 * o + 1], -1) < r;
+  }
+  sc_near_store(l, keep, ee_near + e * ATS_SC_STRIDE);
+}
+
+#endif
