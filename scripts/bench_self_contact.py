@@ -45,7 +45,7 @@ def thickness(n):
     """A fifth of the edge (2 m / (n - 1)): the same relative thickness at
     every size, so the pairs per vertex stay alike (at 128 x 128: 3.1 mm)."""
     return round(0.2 * 2.0 / (n - 1), 6)
-CONTACT_NAMES = ("collision/bound", "collision/surfaces", "contact/first_guess")
+CONTACT_NAMES = ("collision/bound", "collision/surface", "contact/first_guess")
 
 
 def run(tmp, n, method, self_on, args):

@@ -20,8 +20,9 @@
  *     thickness in this substep, which the iterations and friction read;
  *   sc_clamp: a position held within its bound of x_t (the first guess;
  *     every solve step of the vertex methods does the same);
- *   sc_project, then a copy: XPBD's inequality constraints d >= r of every
- *     pair of a vertex, Jacobi-averaged, into a scratch copy and back;
+ *   sc_pair_lambdas_*, then sc_project: XPBD's inequality constraints
+ *     d >= r of every listed pair, per list entry, then Jacobi-averaged per
+ *     vertex;
  *   sc_friction (then sc_apply): Coulomb friction between the surfaces,
  *     after the iterations, every method.
  * The pair lists: per primitive ATS_SC_STRIDE ints, [count, horizon (float
@@ -216,31 +217,133 @@ ATS_TASK void sc_bound(int i, __global const int* inc, int n, __global const int
 }
 
 /* XPBD (Macklin et al. 2016) inequality constraint C = d - r >= 0 of every
- * pair of vertex i, zero compliance: the pair's correction of vertex i,
- * -C w_i m_i n / sum_j m_j w_j^2 (m: inverse masses), averaged over its
- * active pairs (Jacobi; every vertex reads the same x). */
-ATS_TASK void sc_project(int i, __global const float4* x, __global float4* x_out, __global const int4* tris,
-                         __global const int2* edges, __global const int* inc, int n, __global const int* vt,
-                         __global const int* tv, __global const int* ee, float r) {
+ * listed pair, zero compliance: the pair's correction of its vertex in slot
+ * j, -C w_j m_j n / sum_k m_k w_k^2 (m: inverse masses), averaged over the
+ * vertex's active pairs (Jacobi; every pair reads the same x). In two steps,
+ * so that a pair's geometry is evaluated once per list that holds it rather
+ * than once by each of its four vertices: per list entry (sc_pair_lambdas:
+ * a vertex's triangles, a triangle's vertices, an edge's edges) the pair's
+ * normal and multiplier lambda = -C / sum_k m_k w_k^2 and its weights, two
+ * float4 (n, lambda; w), lambda = -1 for a pair that is not active; then per
+ * vertex (sc_project) the sum over its entries, in the order of
+ * SC_FOR_EACH_PAIR, written in place (the vertex reads only its own
+ * position and the entries). A pair that two lists hold is evaluated once
+ * (sc_pair_entry): a vertex-triangle pair in its vertex's list (the
+ * triangle's entry is then read from there, the same evaluation), an
+ * edge-edge pair in the list of its edge with the smaller id (read from the
+ * other edge with the pair's sides swapped: slot + 2; -n and -w give the
+ * same n w). */
+static inline void sc_store_lambda(ats_pair_geometry g, const int* pv, __global const float4* x, float r,
+                                   __global float4* out) {
+  float lambda = -1.0f;
+  if (g.d < r && g.d > 1e-12f) {
+    float denom = 0.0f;
+    for (int j = 0; j < 4; ++j) denom += x[pv[j]].w * g.w[j] * g.w[j];
+    if (denom > 0.0f) lambda = (r - g.d) / denom;
+  }
+  const ats_vec3 nrm = ats_pair_normal(g);
+  out[0] = (float4)(nrm.x, nrm.y, nrm.z, lambda);
+  out[1] = (float4)(g.w[0], g.w[1], g.w[2], g.w[3]);
+}
+
+/* Where entry (list l of primitive `owner`, entry id `other`) is evaluated:
+ * the index of `owner` in the list of `other` (lists: the other side's, of
+ * ATS_SC_STRIDE ints), or -1 when that list does not hold it and the entry is
+ * its own. */
+static inline int sc_pair_entry(__global const int* lists, int other, int owner) {
+  __global const int* l = lists + other * ATS_SC_STRIDE;
+  for (int m = 0; m < l[0]; ++m)
+    if (l[2 + m] == owner) return m;
+  return -1;
+}
+
+/* The entries of vertex i's list (as the point of a vertex-triangle pair). */
+ATS_TASK void sc_pair_lambdas_points(int i, __global const float4* x, __global const int4* tris, __global const int* vt,
+                                     float r, __global float4* out) {
+  __global const int* l = vt + i * ATS_SC_STRIDE;
+  const ats_vec3 p = sc_v(x[i]);
+  for (int m = 0; m < l[0]; ++m) {
+    const int4 f = tris[l[2 + m]];
+    const int pv[4] = {i, f.x, f.y, f.z};
+    sc_store_lambda(ats_point_triangle(p, sc_v(x[f.x]), sc_v(x[f.y]), sc_v(x[f.z])), pv, x, r,
+                    out + 2 * (i * ATS_SC_CAPACITY + m));
+  }
+}
+
+/* The entries of triangle t's list (the points near it). */
+ATS_TASK void sc_pair_lambdas_triangles(int t, __global const float4* x, __global const int4* tris,
+                                        __global const int* tv, __global const int* vt, float r, __global float4* out) {
+  __global const int* l = tv + t * ATS_SC_STRIDE;
+  const int4 f = tris[t];
+  const ats_vec3 a = sc_v(x[f.x]), b = sc_v(x[f.y]), c = sc_v(x[f.z]);
+  for (int m = 0; m < l[0]; ++m) {
+    const int o = l[2 + m];
+    if (sc_pair_entry(vt, o, t) >= 0) continue; /* evaluated in vertex o's list */
+    const int pv[4] = {o, f.x, f.y, f.z};
+    sc_store_lambda(ats_point_triangle(sc_v(x[o]), a, b, c), pv, x, r, out + 2 * (t * ATS_SC_CAPACITY + m));
+  }
+}
+
+/* The entries of edge e's list (the edges near it). */
+ATS_TASK void sc_pair_lambdas_edges(int e, __global const float4* x, __global const int2* edges, __global const int* ee,
+                                    float r, __global float4* out) {
+  __global const int* l = ee + e * ATS_SC_STRIDE;
+  const int2 s = edges[e];
+  const ats_vec3 a = sc_v(x[s.x]), b = sc_v(x[s.y]);
+  for (int m = 0; m < l[0]; ++m) {
+    const int h = l[2 + m];
+    if (h < e && sc_pair_entry(ee, h, e) >= 0) continue; /* evaluated in edge h's list */
+    const int2 o = edges[h];
+    const int pv[4] = {s.x, s.y, o.x, o.y};
+    sc_store_lambda(ats_edge_edge(a, b, sc_v(x[o.x]), sc_v(x[o.y])), pv, x, r, out + 2 * (e * ATS_SC_CAPACITY + m));
+  }
+}
+
+/* Entry e's correction of the vertex in `slot` with inverse mass w, added to
+ * *sum when the pair is active. */
+static inline int sc_add_correction(__global const float4* e, int slot, float w, ats_vec3* sum) {
+  const float4 nl = e[0];
+  if (nl.w < 0.0f) return 0;
+  const float4 ws = e[1];
+  const float ws_slot = slot == 0 ? ws.x : (slot == 1 ? ws.y : (slot == 2 ? ws.z : ws.w));
+  *sum = ats_add(*sum, ats_scale(ats_v3(nl.x, nl.y, nl.z), nl.w * w * ws_slot));
+  return 1;
+}
+
+ATS_TASK void sc_project(int i, __global float4* x, __global const int4* tris, __global const int2* edges,
+                         __global const int* inc, int n, __global const int* vt, __global const int* tv,
+                         __global const int* ee, __global const float4* vt_l, __global const float4* tv_l,
+                         __global const float4* ee_l) {
   const float4 p = x[i];
-  x_out[i] = p;
-  if (p.w == 0.0f || !sc_is_surface(inc, i)) return;
+  if (p.w == 0.0f || !sc_is_surface(inc, i) || !(vt[i * ATS_SC_STRIDE + 1] > 0)) return;
   ats_vec3 sum = ats_v3(0, 0, 0);
   int active = 0;
-  SC_FOR_EACH_PAIR({
-    if (g.d < r && g.d > 1e-12f) {
-      float denom = 0.0f;
-      for (int j = 0; j < 4; ++j) denom += x[pv[j]].w * g.w[j] * g.w[j];
-      if (denom > 0.0f) {
-        const float lambda = (r - g.d) / denom;
-        sum = ats_add(sum, ats_scale(ats_pair_normal(g), lambda * p.w * g.w[slot]));
-        ++active;
-      }
+  for (int m = 0; m < vt[i * ATS_SC_STRIDE]; ++m)
+    active += sc_add_correction(vt_l + 2 * (i * ATS_SC_CAPACITY + m), 0, p.w, &sum);
+  for (int k = inc[i]; k < inc[i + 1]; ++k) {
+    const int t = inc[k];
+    const int4 f = tris[t];
+    const int slot = f.x == i ? 1 : (f.y == i ? 2 : 3);
+    for (int m = 0; m < tv[t * ATS_SC_STRIDE]; ++m) {
+      const int o = tv[t * ATS_SC_STRIDE + 2 + m];
+      const int at = sc_pair_entry(vt, o, t);
+      active += sc_add_correction(
+          at >= 0 ? vt_l + 2 * (o * ATS_SC_CAPACITY + at) : tv_l + 2 * (t * ATS_SC_CAPACITY + m), slot, p.w, &sum);
     }
-  })
+  }
+  for (int k = inc[n + 1 + i]; k < inc[n + 2 + i]; ++k) {
+    const int e = inc[k];
+    const int slot = edges[e].x == i ? 0 : 1;
+    for (int m = 0; m < ee[e * ATS_SC_STRIDE]; ++m) {
+      const int h = ee[e * ATS_SC_STRIDE + 2 + m];
+      const int at = h < e ? sc_pair_entry(ee, h, e) : -1;
+      active += at >= 0 ? sc_add_correction(ee_l + 2 * (h * ATS_SC_CAPACITY + at), slot + 2, p.w, &sum)
+                        : sc_add_correction(ee_l + 2 * (e * ATS_SC_CAPACITY + m), slot, p.w, &sum);
+    }
+  }
   if (active == 0) return;
   const float s = 1.0f / (float)active;
-  x_out[i] = (float4)(p.x + s * sum.x, p.y + s * sum.y, p.z + s * sum.z, p.w);
+  x[i] = (float4)(p.x + s * sum.x, p.y + s * sum.y, p.z + s * sum.z, p.w);
 }
 
 ATS_TASK void sc_apply(int i, __global float4* x, __global const float4* x_out, __global const float4* x_start,

@@ -25,6 +25,7 @@ constexpr int kTopLevelNodes = 256;  // levels this small are refitted by one wo
 constexpr int kMotionBlock = ATS_SC_MOTION_BLOCK;
 constexpr int kMotionBytes = ATS_SC_MOTION_FLOATS * 4;
 constexpr int kStateInts = ATS_SC_STATE_INTS;
+constexpr int kEntryBytes = 32;  // a near-list entry's pair in XPBD's projection: two float4
 
 std::size_t motion_blocks(std::size_t n) { return (n + kMotionBlock - 1) / kMotionBlock; }
 
@@ -227,33 +228,60 @@ sched::TaskId add_self_contact_clamp(plan::SubstepPlan& plan, sched::TaskId last
        {particle_write(positions)}});
 }
 
+void add_self_contact_projection_buffers(plan::SubstepPlan& plan, const SimLayout& layout, SelfContactBuffers& b) {
+  const SelfContactLayout& s = layout.self_contact;
+  const std::size_t n = s.enabled ? layout.x.size() : 0, tris = s.enabled ? s.tris.size() : 0,
+                    edges = s.enabled ? s.edges.size() : 0;
+  using plan::BufferRole;
+  b.vt_l = plan.add_buffer("sc_vt_lambda", BufferRole::scratch, zeros(n * kEntryBytes * ATS_SC_CAPACITY));
+  b.tv_l = plan.add_buffer("sc_tv_lambda", BufferRole::scratch, zeros(tris * kEntryBytes * ATS_SC_CAPACITY));
+  b.ee_l = plan.add_buffer("sc_ee_lambda", BufferRole::scratch, zeros(edges * kEntryBytes * ATS_SC_CAPACITY));
+}
+
 sched::TaskId add_self_contact_projection(plan::SubstepPlan& plan, sched::TaskId last, const SimLayout& layout,
                                           const SelfContactBuffers& b, plan::BufferId start, plan::BufferId positions,
                                           int iteration) {
   const SelfContactLayout& s = layout.self_contact;
   if (!s.enabled) return last;
   const int n = static_cast<int>(layout.x.size());
-  const plan::BufferId scratch = b.x_out;
   // The constraints' step held within the bound first, then the contact
   // projection on top, unbounded: it separates a pair, and held within a
   // bound that shrinks with the gap it could not reopen one (a pillow vertex
   // pressed into the cloth reached distance 0, where its bound froze it, and
   // the cloth then slid over it).
   last = add_self_contact_clamp(plan, last, layout, b, start, positions, iteration);
-  last = plan.add_task_after(
-      last,
-      plan::make_task(fmt::format("it{}/collision/surfaces", iteration + 1), plan::TaskKind::collision, iteration, 2),
+  // Per near-list entry the pair's multiplier (each pair evaluated once, not
+  // by each of its vertices: contact/self_contact.cl), then per vertex.
+  const auto entries = [&](const char* part, const char* function, int count, plan::BufferId topology,
+                           std::vector<Arg> lists, plan::BufferId out) {
+    std::vector<Arg> args{Arg::of_buffer(positions), Arg::of_buffer(topology)};
+    args.insert(args.end(), lists.begin(), lists.end());
+    args.push_back(Arg::of_float(s.thickness));
+    args.push_back(Arg::of_buffer(out));
+    return plan.add_task_after(
+        last,
+        plan::make_task(fmt::format("it{}/collision/surface_pairs/{}", iteration + 1, part), plan::TaskKind::collision,
+                        iteration, 2),
+        {function, {0, count}, std::move(args), {WriteSpan::per_element(out, kEntryBytes * ATS_SC_CAPACITY)}});
+  };
+  const sched::TaskId points =
+      entries("points", "sc_pair_lambdas_points", n, b.tris, {Arg::of_buffer(b.vt_near)}, b.vt_l);
+  const sched::TaskId triangles = entries("triangles", "sc_pair_lambdas_triangles", static_cast<int>(s.tris.size()),
+                                          b.tris, {Arg::of_buffer(b.tv_near), Arg::of_buffer(b.vt_near)}, b.tv_l);
+  const sched::TaskId edges = entries("edges", "sc_pair_lambdas_edges", static_cast<int>(s.edges.size()), b.edges,
+                                      {Arg::of_buffer(b.ee_near)}, b.ee_l);
+  const sched::TaskId project = plan.add_task_after(
+      edges,
+      plan::make_task(fmt::format("it{}/collision/surfaces", iteration + 1), plan::TaskKind::collision, iteration, 3),
       {"sc_project",
        {0, n},
-       {Arg::of_buffer(positions), Arg::of_buffer(scratch), Arg::of_buffer(b.tris), Arg::of_buffer(b.edges),
-        Arg::of_buffer(b.incidence), Arg::of_int(n), Arg::of_buffer(b.vt_near), Arg::of_buffer(b.tv_near),
-        Arg::of_buffer(b.ee_near), Arg::of_float(s.thickness)},
-       {particle_write(scratch)}});
-  return plan.add_task_after(
-      last,
-      plan::make_task(fmt::format("it{}/collision/surfaces_apply", iteration + 1), plan::TaskKind::collision, iteration,
-                      3),
-      {"particles_copy", {0, n}, {Arg::of_buffer(positions), Arg::of_buffer(scratch)}, {particle_write(positions)}});
+       {Arg::of_buffer(positions), Arg::of_buffer(b.tris), Arg::of_buffer(b.edges), Arg::of_buffer(b.incidence),
+        Arg::of_int(n), Arg::of_buffer(b.vt_near), Arg::of_buffer(b.tv_near), Arg::of_buffer(b.ee_near),
+        Arg::of_buffer(b.vt_l), Arg::of_buffer(b.tv_l), Arg::of_buffer(b.ee_l)},
+       {particle_write(positions)}});
+  plan.graph.add_edge(points, project);
+  plan.graph.add_edge(triangles, project);
+  return project;
 }
 
 sched::TaskId add_self_contact_friction(plan::SubstepPlan& plan, sched::TaskId last, const SimLayout& layout,

@@ -17,12 +17,13 @@ namespace atssim::solver {
 
 struct SelfContactBuffers {
   plan::BufferId tris = -1, edges = -1, leaves = -1, nodes = -1, levels = -1, incidence = -1, vt = -1, tv = -1, ee = -1,
-                 bound = -1, x_out = -1,  // x_out: XPBD's projection
+                 bound = -1, x_out = -1,  // x_out: friction's scratch copy
       motion = -1,             // per block the boxes of the displacements since x_det and of the predicted steps
       x_det = -1, state = -1,  // where the lists were made; whether they serve (common/self_contact_lists.h)
       vt_d = -1, tv_d = -1, ee_d = -1,           // the listed pairs' distances at x_t
       vt_near = -1, tv_near = -1, ee_near = -1,  // the entries that can come within the thickness this substep
-      colliders = -1;  // the layout's colliders, which every clamp to the bound puts the positions back out of
+      colliders = -1,  // the layout's colliders, which every clamp to the bound puts the positions back out of
+      vt_l = -1, tv_l = -1, ee_l = -1;  // XPBD: per near-list entry the pair's normal, multiplier and weights
 };
 
 // `colliders`: the plan's collider buffer (solver/collision_tasks
@@ -47,8 +48,12 @@ sched::TaskId add_self_contact_clamp(plan::SubstepPlan& plan, sched::TaskId last
                                      const SelfContactBuffers& b, plan::BufferId start, plan::BufferId positions,
                                      int iteration);
 
-// XPBD, after `last`: every pair's inequality constraint into a scratch
-// copy, then back within the bound. Returns the new last task, or `last`.
+// XPBD: the per-entry buffers add_self_contact_projection needs (into b).
+void add_self_contact_projection_buffers(plan::SubstepPlan& plan, const SimLayout& layout, SelfContactBuffers& b);
+
+// XPBD, after `last`: the positions held within the bound, then every
+// pair's inequality constraint, per list entry, then per vertex (Jacobi).
+// Returns the new last task, or `last`.
 sched::TaskId add_self_contact_projection(plan::SubstepPlan& plan, sched::TaskId last, const SimLayout& layout,
                                           const SelfContactBuffers& b, plan::BufferId start, plan::BufferId positions,
                                           int iteration);

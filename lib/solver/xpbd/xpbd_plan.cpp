@@ -122,7 +122,8 @@ plan::SubstepPlan make_xpbd_plan(const SimLayout& layout, const XpbdSettings& se
   // Material damping along the springs (common/xpbd_distance.h): the start positions and 1/h, 0 = none.
   const std::vector<Arg> spring_damping{Arg::of_buffer(b.x_prev),
                                         Arg::of_float(has_spring_damping(layout) ? 1.0f / h : 0.0f)};
-  const SelfContactBuffers sc = add_self_contact_buffers(plan, layout, colliders);
+  SelfContactBuffers sc = add_self_contact_buffers(plan, layout, colliders);
+  add_self_contact_projection_buffers(plan, layout, sc);
   last = add_self_contact_detection(plan, last, layout, sc, b.x_prev, b.x);
   const auto stretch_particles = particles_of(layout.stretch);
   const auto bend_particles = particles_of(layout.bend);

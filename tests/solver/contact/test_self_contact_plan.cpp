@@ -53,7 +53,8 @@ TEST_CASE("with contact every method detects once per substep before its iterati
     // XPBD bounds its constraint step and projects every iteration; JPGD and
     // SOSD bound every iterate; VBD bounds inside its solve and keeps the
     // iteration's start for a contact partner of the vertex's own colour.
-    CHECK(tasks_named(p, "collision/surfaces_apply") == (m->name == "xpbd" ? iterations : 0));
+    CHECK(tasks_named(p, "collision/surfaces") == (m->name == "xpbd" ? iterations : 0));
+    CHECK(tasks_named(p, "collision/surface_pairs/") == (m->name == "xpbd" ? 3 * iterations : 0));
     CHECK(tasks_named(p, "collision/bound") == (m->name == "vbd" ? 0 : iterations));
     CHECK(tasks_named(p, "contact/iteration_start") == (m->name == "vbd" ? 1 : 0));
     CHECK(tasks_named(p, "collision/iteration_end") == (m->name == "vbd" ? iterations - 1 : 0));
