@@ -8,8 +8,10 @@ differs from the real thing, counted here from the source tree:
 - the bundled scenes: every scenes/*.yaml is named in the README's
   "Scenes" item and no scene named there is missing;
 - the paper's scenes: the number README.md and docs/scenes.md give equals
-  the scenes/paper/*_small.yaml files, and each has its test case in
-  tests/app/test_paper_scenes.cpp.
+  the scenes/paper/*_small.yaml files, each has its test case in
+  tests/app/test_paper_scenes.cpp, and each paper-size scene
+  (scenes/paper/NAME.yaml) its run in tests/app/test_paper_size_runs.cpp
+  (their sizes in docs/scenes.md: tests/app/test_paper_scene_sizes.cpp).
 
 usage: tests/check_doc_counts.py SOURCE_DIR"""
 import pathlib
@@ -52,7 +54,10 @@ def main() -> int:
     for label, pattern, real in (("scene cases", r"`cases/\*\.yaml` — one scene per case \(([0-9]+)\)", scene_cases),
                                  ("command lines", r"`cli\.txt` — one command line per line \(([0-9]+)\)",
                                   cases - scene_cases),
-                                 ("cases in all", r"was written\. ([0-9][0-9,]*) cases", cases)):
+                                 ("cases in all", r"was written\. ([0-9][0-9,]*) cases", cases),
+                                 ("scene cases", r"was written\. [0-9,]+ cases \(([0-9]+) \+", scene_cases),
+                                 ("command lines", r"was written\. [0-9,]+ cases \([0-9]+ \+ ([0-9]+)\)",
+                                  cases - scene_cases)):
         found = re.findall(pattern, reliability)
         if not found:
             problems.append(f"docs/reliability.md: no '{pattern}' found")
@@ -87,6 +92,13 @@ def main() -> int:
         if f"the paper's {name}, small" not in tests:
             problems.append(f"scenes/paper/{name}_small.yaml: no test case \"the paper's {name}, small…\" "
                             "in tests/app/test_paper_scenes.cpp")
+
+    runs = (root / "tests" / "app" / "test_paper_size_runs.cpp").read_text(encoding="utf-8")
+    for p in sorted((root / "scenes" / "paper").glob("*.yaml")):
+        name = p.stem
+        if not name.endswith("_small") and f"the paper's {name} at the paper's size runs a frame" not in runs:
+            problems.append(f"scenes/paper/{name}.yaml: no test case \"the paper's {name} at the paper's size runs "
+                            "a frame\" in tests/app/test_paper_size_runs.cpp")
 
     for p in problems:
         print(p)
