@@ -66,6 +66,7 @@ def main() -> int:
                                  ("command lines", r"`cli\.txt` — one command line per line \(([0-9]+)\)",
                                   cases - scene_cases),
                                  ("cases in all", r"was written\. ([0-9][0-9,]*) cases", cases),
+                                 ("cases in all", r"run_bad_input\.py \[FILTER\]`\), ([0-9][0-9,]*) cases", cases),
                                  ("scene cases", r"was written\. [0-9,]+ cases \(([0-9]+) \+", scene_cases),
                                  ("command lines", r"was written\. [0-9,]+ cases \([0-9]+ \+ ([0-9]+)\)",
                                   cases - scene_cases)):
