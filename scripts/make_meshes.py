@@ -2,6 +2,7 @@
 """Writes the obstacle meshes of the example scenes as small OBJ files.
 
 usage: scripts/make_meshes.py [OUT_DIR]      (default: scenes/meshes)
+       scripts/make_meshes.py --paper [ROOT]  (default: scenes/paper/meshes)
 
   sphere.obj  an icosphere of radius 1 (closed): scale it in the scene
   funnel.obj  an open funnel, axis +y: a cone from radius 0.5 at y = 0.5 down
@@ -129,7 +130,8 @@ def bowl():
 
 def main():
     if "--paper" in sys.argv[1:]:
-        return paper_meshes()
+        roots = [a for a in sys.argv[1:] if not a.startswith("--")]
+        return paper_meshes(roots[0] if roots else None)
     out = sys.argv[1] if len(sys.argv) > 1 else os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenes", "meshes"))
     os.makedirs(out, exist_ok=True)
     vs, fs = icosphere(3)
@@ -297,9 +299,10 @@ def shirt(segments, body_rings, yoke_rings):
     return ring_surface(rings)
 
 
-def paper_meshes():
-    root = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenes", "paper",
-                                         "meshes"))
+def paper_meshes(root=None):
+    """Into ROOT (a test's copy of scenes/paper/meshes) when given."""
+    root = root or os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scenes",
+                                                 "paper", "meshes"))
     sizes = {  # small variant (committed), paper size (generated)
         "small": dict(out=root, skirt=(32, 17), gap=0.012, shirt=(32, 20, 8), ball=6, sub=1, depth=1),
         "large": dict(out=os.path.join(root, "large"), skirt=(256, 136), gap=0.004, shirt=(320, 180, 36), ball=9, sub=5,

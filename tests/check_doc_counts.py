@@ -8,8 +8,12 @@ differs from the real thing, counted here from the source tree:
 - the bundled scenes: every scenes/*.yaml is named in the README's
   "Scenes" item and no scene named there is missing;
 - the paper's scenes: the number README.md and docs/scenes.md give equals
-  the scenes/paper/*_small.yaml files, and each has its test case in
-  tests/app/test_paper_scenes.cpp.
+  the scenes/paper/*_small.yaml files, each has its test case in
+  tests/app/test_paper_scenes.cpp, and each paper-size scene
+  (scenes/paper/NAME.yaml) its run in tests/app/test_paper_size_runs.cpp
+  (their sizes in docs/scenes.md: tests/app/test_paper_scene_sizes.cpp);
+- docs/claims.md: every test file it names exists, and every test case it
+  names ("name" after the file) is a TEST_CASE of that file.
 
 usage: tests/check_doc_counts.py SOURCE_DIR"""
 import pathlib
@@ -27,6 +31,15 @@ def number(text: str) -> int:
 def flat(text: str) -> str:
     """Markdown with its line breaks folded: a claim may wrap."""
     return re.sub(r"\s+", " ", text)
+
+
+def test_case_names(source: str) -> set:
+    """The names of a C++ file's Catch2 TEST_CASEs, adjacent string literals
+    joined (a long name may be split over lines)."""
+    names = set()
+    for m in re.finditer(r'TEST_CASE\(\s*((?:"(?:[^"\\]|\\.)*"\s*)+)', source):
+        names.add("".join(re.findall(r'"((?:[^"\\]|\\.)*)"', m.group(1))))
+    return names
 
 
 def main() -> int:
@@ -52,7 +65,11 @@ def main() -> int:
     for label, pattern, real in (("scene cases", r"`cases/\*\.yaml` — one scene per case \(([0-9]+)\)", scene_cases),
                                  ("command lines", r"`cli\.txt` — one command line per line \(([0-9]+)\)",
                                   cases - scene_cases),
-                                 ("cases in all", r"was written\. ([0-9][0-9,]*) cases", cases)):
+                                 ("cases in all", r"was written\. ([0-9][0-9,]*) cases", cases),
+                                 ("cases in all", r"run_bad_input\.py \[FILTER\]`\), ([0-9][0-9,]*) cases", cases),
+                                 ("scene cases", r"was written\. [0-9,]+ cases \(([0-9]+) \+", scene_cases),
+                                 ("command lines", r"was written\. [0-9,]+ cases \([0-9]+ \+ ([0-9]+)\)",
+                                  cases - scene_cases)):
         found = re.findall(pattern, reliability)
         if not found:
             problems.append(f"docs/reliability.md: no '{pattern}' found")
@@ -87,6 +104,31 @@ def main() -> int:
         if f"the paper's {name}, small" not in tests:
             problems.append(f"scenes/paper/{name}_small.yaml: no test case \"the paper's {name}, small…\" "
                             "in tests/app/test_paper_scenes.cpp")
+
+    runs = (root / "tests" / "app" / "test_paper_size_runs.cpp").read_text(encoding="utf-8")
+    for p in sorted((root / "scenes" / "paper").glob("*.yaml")):
+        name = p.stem
+        if not name.endswith("_small") and f"the paper's {name} at the paper's size runs a frame" not in runs:
+            problems.append(f"scenes/paper/{name}.yaml: no test case \"the paper's {name} at the paper's size runs "
+                            "a frame\" in tests/app/test_paper_size_runs.cpp")
+
+    # The claims table: its tests exist.
+    claims = (root / "docs" / "claims.md").read_text(encoding="utf-8")
+    named_tests = 0
+    for row in (line for line in claims.splitlines() if line.startswith("| ") and "`tests/" in line):
+        test_cell = row.rstrip().rstrip("|").split("|")[-1]
+        for part in re.finditer(r"`(tests/[^`]+)`((?:[:;] \"[^\"]+\")*)", test_cell):
+            path = root / part.group(1)
+            if not path.is_file():
+                problems.append(f"docs/claims.md names {part.group(1)}, which does not exist")
+                continue
+            declared = test_case_names(path.read_text(encoding="utf-8"))
+            for name in re.findall(r'"([^"]+)"', part.group(2)):
+                named_tests += 1
+                if name not in declared:
+                    problems.append(f"docs/claims.md names the test case \"{name}\", which is not in {part.group(1)}")
+    if named_tests == 0:
+        problems.append("docs/claims.md: no test case found (the table's format changed?)")
 
     for p in problems:
         print(p)

@@ -3,12 +3,14 @@
 #include <cmath>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
 
 #include "app/simulation.hpp"
 #include "io/result_reader.hpp"
+#include "support/methods.hpp"
 #include "support/temp_dir.hpp"
 
 using namespace atssim;
@@ -86,21 +88,38 @@ TEST_CASE("a bar hanging under its own weight stretches by rho g L^2 / (2E) (eve
   CHECK(tip == Approx(analytic).epsilon(tolerance));  // measured: vbd 2.2 %, sosd 3.1 %, jpgd 1.6 %, xpbd 0.97 %
 }
 
-TEST_CASE("no particle ends below the ground plane, whatever the method and schedule") {
-  const auto [method, schedule] = GENERATE(std::make_pair(std::string("xpbd"), std::string("single")),
-                                           std::make_pair(std::string("xpbd"), std::string("async")),
-                                           std::make_pair(std::string("vbd"), std::string("heft")),
-                                           std::make_pair(std::string("sosd"), std::string("heft")),
-                                           std::make_pair(std::string("jpgd"), std::string("split")));
+namespace {
+
+// A cloth 1.5 m up on a ground at 1.2 m: after 20 frames it has hit it.
+// The explicit method takes 32 substeps (its stable step), the others 4.
+std::string ground_cloth(const std::string& method) {
+  return std::string("simulation: {fps: 60, substeps: ") + (method == "explicit" ? "32" : "4") +
+         ", iterations: 8, frames: 20, ground: 1.2}\n"
+         "objects:\n"
+         "  - grid: {size: [1, 1], resolution: [12, 12]}\n"
+         "    transform: {translate: [0, 1.5, 0]}\n"
+         "    material: {density: 0.2, stretch_stiffness: 1000, bend_stiffness: 0.001}\n"
+         "    pins: {vertices: [0]}\n";
+}
+
+// Every method that takes the scene under every schedule it runs (async:
+// the Gauss-Seidel ones), as README.md claims for the ground task.
+std::vector<std::pair<std::string, std::string>> ground_cases() {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const std::string& m : test::methods_taking(ground_cloth)) {
+    for (const char* s : {"single", "split", "heft", "async"}) {
+      if (std::string(s) != "async" || solver::method(m).gauss_seidel) out.emplace_back(m, s);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("no particle ends below the ground plane, under every method and schedule") {
+  const auto [method, schedule] = GENERATE(from_range(ground_cases()));
   test::TempDir dir;
-  // A cloth 1.5 m up on a ground at 1.2 m: after 20 frames it has hit it.
-  const std::string yaml =
-      "simulation: {fps: 60, substeps: 4, iterations: 8, frames: 20, ground: 1.2}\n"
-      "objects:\n"
-      "  - grid: {size: [1, 1], resolution: [12, 12]}\n"
-      "    transform: {translate: [0, 1.5, 0]}\n"
-      "    material: {density: 0.2, stretch_stiffness: 1000, bend_stiffness: 0.001}\n"
-      "    pins: {vertices: [0]}\n";
+  const std::string yaml = ground_cloth(method);
   app::RunOptions o;
   o.scene_path = dir.write("ground.yaml", yaml);
   o.overrides = {"output.path=" + dir.file("g.h5"), "devices=cpu/2", "solver.method=" + method,
