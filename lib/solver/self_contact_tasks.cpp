@@ -250,8 +250,9 @@ sched::TaskId add_self_contact_projection(plan::SubstepPlan& plan, sched::TaskId
   // pressed into the cloth reached distance 0, where its bound froze it, and
   // the cloth then slid over it).
   last = add_self_contact_clamp(plan, last, layout, b, start, positions, iteration);
-  // Per near-list entry the pair's multiplier (each pair evaluated once, not
-  // by each of its vertices: contact/self_contact.cl), then per vertex.
+  // Per near-list entry the pair's multiplier (each pair evaluated once per
+  // list that holds it, not by each of its four vertices:
+  // contact/self_contact.cl), then per vertex.
   const auto entries = [&](const char* part, const char* function, int count, plan::BufferId topology,
                            std::vector<Arg> lists, plan::BufferId out) {
     std::vector<Arg> args{Arg::of_buffer(positions), Arg::of_buffer(topology)};
@@ -267,7 +268,7 @@ sched::TaskId add_self_contact_projection(plan::SubstepPlan& plan, sched::TaskId
   const sched::TaskId points =
       entries("points", "sc_pair_lambdas_points", n, b.tris, {Arg::of_buffer(b.vt_near)}, b.vt_l);
   const sched::TaskId triangles = entries("triangles", "sc_pair_lambdas_triangles", static_cast<int>(s.tris.size()),
-                                          b.tris, {Arg::of_buffer(b.tv_near), Arg::of_buffer(b.vt_near)}, b.tv_l);
+                                          b.tris, {Arg::of_buffer(b.tv_near)}, b.tv_l);
   const sched::TaskId edges = entries("edges", "sc_pair_lambdas_edges", static_cast<int>(s.edges.size()), b.edges,
                                       {Arg::of_buffer(b.ee_near)}, b.ee_l);
   const sched::TaskId project = plan.add_task_after(
