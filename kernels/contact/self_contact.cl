@@ -234,14 +234,15 @@ ATS_TASK void sc_bound(int i, __global const int* inc, int n, __global const int
  * 12 ms per substep). */
 static inline void sc_store_lambda(ats_pair_geometry g, const int* pv, __global const float4* x, float r,
                                    __global float4* out) {
-  float lambda = -1.0f;
-  if (g.d < r && g.d > 1e-12f) {
-    float denom = 0.0f;
+  float denom = 0.0f;
+  if (g.d < r && g.d > 1e-12f)
     for (int j = 0; j < 4; ++j) denom += x[pv[j]].w * g.w[j] * g.w[j];
-    if (denom > 0.0f) lambda = (r - g.d) / denom;
+  if (!(denom > 0.0f)) {
+    out[0] = (float4)(0.0f, 0.0f, 0.0f, -1.0f);
+    return;
   }
   const ats_vec3 nrm = ats_pair_normal(g);
-  out[0] = (float4)(nrm.x, nrm.y, nrm.z, lambda);
+  out[0] = (float4)(nrm.x, nrm.y, nrm.z, (r - g.d) / denom);
   out[1] = (float4)(g.w[0], g.w[1], g.w[2], g.w[3]);
 }
 

@@ -1,6 +1,7 @@
 #include "device/plan_executor.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <map>
 #include <mutex>
 #include <numeric>
@@ -158,7 +159,7 @@ struct PlanExecutor::Impl {
 
   // Runs `substeps` substeps on each device alone and reports each one's
   // timings; what they cost is the observer's to decide.
-  void profile(int substeps, sched::TimingObserver& observer) {
+  void profile(int substeps, sched::TimingObserver& observer, int min_substeps, double budget_ms) {
     const plan::PlanState snapshot = read_state();
     const std::vector<Step> kept = steps;
     // Fused without a task clock: per-task events, whose launch gap the
@@ -167,7 +168,10 @@ struct PlanExecutor::Impl {
     for (std::size_t d = 0; d < set.devices.size(); ++d) {
       const auto device = static_cast<sched::DeviceId>(d);
       set_steps(all_on(d));
+      const auto start = std::chrono::steady_clock::now();
       for (int r = 0; r < substeps; ++r) {
+        const std::chrono::duration<double, std::milli> spent = std::chrono::steady_clock::now() - start;
+        if (budget_ms > 0.0 && r >= min_substeps && spent.count() >= budget_ms) break;
         if (by_events) {
           event_runner().enqueue(1, true);
           observer.substep_alone(device, event_runner().timings());
@@ -292,7 +296,9 @@ std::vector<sched::LaunchTiming> PlanExecutor::launches() {
   return impl_->fused ? impl_->fused->launches() : std::vector<sched::LaunchTiming>{};
 }
 
-void PlanExecutor::profile(int substeps, sched::TimingObserver& observer) { impl_->profile(substeps, observer); }
+void PlanExecutor::profile(int substeps, sched::TimingObserver& observer, int min_substeps, double budget_ms) {
+  impl_->profile(substeps, observer, min_substeps, budget_ms);
+}
 
 double PlanExecutor::measure_latency_ms(std::size_t from, std::size_t to, int repetitions) {
   impl_->finish();

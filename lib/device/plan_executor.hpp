@@ -82,8 +82,10 @@ class PlanExecutor {
   // (and, where tasks are timed by per-launch events inside a fused
   // executor, the launch gap), which decides what they cost
   // (sched::ProfileCosts). The state is restored afterwards; the current
-  // schedule is kept.
-  void profile(int substeps, sched::TimingObserver& observer);
+  // schedule is kept. With a budget > 0, a device stops after
+  // `min_substeps` once its substeps have taken `budget_ms` in all (a large
+  // scene's substep takes seconds, and each timed one costs two).
+  void profile(int substeps, sched::TimingObserver& observer, int min_substeps = 0, double budget_ms = 0.0);
   // Median delay from the end of work on `from` to the start of work on `to`
   // that waits for it: an event hop (events) or an SVM-atomic handshake
   // (fused).
