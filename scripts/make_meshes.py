@@ -129,6 +129,13 @@ def bowl():
 
 
 def main():
+    unknown = [a for a in sys.argv[1:] if a.startswith("-") and a != "--paper"]
+    if unknown:
+        if unknown[0] in ("-h", "--help"):
+            print(__doc__)
+            return 0
+        print(f"make_meshes.py: unknown option '{unknown[0]}' (use --paper [ROOT] or an output folder)", file=sys.stderr)
+        return 2
     if "--paper" in sys.argv[1:]:
         roots = [a for a in sys.argv[1:] if not a.startswith("--")]
         return paper_meshes(roots[0] if roots else None)
