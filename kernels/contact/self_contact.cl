@@ -224,26 +224,32 @@ ATS_TASK void sc_bound(int i, __global const int* inc, int n, __global const int
  * than once by each of its four vertices: per list entry (sc_pair_lambdas:
  * a vertex's triangles, a triangle's vertices, an edge's edges) the pair's
  * normal and multiplier lambda = -C / sum_k m_k w_k^2 and its weights, two
- * float4 (n, lambda; w), lambda = -1 for a pair that is not active; then per
- * vertex (sc_project) the sum over its entries, in the order of
+ * float4 (n, lambda; w), of the active pairs only, in list order from the
+ * list's first slot, then an end mark (lambda < 0); then per vertex
+ * (sc_project) the sum over the active entries, in the order of
  * SC_FOR_EACH_PAIR, written in place (the vertex reads only its own
- * position and the entries). A pair both of whose sides list it (a vertex's
+ * position and the entries; most near pairs are inactive, and the gather
+ * stops at the end mark instead of reading them). A pair both of whose sides list it (a vertex's
  * triangle that lists the vertex, two edges) is evaluated twice: reading the
  * one entry from the other side instead (a search of that side's list) made
  * the projection slower on the small dress (scratch measurement: 20 against
  * 12 ms per substep). */
-static inline void sc_store_lambda(ats_pair_geometry g, const int* pv, __global const float4* x, float r,
-                                   __global float4* out) {
+static inline int sc_store_lambda(ats_pair_geometry g, const int* pv, __global const float4* x, float r,
+                                  __global float4* out) {
   float denom = 0.0f;
   if (g.d < r && g.d > 1e-12f)
     for (int j = 0; j < 4; ++j) denom += x[pv[j]].w * g.w[j] * g.w[j];
-  if (!(denom > 0.0f)) {
-    out[0] = (float4)(0.0f, 0.0f, 0.0f, -1.0f);
-    return;
-  }
+  if (!(denom > 0.0f)) return 0;
   const ats_vec3 nrm = ats_pair_normal(g);
   out[0] = (float4)(nrm.x, nrm.y, nrm.z, (r - g.d) / denom);
   out[1] = (float4)(g.w[0], g.w[1], g.w[2], g.w[3]);
+  return 1;
+}
+
+/* After a list's active entries (written in list order from its first
+ * slot): an end mark, lambda < 0, unless every entry is active. */
+static inline void sc_end_lambdas(int active, int count, __global float4* out) {
+  if (active < count) out[2 * active] = (float4)(0.0f, 0.0f, 0.0f, -1.0f);
 }
 
 /* The entries of vertex i's list (as the point of a vertex-triangle pair). */
@@ -251,12 +257,14 @@ ATS_TASK void sc_pair_lambdas_points(int i, __global const float4* x, __global c
                                      float r, __global float4* out) {
   __global const int* l = vt + i * ATS_SC_STRIDE;
   const ats_vec3 p = sc_v(x[i]);
+  __global float4* o = out + 2 * i * ATS_SC_CAPACITY;
+  int k = 0;
   for (int m = 0; m < l[0]; ++m) {
     const int4 f = tris[l[2 + m]];
     const int pv[4] = {i, f.x, f.y, f.z};
-    sc_store_lambda(ats_point_triangle(p, sc_v(x[f.x]), sc_v(x[f.y]), sc_v(x[f.z])), pv, x, r,
-                    out + 2 * (i * ATS_SC_CAPACITY + m));
+    k += sc_store_lambda(ats_point_triangle(p, sc_v(x[f.x]), sc_v(x[f.y]), sc_v(x[f.z])), pv, x, r, o + 2 * k);
   }
+  sc_end_lambdas(k, l[0], o);
 }
 
 /* The entries of triangle t's list (the points near it). */
@@ -265,11 +273,14 @@ ATS_TASK void sc_pair_lambdas_triangles(int t, __global const float4* x, __globa
   __global const int* l = tv + t * ATS_SC_STRIDE;
   const int4 f = tris[t];
   const ats_vec3 a = sc_v(x[f.x]), b = sc_v(x[f.y]), c = sc_v(x[f.z]);
+  __global float4* o = out + 2 * t * ATS_SC_CAPACITY;
+  int k = 0;
   for (int m = 0; m < l[0]; ++m) {
-    const int o = l[2 + m];
-    const int pv[4] = {o, f.x, f.y, f.z};
-    sc_store_lambda(ats_point_triangle(sc_v(x[o]), a, b, c), pv, x, r, out + 2 * (t * ATS_SC_CAPACITY + m));
+    const int v = l[2 + m];
+    const int pv[4] = {v, f.x, f.y, f.z};
+    k += sc_store_lambda(ats_point_triangle(sc_v(x[v]), a, b, c), pv, x, r, o + 2 * k);
   }
+  sc_end_lambdas(k, l[0], o);
 }
 
 /* The entries of edge e's list (the edges near it). */
@@ -278,23 +289,28 @@ ATS_TASK void sc_pair_lambdas_edges(int e, __global const float4* x, __global co
   __global const int* l = ee + e * ATS_SC_STRIDE;
   const int2 s = edges[e];
   const ats_vec3 a = sc_v(x[s.x]), b = sc_v(x[s.y]);
+  __global float4* o = out + 2 * e * ATS_SC_CAPACITY;
+  int k = 0;
   for (int m = 0; m < l[0]; ++m) {
-    const int h = l[2 + m];
-    const int2 o = edges[h];
-    const int pv[4] = {s.x, s.y, o.x, o.y};
-    sc_store_lambda(ats_edge_edge(a, b, sc_v(x[o.x]), sc_v(x[o.y])), pv, x, r, out + 2 * (e * ATS_SC_CAPACITY + m));
+    const int2 h = edges[l[2 + m]];
+    const int pv[4] = {s.x, s.y, h.x, h.y};
+    k += sc_store_lambda(ats_edge_edge(a, b, sc_v(x[h.x]), sc_v(x[h.y])), pv, x, r, o + 2 * k);
   }
+  sc_end_lambdas(k, l[0], o);
 }
 
-/* Entry e's correction of the vertex in `slot` with inverse mass w, added to
- * *sum when the pair is active. */
-static inline int sc_add_correction(__global const float4* e, int slot, float w, ats_vec3* sum) {
-  const float4 nl = e[0];
-  if (nl.w < 0.0f) return 0;
-  const float4 ws = e[1];
-  const float ws_slot = slot == 0 ? ws.x : (slot == 1 ? ws.y : (slot == 2 ? ws.z : ws.w));
-  *sum = ats_add(*sum, ats_scale(ats_v3(nl.x, nl.y, nl.z), nl.w * w * ws_slot));
-  return 1;
+/* The corrections of a list's active entries (up to its end mark) to the
+ * vertex in `slot` with inverse mass w, added to *sum; returns how many. */
+static inline int sc_add_corrections(__global const float4* e, int count, int slot, float w, ats_vec3* sum) {
+  int m = 0;
+  for (; m < count; ++m, e += 2) {
+    const float4 nl = e[0];
+    if (nl.w < 0.0f) break;
+    const float4 ws = e[1];
+    const float ws_slot = slot == 0 ? ws.x : (slot == 1 ? ws.y : (slot == 2 ? ws.z : ws.w));
+    *sum = ats_add(*sum, ats_scale(ats_v3(nl.x, nl.y, nl.z), nl.w * w * ws_slot));
+  }
+  return m;
 }
 
 ATS_TASK void sc_project(int i, __global float4* x, __global const int4* tris, __global const int2* edges,
@@ -305,20 +321,17 @@ ATS_TASK void sc_project(int i, __global float4* x, __global const int4* tris, _
   if (p.w == 0.0f || !sc_is_surface(inc, i) || !(vt[i * ATS_SC_STRIDE + 1] > 0)) return;
   ats_vec3 sum = ats_v3(0, 0, 0);
   int active = 0;
-  for (int m = 0; m < vt[i * ATS_SC_STRIDE]; ++m)
-    active += sc_add_correction(vt_l + 2 * (i * ATS_SC_CAPACITY + m), 0, p.w, &sum);
+  active += sc_add_corrections(vt_l + 2 * i * ATS_SC_CAPACITY, vt[i * ATS_SC_STRIDE], 0, p.w, &sum);
   for (int k = inc[i]; k < inc[i + 1]; ++k) {
     const int t = inc[k];
     const int4 f = tris[t];
     const int slot = f.x == i ? 1 : (f.y == i ? 2 : 3);
-    for (int m = 0; m < tv[t * ATS_SC_STRIDE]; ++m)
-      active += sc_add_correction(tv_l + 2 * (t * ATS_SC_CAPACITY + m), slot, p.w, &sum);
+    active += sc_add_corrections(tv_l + 2 * t * ATS_SC_CAPACITY, tv[t * ATS_SC_STRIDE], slot, p.w, &sum);
   }
   for (int k = inc[n + 1 + i]; k < inc[n + 2 + i]; ++k) {
     const int e = inc[k];
     const int slot = edges[e].x == i ? 0 : 1;
-    for (int m = 0; m < ee[e * ATS_SC_STRIDE]; ++m)
-      active += sc_add_correction(ee_l + 2 * (e * ATS_SC_CAPACITY + m), slot, p.w, &sum);
+    active += sc_add_corrections(ee_l + 2 * e * ATS_SC_CAPACITY, ee[e * ATS_SC_STRIDE], slot, p.w, &sum);
   }
   if (active == 0) return;
   const float s = 1.0f / (float)active;
