@@ -156,7 +156,10 @@ std::optional<SolverChoice> AccuracyControl::recheck(int frame, const plan::Plan
   layout_.x = plan::values_of<solver::Float4>(state.positions);
   layout_.v = plan::values_of<solver::Float4>(state.velocities);
   ProbedState measured;
-  const double y = probe_.measure(current_, layout_, frame, &measured);
+  // Until a state resolves the tolerance, y is measured only on one that
+  // does (elsewhere it is float32 rounding, and the choice stays).
+  const double y =
+      probe_.measure(current_, layout_, frame, &measured, resolved_ ? 0.0 : sched::resolution_needed(goal_));
   const double measured_ms = interval_ms();
   const bool resolves = sched::resolves(measured.y_floor, sched::resolution_needed(goal_));
   const SolverChoice before = current_;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <tuple>
@@ -246,12 +247,30 @@ struct AccuracyProbe::Impl {
     return c;
   }
 
+  // The states and references last made, and what they were made from: a
+  // re-check and the probe that follows it on the same state share them
+  // (the Newton reference is most of a re-check's time).
+  struct MadeStates {
+    int frame = -1;
+    std::vector<Float4> x, v;
+    std::vector<solver::SimLayout> states;
+    std::vector<solver::newton::SubstepReference> references;
+  } made;
+
   // The probed states: `state`, then each after the exact substep from the
   // one before; the colliders where they are during each.
   void make_states(const solver::SimLayout& state, int frame, int count, std::vector<solver::SimLayout>& states,
                    std::vector<solver::newton::SubstepReference>& references) {
+    const auto same_bits = [](const std::vector<Float4>& a, const std::vector<Float4>& b) {
+      return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Float4)) == 0;
+    };
+    const bool same = made.frame == frame && same_bits(made.x, state.x) && same_bits(made.v, state.v);
+    if (!same) made = {frame, state.x, state.v, {}, {}};
+    const std::size_t reuse = std::min<std::size_t>(made.states.size(), static_cast<std::size_t>(count));
+    states.assign(made.states.begin(), made.states.begin() + static_cast<std::ptrdiff_t>(reuse));
+    references.assign(made.references.begin(), made.references.begin() + static_cast<std::ptrdiff_t>(reuse));
     const double t = frame * scene.simulation.frame_dt;
-    for (int i = 0; i < count; ++i) {
+    for (int i = static_cast<int>(reuse); i < count; ++i) {
       solver::SimLayout s = i == 0 ? state : solver::newton::exact_step(states.back(), references.back());
       // The probe's own colliders and particle friction (none), posed for
       // the substep.
@@ -259,6 +278,10 @@ struct AccuracyProbe::Impl {
       s.colliders = colliders.moving() ? colliders.records(t + i * h, t + (i + 1) * h) : base.colliders;
       references.push_back(solver::newton::substep_reference(s, h));
       states.push_back(std::move(s));
+    }
+    if (states.size() > made.states.size()) {
+      made.states = states;
+      made.references = references;
     }
   }
 
@@ -332,7 +355,7 @@ double AccuracyProbe::predicted_ms(const std::string& method, int iterations, co
 }
 
 double AccuracyProbe::measure(const SolverChoice& choice, const solver::SimLayout& state, int frame,
-                              ProbedState* measured) {
+                              ProbedState* measured, double resolution) {
   Impl& p = *impl_;
   std::vector<solver::SimLayout> states;
   std::vector<solver::newton::SubstepReference> references;
@@ -341,6 +364,7 @@ double AccuracyProbe::measure(const SolverChoice& choice, const solver::SimLayou
   if (measured) *measured = {frame, 0, span, references[0].y_floor};
   const int m = p.index_of(choice.method);
   if (m < 0) throw runtime_error(fmt::format("internal error: {} is no candidate method", choice.method));
+  if (resolution > 0.0 && !sched::resolves(references[0].y_floor, resolution)) return kNaN;
   return p.measure_y(m, choice.iterations, states, references,
                      span > 0.0 ? std::vector<std::size_t>{0} : std::vector<std::size_t>{});
 }

@@ -76,8 +76,12 @@ class AccuracyProbe {
   // `substeps` states, and the choice for the scene's goal.
   ProbeTable probe(const solver::SimLayout& state, int frame, int substeps);
   // A re-check: y of `choice` on `state` alone, and what the reference
-  // measured there.
-  double measure(const SolverChoice& choice, const solver::SimLayout& state, int frame, ProbedState* measured);
+  // measured there. With `resolution` > 0, NaN without running the choice
+  // when the state does not resolve y to it (sched::resolves): y there is
+  // float32 rounding. The state's reference is kept for a probe() of the
+  // same state and frame that follows.
+  double measure(const SolverChoice& choice, const solver::SimLayout& state, int frame, ProbedState* measured,
+                 double resolution = 0.0);
   // The cost model's frame time for a choice, and its line in the iterations.
   double predicted_ms(const std::string& method, int iterations, const std::string& schedule);
   sched::IterationCost cost_line(const std::string& method, const std::string& schedule);

@@ -25,6 +25,7 @@ enum class NewtonStatus {
   iteration_limit,       // max_iterations steps taken without converging
   line_search_failed,    // no step length decreased E (nor, within rounding, |grad E|)
   factorization_failed,  // the projected Hessian was not positive definite
+  stalled,               // steps in a row neither halved |grad E| nor lowered E beyond rounding
 };
 
 std::string_view to_string(NewtonStatus status);
