@@ -30,7 +30,7 @@ fi
 sources=("$root"/lib/scene/*.cpp "$root"/lib/util/*.cpp "$root"/tests/fuzz/fuzz_scene.cpp)
 if [[ ! -x "$out/fuzz_scene" || -n "$(find "${sources[@]}" "$root"/lib/scene "$root"/lib/util -newer "$out/fuzz_scene" 2>/dev/null | head -1)" ]]; then
   echo "building $out/fuzz_scene"
-  nice -n 19 "$cxx" -std=c++20 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
+  nice -n 10 "$cxx" -std=c++20 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
     -I"$root/lib" $(pkg-config --cflags yaml-cpp assimp fmt 2>/dev/null || true) "${sources[@]}" \
     -lyaml-cpp -lassimp -lfmt -o "$out/fuzz_scene"
 fi
