@@ -5,6 +5,7 @@
 #
 #   scripts/fuzz_scene.sh [RUNS] [extra libFuzzer flags]   (default 1000000 runs; -1: no limit,
 #                                                           e.g. with -max_total_time=120)
+#   scripts/fuzz_scene.sh --build-only                     (scripts/check.sh, beside its build)
 #
 # Builds build/fuzz/fuzz_scene from lib/scene + lib/util with
 # -fsanitize=fuzzer,address,undefined; the seed corpus is the kept corpus
@@ -15,6 +16,8 @@
 #   build/fuzz/fuzz_scene -merge=1 -max_len=8192 tests/fuzz/corpus build/fuzz/corpus
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
+build_only=0
+if [[ "${1:-}" == --build-only ]]; then build_only=1; fi
 runs="${1:-1000000}"
 shift || true
 out="$root/build/fuzz"
@@ -27,10 +30,11 @@ fi
 sources=("$root"/lib/scene/*.cpp "$root"/lib/util/*.cpp "$root"/tests/fuzz/fuzz_scene.cpp)
 if [[ ! -x "$out/fuzz_scene" || -n "$(find "${sources[@]}" "$root"/lib/scene "$root"/lib/util -newer "$out/fuzz_scene" 2>/dev/null | head -1)" ]]; then
   echo "building $out/fuzz_scene"
-  nice -n 19 "$cxx" -std=c++20 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
+  nice -n 10 "$cxx" -std=c++20 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
     -I"$root/lib" $(pkg-config --cflags yaml-cpp assimp fmt 2>/dev/null || true) "${sources[@]}" \
     -lyaml-cpp -lassimp -lfmt -o "$out/fuzz_scene"
 fi
+if [[ "$build_only" -eq 1 ]]; then exit 0; fi
 cp "$root"/scenes/*.yaml "$root"/tests/bad_input/cases/*.yaml "$out/seeds/"
 if compgen -G "$root/tests/fuzz/corpus/*" >/dev/null; then cp "$root"/tests/fuzz/corpus/* "$out/seeds/"; fi
 cd "$out"

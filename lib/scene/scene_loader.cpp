@@ -16,6 +16,7 @@
 #include "scene/input_file.hpp"
 #include "scene/object_reader.hpp"
 #include "scene/scene_yaml.hpp"
+#include "scene/yaml_document.hpp"
 #include "scene/yaml_keys.hpp"
 #include "scene/yaml_reader.hpp"
 #include "util/error.hpp"
@@ -170,15 +171,8 @@ SceneDesc parse_scene(const std::string& yaml_text, const std::string& source_na
   YamlSource source{source_name, {}};
   YAML::Node root;
   try {
-    // Every document, so that a second one ('---') is refused, not ignored.
-    const std::vector<YAML::Node> documents = YAML::LoadAll(yaml_text);
-    if (documents.size() > 1) {
-      throw input_error(fmt::format(
-          "{}:{}: a second YAML document ('---') in the scene file; a scene is one document: remove the '---' line "
-          "and merge the keys, or split the file",
-          source_name, documents[1].Mark().is_null() ? 1 : documents[1].Mark().line + 1));
-    }
-    if (!documents.empty()) root = documents.front();
+    // The one document: a second one ('---') is refused, not ignored.
+    root = load_one_document(yaml_text, source_name);
   } catch (const YAML::ParserException& e) {
     throw input_error(fmt::format("{}:{}: YAML syntax error: {}; fix the indentation or quoting there", source_name,
                                   e.mark.line + 1, e.msg));

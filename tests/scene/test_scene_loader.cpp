@@ -109,6 +109,19 @@ TEST_CASE("YAML syntax errors name their line") {
   CHECK(msg.find("YAML syntax error") != std::string::npos);
 }
 
+TEST_CASE("a ',' outside brackets is a syntax error naming its line, not a parser that never returns") {
+  // yaml-cpp's LoadAll loops on these, its list of empty documents growing
+  // until memory runs out (found by the fuzzer, docs/reliability.md).
+  CHECK(error_of(",").find("scene.yaml:1: YAML syntax error: a ','") == 0);
+  CHECK(error_of("- 1\n,\n").find("scene.yaml:2: YAML syntax error: a ','") == 0);
+  CHECK(error_of("[1, 2],\n").find("scene.yaml:1: YAML syntax error: a ','") == 0);
+}
+
+TEST_CASE("a second YAML document is refused at its line") {
+  CHECK(error_of(kGood + "---\nobjects: []\n").find("scene.yaml:11: a second YAML document") == 0);
+  CHECK(error_of(kGood + "---\n,\n").find("a second YAML document") != std::string::npos);
+}
+
 TEST_CASE("set overrides (--set) replace any key before validation") {
   const std::vector<std::string> sets{"simulation.substeps=32", "objects.0.material.density=0.5",
                                       "objects.0.material.bend_stiffness=0.01"};
