@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Quick start (2): install what is missing, build, run the whole test suite
-# (everything but the labels `slurm`, `stability` and `paper_size`, which need
+# (everything but the labels `slurm` and `stability`, which need
 # a Slurm cluster or minutes; benchmarks live in scripts/bench_*.sh). Ends with the
 # suite's counts: tests run, passed, failed and skipped, each skipped test
 # named with its reason.

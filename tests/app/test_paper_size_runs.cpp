@@ -2,10 +2,10 @@
 // binary: one substep of one iteration (`--set`), on the whole CPU device,
 // from meshes written for the test (tests/support/paper_scenes.hpp). Their
 // own 32-64 substeps x 8-12 iterations a frame cost minutes at this size;
-// even this short frame costs seconds to a minute per scene on two cores
-// (kernels built, tasks profiled, contact lists built over 69-150 K
-// vertices), so this executable carries the ctest label paper_size, which
-// the presets leave out: `ctest --test-dir build/release -L paper_size`.
+// this short frame costs 6-19 s per scene on two cores (kernels built,
+// tasks profiled, contact lists built over 69-150 K vertices). The ctest
+// label paper_size runs them alone (`ctest --test-dir build/release -L
+// paper_size`); the release preset runs them, the sanitizer presets do not.
 // scripts/bench_paper_scenes.py runs them at their own settings.
 // tests/check_doc_counts.py (in the presets) fails when a scenes/paper/NAME.yaml
 // has no case "the paper's NAME at the paper's size runs a frame" here.
