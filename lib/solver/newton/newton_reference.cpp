@@ -17,7 +17,7 @@ namespace {
 // Armijo can no longer tell; there a step that still lowers |grad E| is taken.
 constexpr double kEnergyRounding = 1e-13;
 // Steps in a row without progress after which Newton stops (NewtonStatus::stalled).
-constexpr int kStalledSteps = 3;
+constexpr int kStalledSteps = 10;
 
 struct Point {
   Eigen::VectorXd x;
@@ -127,7 +127,6 @@ NewtonResult newton_reference(const energy::IncrementalPotential& problem, const
   };
   if (converged()) return finish(NewtonStatus::converged);
 
-  const double start_energy = at.energy;
   int stalled = 0;  // steps in a row without progress
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
   std::vector<int> outer, inner;  // the sparsity the solver's pattern was analysed for
@@ -156,14 +155,14 @@ NewtonResult newton_reference(const energy::IncrementalPotential& problem, const
     result.iterations = it + 1;
     if (converged()) return finish(NewtonStatus::converged);
     // No progress: the gradient did not halve and E fell by less than its
-    // rounding or than 1e-12 of its whole decrease so far. Where |grad E(x0)|
+    // rounding, ten steps in a row (three stopped a stiff 64 x 64 cloth that
+    // converges later: test_bundled_accuracy). Where |grad E(x0)|
     // is itself rounding (a body at rest or falling freely) the relative
     // tolerance cannot be reached, and the steps only move within rounding
     // (measured: 100 steps on the soft box's start state, 26 s each probe).
     const double fell = energy_before - at.energy;
     const bool no_progress =
-        step_gradient_norm(at) > 0.5 * norm_before &&
-        (fell <= kEnergyRounding * std::abs(energy_before) || fell <= 1e-12 * (start_energy - at.energy));
+        step_gradient_norm(at) > 0.5 * norm_before && fell <= kEnergyRounding * std::abs(energy_before);
     stalled = no_progress ? stalled + 1 : 0;
     if (stalled >= kStalledSteps) return finish(NewtonStatus::stalled);
   }

@@ -71,7 +71,7 @@ TEST_CASE("Newton refuses a tet with a negative Lame lambda", "[newton][tet]") {
   CHECK_THROWS_WITH(newton::newton_reference(start, predicted, kH), Catch::Contains("lambda >= 0"));
 }
 
-TEST_CASE("Newton stops within a few steps on a body falling freely at rest, at the inertial prediction",
+TEST_CASE("Newton stops within 20 steps on a body falling freely at rest, at the inertial prediction",
           "[newton][tet]") {
   // Nothing pinned, at rest shape, at rest: x~ = x + h^2 g is a rigid
   // translation, so E = inertia + elasticity is 0 there and nowhere lower:
@@ -93,6 +93,6 @@ TEST_CASE("Newton stops within a few steps on a body falling freely at rest, at 
   INFO(newton::to_string(star.status) << " after " << star.iterations << " iterations, relative |grad| "
                                       << star.relative_gradient);
   CHECK((star.status == newton::NewtonStatus::stalled || star.status == newton::NewtonStatus::converged));
-  CHECK(star.iterations <= 10);
+  CHECK(star.iterations <= 20);
   CHECK((star.x - problem.predicted).cwiseAbs().maxCoeff() < 1e-9);
 }
