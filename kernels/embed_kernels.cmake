@@ -7,7 +7,10 @@ cmake_minimum_required(VERSION 3.25)  # script mode: IN_LIST and the other polic
 # The programs are found, not listed: every .cl under KERNEL_DIR that no
 # other .cl includes is a program named after its file (kernels/vbd/vbd.cl
 # is "vbd"), except the fused dispatcher (device/dispatch.cl), which is
-# appended to every program that declares task functions. A new method's
+# appended to every program that declares task functions, under `#if
+# ATS_FUSED` (the fused executor builds with -DATS_FUSED=1): it needs OpenCL
+# C 2.0 atomics, which an events-only device such as an NVIDIA GPU (OpenCL C
+# 3.0 without the atomic-scope features) does not compile. A new method's
 # kernels/<method>/<method>.cl is thus embedded without naming it here.
 #
 # A program's task functions (`ATS_TASK void name(int i, …)`, common/task.h)
@@ -168,7 +171,7 @@ foreach(entry IN LISTS programs)
   generate_tasks("${name}" "${source}" generated rows task_count)
   if(task_count GREATER 0)
     inline_includes("${KERNEL_DIR}/${dispatcher_path}" dispatcher seen)
-    string(APPEND source "${generated}\n${dispatcher}")
+    string(APPEND source "${generated}\n#if ATS_FUSED\n${dispatcher}\n#endif\n")
     string(APPEND body "const TaskSignature k_${name}_tasks[] = {\n${rows}};\n")
     string(APPEND task_table "  if (name == \"${name}\") return k_${name}_tasks;\n")
   endif()

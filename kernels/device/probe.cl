@@ -2,9 +2,6 @@
  * OpenCL C 2.0 atomics in fine-grain SVM. Every spin also watches the abort
  * flag in control[0], which the host sets when a probe takes too long. */
 
-/* An empty kernel: the events executor times event hops with it. */
-__kernel void probe_noop(__global int* unused) { (void)unused; }
-
 /* Two of these, one per device (role 0 and 1), pass a counter back and
  * forth `hops` times: the fused executor's cross-device hop, and the proof
  * that the two devices really run at the same time. */

@@ -333,7 +333,7 @@ struct EventRunner::Impl {
   double probe_hops(std::size_t from, std::size_t to, int repetitions, bool same_queue) {
     const std::size_t memory = r.set.memory_of[from];
     const cl::Program probe =
-        build_program(r.set.contexts[memory], r.set.devices_of(memory), "probe", language_option(r.set));
+        build_program(r.set.contexts[memory], r.set.devices_of(memory), "noop", language_option(r.set));
     cl::Kernel noop(probe, "probe_noop");
     check_cl(clSetKernelArgSVMPointer(noop(), 0, r.buffers[memory].empty() ? nullptr : r.buffers[memory].front()),
              "setting the probe's argument");

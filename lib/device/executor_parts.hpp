@@ -31,8 +31,9 @@ struct PlanResources {
   const cl::Program& program(std::size_t device) const { return programs[set.memory_of[device]]; }
 };
 
-// "-cl-std=CL3.0" where every device accepts OpenCL C 3.0, else CL2.0: the
-// dispatcher needs the 2.0 atomics.
+// "-cl-std=CL3.0" where every device accepts OpenCL C 3.0, else CL2.0 where
+// every device accepts 2.0 (the fused dispatcher needs its atomics), else
+// CL1.2 (events only: the task kernels are OpenCL C 1.2).
 std::string language_option(const DeviceSet::Impl& set);
 
 }  // namespace atssim::device

@@ -23,7 +23,11 @@ namespace atssim::device {
 std::string language_option(const DeviceSet::Impl& set) {
   const bool all_3 = std::all_of(set.infos.begin(), set.infos.end(),
                                  [](const DeviceInfo& d) { return d.c_version.find("3.0") != std::string::npos; });
-  return all_3 ? "-cl-std=CL3.0" : "-cl-std=CL2.0";
+  if (all_3) return "-cl-std=CL3.0";
+  const bool all_2 = std::all_of(set.infos.begin(), set.infos.end(), [](const DeviceInfo& d) {
+    return d.c_version.find("2.") != std::string::npos || d.c_version.find("3.") != std::string::npos;
+  });
+  return all_2 ? "-cl-std=CL2.0" : "-cl-std=CL1.2";
 }
 
 namespace {
@@ -108,7 +112,8 @@ struct PlanExecutor::Impl {
     for (std::size_t m = 0; m < set.contexts.size(); ++m) {
       resources.programs.push_back(
           build_program(set.contexts[m], set.devices_of(m), plan.program,
-                        fmt::format("{} -DATS_TASK_CLOCK={}", language_option(set), clock ? 1 : 0)));
+                        fmt::format("{} -DATS_FUSED={} -DATS_TASK_CLOCK={}", language_option(set),
+                                    kind == ExecutorKind::fused ? 1 : 0, clock ? 1 : 0)));
     }
     if (kind == ExecutorKind::fused) {
       fused = std::make_unique<FusedRunner>(resources, sync_arena,
