@@ -20,6 +20,7 @@ usage: scripts/bench_hybrid.py [--methods xpbd,vbd] [--sizes 64,256,512] [--roun
 On a machine without a GPU it says so and exits 2. Build first.
 """
 import os
+import signal
 import subprocess
 import sys
 import tempfile
@@ -39,6 +40,28 @@ def devices_listing() -> str:
     return subprocess.run([BIN, "devices"], check=True, capture_output=True, text=True).stdout
 
 
+def measure(methods, sizes, native, args, rounds) -> None:
+    """Fills rounds[(method, size)][column] with (ms, error, bytes moved) per round, cell by cell."""
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "out.h5")
+        for method in methods:
+            for size in sizes:
+                frames = frames_for(size, args.frames)
+                cells = rounds.setdefault((method, size), {})
+                for _ in range(args.rounds):
+                    for label, loop, threads, for_methods in native:
+                        if method in for_methods:
+                            cells.setdefault(label, []).append(
+                                (run_native(method, size, threads, frames, loop), None, None))
+                    for label, devices, schedule in VARIANTS:
+                        try:
+                            cells.setdefault(label, []).append(
+                                run_atssim_frames(method, size, "events", devices, schedule, frames, out))
+                        except subprocess.CalledProcessError as e:
+                            print(f"{method} {size} {label}: failed ({e})", file=sys.stderr, flush=True)
+                print(f"measured {method} {size}x{size}", file=sys.stderr, flush=True)
+
+
 def main() -> int:
     ap = bench_arguments("64,256,512")
     ap.add_argument("--threads", type=int, default=os.cpu_count(), help="threads of the native TBB loop")
@@ -56,25 +79,15 @@ def main() -> int:
               (f"plain TBB {args.threads} threads", "plain", args.threads, ("xpbd",))]
     columns = [n[0] for n in native] + [v[0] for v in VARIANTS]
     rounds = {}
-    with tempfile.TemporaryDirectory() as tmp:
-        out = os.path.join(tmp, "out.h5")
-        for method in methods:
-            for size in sizes:
-                frames = frames_for(size, args.frames)
-                cells = {}
-                for _ in range(args.rounds):
-                    for label, loop, threads, for_methods in native:
-                        if method in for_methods:
-                            cells.setdefault(label, []).append(
-                                (run_native(method, size, threads, frames, loop), None, None))
-                    for label, devices, schedule in VARIANTS:
-                        try:
-                            cells.setdefault(label, []).append(
-                                run_atssim_frames(method, size, "events", devices, schedule, frames, out))
-                        except subprocess.CalledProcessError as e:
-                            print(f"{method} {size} {label}: failed ({e})", file=sys.stderr, flush=True)
-                rounds[(method, size)] = cells
-                print(f"measured {method} {size}x{size}", file=sys.stderr, flush=True)
+
+    def stop(*_):  # `timeout` or a batch system's TERM: print what was measured so far
+        raise KeyboardInterrupt
+
+    signal.signal(signal.SIGTERM, stop)
+    try:
+        measure(methods, sizes, native, args, rounds)
+    except KeyboardInterrupt:
+        print("bench_hybrid: interrupted; the tables hold the cells measured before", file=sys.stderr)
     results = {key: {c: min(v, key=lambda r: r[0]) for c, v in cells.items() if v} for key, cells in rounds.items()}
 
     print("| method | cloth | " + " | ".join(columns) + " |")
