@@ -20,7 +20,7 @@ parentheses), a second with each cell's spread over the rounds (min / median
 interleaved round by round so that drift hits them alike; the fastest round
 counts in the first table.
 
-usage: scripts/bench_devices.py [--executor events,fused] [--methods xpbd,vbd]
+usage: scripts/bench_devices.py [--executor events,fused|none] [--methods xpbd,vbd]
                                 [--sizes 64,128,256] [--rounds 2] [--frames 10]
 Build first (scripts/test.sh or scripts/quickstart.sh).
 """
@@ -179,7 +179,8 @@ def print_roofline(machine: dict, results: dict, executors, native) -> None:
 
 def main() -> int:
     ap = bench_arguments("64,128,256")
-    ap.add_argument("--executor", default="events,fused", help="comma separated: events, fused")
+    ap.add_argument("--executor", default="events,fused",
+                    help="comma separated: events, fused; none: the native loops alone")
     ap.add_argument("--roofline", action="store_true", help="XPBD: also run bench/bench_roofline and print the "
                     "fraction of the machine's limits each loop reaches")
     args = ap.parse_args()
@@ -189,7 +190,7 @@ def main() -> int:
     if args.roofline:
         machine = json.loads(subprocess.run([ROOFLINE, "--threads", "2"], check=True, capture_output=True,
                                             text=True).stdout)
-    executors = args.executor.split(",")
+    executors = [] if args.executor == "none" else args.executor.split(",")
     methods = args.methods.split(",")
     sizes = [int(s) for s in args.sizes.split(",")]
     native = [v for v in NATIVE_VARIANTS if any(m in v[4] for m in methods)]

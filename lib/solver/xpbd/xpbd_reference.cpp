@@ -59,6 +59,17 @@ XpbdReference::XpbdReference(XpbdReference&&) noexcept = default;
 XpbdReference& XpbdReference::operator=(XpbdReference&&) noexcept = default;
 XpbdReference::~XpbdReference() = default;
 
+// The constraint bodies are inlined into the loops that call them: GCC keeps
+// a large lambda called from two places (the serial loop and the
+// parallel_for's) out of line, one call per constraint, which made this
+// loop 1.6-1.8x slower than the same body written inline (bench_native
+// --loop plain, docs/benchmarks.md).
+#if defined(__GNUC__)
+#define ATS_INLINE_BODY __attribute__((always_inline))
+#else
+#define ATS_INLINE_BODY
+#endif
+
 // With threads > 1 substep() is already inside the arena (entered once per
 // substep, not once per block): each sweep is one plain parallel_for.
 template <class Body>
@@ -116,7 +127,7 @@ void XpbdReference::solve_stretch(bool reset) {
   const ats_distance_c* con = layout_.stretch.data();
   float* lambda = stretch_lambda_.data();
   for (std::size_t b = 0; b + 1 < layout_.stretch_blocks.size(); ++b) {
-    sweep(layout_.stretch_blocks[b], layout_.stretch_blocks[b + 1], [=](int i) {
+    sweep(layout_.stretch_blocks[b], layout_.stretch_blocks[b + 1], [=](int i) ATS_INLINE_BODY {
       const ats_distance_c c = con[i];
       Float4& pa = x[c.a];
       Float4& pb = x[c.b];
@@ -139,7 +150,7 @@ void XpbdReference::solve_bend(bool reset) {
   const ats_bend_c* con = layout_.bend.data();
   float* lambda = bend_lambda_.data();
   for (std::size_t b = 0; b + 1 < layout_.bend_blocks.size(); ++b) {
-    sweep(layout_.bend_blocks[b], layout_.bend_blocks[b + 1], [=](int i) {
+    sweep(layout_.bend_blocks[b], layout_.bend_blocks[b + 1], [=](int i) ATS_INLINE_BODY {
       const ats_bend_c& c = con[i];
       ats_vec3 p[4];
       float w[4];
@@ -162,7 +173,7 @@ void XpbdReference::solve_bend(bool reset) {
 void XpbdReference::solve_tets(bool reset) {
   const float dt = static_cast<float>(inertia_dt(layout_, settings_.substep_dt));
   for (std::size_t b = 0; b + 1 < layout_.tet_blocks.size(); ++b) {
-    sweep(layout_.tet_blocks[b], layout_.tet_blocks[b + 1], [&](int i) {
+    sweep(layout_.tet_blocks[b], layout_.tet_blocks[b + 1], [&](int i) ATS_INLINE_BODY {
       const ats_tet_c& t = layout_.tets[i];
       ats_vec3 p[4];
       float w[4];
