@@ -10,6 +10,7 @@
 #include "scene/scene_desc.hpp"
 #include "sched/fixed_assignment.hpp"
 #include "sched/heft.hpp"
+#include "sched/merged_heft.hpp"
 #include "sched/profile_costs.hpp"
 #include "sched/split_shares.hpp"
 #include "util/error.hpp"
@@ -35,11 +36,24 @@ sched::DeviceLinks measure_links(device::PlanExecutor& executor) {
   return links;
 }
 
+// The merges HEFT tries (sched/merged_heft.hpp): the parts of each block,
+// and 2, 4 or 8 consecutive blocks.
+constexpr std::size_t kMergeSizes[] = {1, 2, 4, 8};
+
 void make_schedule(Execution& e, const ExecutionOptions& options, bool choose_devices) {
   const auto& graph = e.plan().graph;
   if (e.mode == ScheduleMode::async && options.replay) return;  // the replay order is fixed
   if (choose_devices && e.mode == ScheduleMode::heft) {
-    e.schedule = sched::schedule_heft_or_one_device(graph, e.costs.costs(), e.costs.links());
+    if (options.task_merging) {
+      sched::MergedHeft m = sched::schedule_heft_merging(graph, e.costs.costs(), e.costs.links(), kMergeSizes);
+      e.schedule = std::move(m.schedule);
+      e.merge_blocks = m.blocks_per_group;
+      e.merge_group = std::move(m.group);
+      e.unmerged_makespan_ms = m.unmerged_makespan_ms;
+    } else {
+      e.schedule = sched::schedule_heft_or_one_device(graph, e.costs.costs(), e.costs.links());
+      e.unmerged_makespan_ms = e.schedule.makespan_ms;
+    }
     for (sched::TaskId t = 0; t < graph.size(); ++t) e.assignment[t] = e.schedule.device_of(t);
     e.costs.plan_made();
   } else {
@@ -133,6 +147,7 @@ ExecutionOptions execution_options(const scene::SceneDesc& scene) {
   o.merge = plan::parse_merge_strategy(scene.solver.merge);
   o.async_latest = scene.solver.async_latest;
   o.replay = scene.solver.replay;
+  o.task_merging = scene.solver.task_merging;
   return o;
 }
 
@@ -186,7 +201,7 @@ plan::SubstepPlan cut_for_mode(const plan::SubstepPlan& base, ScheduleMode mode,
 }
 
 PlannedSchedule schedule_from_costs(const plan::SubstepPlan& base, ScheduleMode mode, const sched::CostTable& costs,
-                                    double latency_ms) {
+                                    double latency_ms, bool task_merging) {
   check_one_device_plan(base, mode);
   const std::size_t n = costs.devices;
   if (mode == ScheduleMode::async) {
@@ -207,7 +222,15 @@ PlannedSchedule schedule_from_costs(const plan::SubstepPlan& base, ScheduleMode 
     p.costs = sched::costs_for_fractions(p.plan.graph, costs, p.split_fractions);
     p.schedule = sched::schedule_fixed(p.plan.graph, p.costs, p.links, sched::part_devices(p.plan.graph));
   } else if (mode == ScheduleMode::heft) {
-    p.schedule = sched::schedule_heft_or_one_device(p.plan.graph, p.costs, p.links);
+    if (task_merging) {
+      sched::MergedHeft m = sched::schedule_heft_merging(p.plan.graph, p.costs, p.links, kMergeSizes);
+      p.schedule = std::move(m.schedule);
+      p.merge_group = std::move(m.group);
+      p.unmerged_makespan_ms = m.unmerged_makespan_ms;
+    } else {
+      p.schedule = sched::schedule_heft_or_one_device(p.plan.graph, p.costs, p.links);
+      p.unmerged_makespan_ms = p.schedule.makespan_ms;
+    }
   } else {
     p.schedule =
         sched::schedule_fixed(p.plan.graph, p.costs, p.links, std::vector<sched::DeviceId>(p.plan.graph.size(), 0));

@@ -3,6 +3,7 @@
 // schedule mode needs, its executor, the costs measured on every device, and
 // the schedule with its cross-device waits (DESIGN.md "Task graph of one
 // substep": single, sync split, HEFT, async).
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -45,6 +46,9 @@ struct ExecutionOptions {
   plan::MergeStrategy merge = plan::MergeStrategy::average_displacements;
   bool async_latest = true;
   bool replay = false;  // run the async schedule on device 0 alone, in schedule order
+  // heft: colour blocks merged where HEFT then predicts a shorter substep
+  // (sched::schedule_heft_merging; solver.task_merging).
+  bool task_merging = true;
   // Async: costs of the base plan's tasks per device to place them with,
   // instead of a profile, and the links between the devices instead of a
   // measured hop (tests use both to make the placement deterministic).
@@ -69,6 +73,11 @@ struct Execution {
   sched::DeviceId main_device = 0;      // async: the device that keeps the stream
   int async_slots = 0;                  // async: snapshot buffers
   std::size_t async_merges = 0;         // async: merges per substep
+  // heft: the merge HEFT last chose (blocks per group, 0: none), each task's
+  // merged task (-1: alone) and the makespan predicted without merging.
+  std::size_t merge_blocks = 0;
+  std::vector<int> merge_group;
+  double unmerged_makespan_ms = std::numeric_limits<double>::quiet_NaN();
 
   const plan::SubstepPlan& plan() const { return executor->plan(); }
 };
@@ -86,7 +95,8 @@ Execution prepare_execution(const device::DeviceSet& devices, plan::SubstepPlan 
 // schedule --costs`): `costs` belongs to the plan cut for `mode` into equal
 // parts, one per device (uncut for single). For split, the parts are then
 // re-cut by the devices' speeds in `costs` and each part's cost scaled by
-// its share. No device is touched.
+// its share. No device is touched. heft merges colour blocks as a run does
+// (ExecutionOptions::task_merging) unless `task_merging` is false.
 struct PlannedSchedule {
   plan::SubstepPlan plan;
   sched::CostTable costs;
@@ -94,10 +104,12 @@ struct PlannedSchedule {
   sched::Schedule schedule;
   std::vector<sched::Wait> waits;
   std::vector<double> split_fractions;
+  std::vector<int> merge_group;  // heft: each task's merged task, -1 alone (empty: none)
+  double unmerged_makespan_ms = std::numeric_limits<double>::quiet_NaN();  // heft: HEFT without merging
 };
 plan::SubstepPlan cut_for_mode(const plan::SubstepPlan& base, ScheduleMode mode, std::size_t devices);
 PlannedSchedule schedule_from_costs(const plan::SubstepPlan& base, ScheduleMode mode, const sched::CostTable& costs,
-                                    double latency_ms);
+                                    double latency_ms, bool task_merging = true);
 
 // Replay (async): runs the current schedule's tasks on device 0 alone, in
 // the order of their predicted starts. Every data flow of an async plan is

@@ -74,23 +74,34 @@ device::SvmMode svm_mode(const std::string& text) {
 
 // Every task of the schedule that ran, with what was measured of it (NaN
 // where a fused launch without a task clock timed only the whole launch).
-void record_schedule(io::ResultWriter& writer, int frame, const sched::Schedule& used,
-                     const std::vector<sched::Wait>& waits, const FrameMeasurement& measured) {
+// The schedule a frame ran: the slots, the waits between devices, each
+// task's merged task (heft; empty: none) and HEFT's makespan without merging.
+struct UsedSchedule {
+  const sched::Schedule& schedule;
+  const std::vector<sched::Wait>& waits;
+  const std::vector<int>& merge_group;
+  double unmerged_makespan_ms;
+};
+
+void record_schedule(io::ResultWriter& writer, int frame, const UsedSchedule& used, const FrameMeasurement& measured) {
   std::vector<io::ScheduledTask> rows;
+  const auto group = [&](sched::TaskId t) { return t < used.merge_group.size() ? used.merge_group[t] : -1; };
   if (!measured.timings.empty()) {
     for (const auto& t : measured.timings) {
-      const sched::Slot& slot = used.slot(t.task);
-      rows.push_back({t.task, static_cast<int>(t.device), slot.start_ms, slot.finish_ms, t.start_ms, t.finish_ms});
+      const sched::Slot& slot = used.schedule.slot(t.task);
+      rows.push_back(
+          {t.task, static_cast<int>(t.device), slot.start_ms, slot.finish_ms, t.start_ms, t.finish_ms, group(t.task)});
     }
   } else {
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    for (std::size_t d = 0; d < used.devices.size(); ++d) {
-      for (const sched::Slot& slot : used.devices[d]) {
-        rows.push_back({slot.task, static_cast<int>(d), slot.start_ms, slot.finish_ms, nan, nan});
+    for (std::size_t d = 0; d < used.schedule.devices.size(); ++d) {
+      for (const sched::Slot& slot : used.schedule.devices[d]) {
+        rows.push_back({slot.task, static_cast<int>(d), slot.start_ms, slot.finish_ms, nan, nan, group(slot.task)});
       }
     }
   }
-  writer.append_schedule(frame, rows, waits, used.makespan_ms, measured.makespan_ms, measured.bytes_moved);
+  writer.append_schedule(frame, rows, used.waits, used.schedule.makespan_ms, measured.makespan_ms, measured.bytes_moved,
+                         used.unmerged_makespan_ms);
 }
 
 io::RunInfo run_info(const RunOptions& options, const scene::SceneDesc& scene, const device::DeviceSet& devices,
@@ -415,6 +426,8 @@ void run_simulation(const RunOptions& options, RunResult& result,
       // schedule follows (paper §5: re-profiled every frame with smoothing).
       const sched::Schedule used = execution.schedule;
       const std::vector<sched::Wait> used_waits = execution.waits;
+      const std::vector<int> used_merge = execution.merge_group;
+      const double used_unmerged_ms = execution.unmerged_makespan_ms;
       const auto schedule_start = std::chrono::steady_clock::now();
       const FrameMeasurement measured = refit_and_reschedule(execution, exec_options);
       const double schedule_ms =
@@ -450,7 +463,7 @@ void run_simulation(const RunOptions& options, RunResult& result,
       result.bytes_moved.push_back(static_cast<double>(measured.bytes_moved));
       result.mean_frame_ms = total_ms / done;
       if (written) {
-        record_schedule(writer, frame, used, used_waits, measured);
+        record_schedule(writer, frame, {used, used_waits, used_merge, used_unmerged_ms}, measured);
         if (!energy_check.enabled()) state = executor->read_state();
         writer.set_checkpoint(frame, state.positions, state.velocities);
         const io::ContactFrame contact = contact_frame(colliders, xyz, surface_measurement.get());

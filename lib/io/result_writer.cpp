@@ -82,6 +82,7 @@ const ResultWriter::SeriesSpec ResultWriter::kSeries[] = {
     {"schedule/predicted_finish_ms", false, 0, SeriesKind::f64, &ResultWriter::sched_pfinish_},
     {"schedule/measured_start_ms", false, 0, SeriesKind::f64, &ResultWriter::sched_mstart_},
     {"schedule/measured_finish_ms", false, 0, SeriesKind::f64, &ResultWriter::sched_mfinish_},
+    {"schedule/merge_group", false, 0, SeriesKind::i32, &ResultWriter::sched_merge_},
     {"schedule/waits/frame", false, 0, SeriesKind::i32, &ResultWriter::wait_frame_},
     {"schedule/waits/producer", false, 0, SeriesKind::i32, &ResultWriter::wait_producer_},
     {"schedule/waits/consumer", false, 0, SeriesKind::i32, &ResultWriter::wait_consumer_},
@@ -91,6 +92,7 @@ const ResultWriter::SeriesSpec ResultWriter::kSeries[] = {
     {"schedule/makespan/predicted_ms", false, 0, SeriesKind::f64, &ResultWriter::mk_predicted_},
     {"schedule/makespan/measured_ms", false, 0, SeriesKind::f64, &ResultWriter::mk_measured_},
     {"schedule/makespan/bytes_moved", false, 0, SeriesKind::u64, &ResultWriter::mk_bytes_},
+    {"schedule/makespan/unmerged_predicted_ms", false, 0, SeriesKind::f64, &ResultWriter::mk_unmerged_},
     {"contact/active", false, 0, SeriesKind::i32, &ResultWriter::contact_active_},
     {"contact/min_distance", false, 0, SeriesKind::f64, &ResultWriter::contact_min_distance_},
     {"contact/max_penetration", false, 0, SeriesKind::f64, &ResultWriter::contact_max_penetration_},
@@ -185,12 +187,12 @@ void ResultWriter::reopen(const RunInfo& info, Checkpoint& resume) {
   wait_rows_ = static_cast<hsize_t>(point->wait_rows);
   makespan_rows_ = static_cast<hsize_t>(point->makespan_rows);
   for (hid_t set : {sched_frame_.get(), sched_task_.get(), sched_device_.get(), sched_pstart_.get(),
-                    sched_pfinish_.get(), sched_mstart_.get(), sched_mfinish_.get()})
+                    sched_pfinish_.get(), sched_mstart_.get(), sched_mfinish_.get(), sched_merge_.get()})
     truncate_rows(set, sched_rows_);
   for (hid_t set :
        {wait_frame_.get(), wait_producer_.get(), wait_consumer_.get(), wait_pdevice_.get(), wait_cdevice_.get()})
     truncate_rows(set, wait_rows_);
-  for (hid_t set : {mk_frame_.get(), mk_predicted_.get(), mk_measured_.get(), mk_bytes_.get()})
+  for (hid_t set : {mk_frame_.get(), mk_predicted_.get(), mk_measured_.get(), mk_bytes_.get(), mk_unmerged_.get()})
     truncate_rows(set, makespan_rows_);
   times_.resize(static_cast<std::size_t>(frames_));
   if (frames_ > 0) {
@@ -269,12 +271,14 @@ void ResultWriter::append_scalar(hid_t set, double value) {
 }
 
 void ResultWriter::append_schedule(int frame, std::span<const ScheduledTask> tasks, std::span<const sched::Wait> waits,
-                                   double predicted_makespan_ms, double measured_makespan_ms, std::size_t bytes_moved) {
-  std::vector<int> f(tasks.size(), frame), task, device;
+                                   double predicted_makespan_ms, double measured_makespan_ms, std::size_t bytes_moved,
+                                   double unmerged_makespan_ms) {
+  std::vector<int> f(tasks.size(), frame), task, device, merge;
   std::vector<double> ps, pf, ms, mf;
   for (const ScheduledTask& t : tasks) {
     task.push_back(static_cast<int>(t.task));
     device.push_back(t.device);
+    merge.push_back(t.merge_group);
     ps.push_back(t.predicted_start_ms);
     pf.push_back(t.predicted_finish_ms);
     ms.push_back(t.measured_start_ms);
@@ -288,6 +292,7 @@ void ResultWriter::append_schedule(int frame, std::span<const ScheduledTask> tas
   append_series_rows<double>(sched_pfinish_, pf, H5T_NATIVE_DOUBLE, rows);
   append_series_rows<double>(sched_mstart_, ms, H5T_NATIVE_DOUBLE, rows);
   append_series_rows<double>(sched_mfinish_, mf, H5T_NATIVE_DOUBLE, rows);
+  append_series_rows<int>(sched_merge_, merge, H5T_NATIVE_INT, rows);
   sched_rows_ += tasks.size();
 
   std::vector<int> wf(waits.size(), frame), producer, consumer, pdev, cdev;
@@ -313,6 +318,8 @@ void ResultWriter::append_schedule(int frame, std::span<const ScheduledTask> tas
   append_series_rows<double>(mk_measured_, m, H5T_NATIVE_DOUBLE, rows);
   const std::uint64_t b[1] = {bytes_moved};
   append_series_rows<std::uint64_t>(mk_bytes_, b, H5T_NATIVE_UINT64, rows);
+  const double u[1] = {unmerged_makespan_ms};
+  append_series_rows<double>(mk_unmerged_, u, H5T_NATIVE_DOUBLE, rows);
   makespan_rows_ += 1;
 }
 

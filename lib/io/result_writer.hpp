@@ -38,6 +38,7 @@ struct ScheduledTask {
   int device = 0;
   double predicted_start_ms = 0, predicted_finish_ms = 0;
   double measured_start_ms = 0, measured_finish_ms = 0;
+  int merge_group = -1;  // heft: the merged task it ran in (sched/merged_heft.hpp); -1 alone
 };
 
 // The particles' contact with the colliders in one frame (docs/output-format.md
@@ -86,7 +87,8 @@ class ResultWriter {
   // Appends the recorded substep of simulated frame `frame` (written with
   // the next append_frame's flush).
   void append_schedule(int frame, std::span<const ScheduledTask> tasks, std::span<const sched::Wait> waits,
-                       double predicted_makespan_ms, double measured_makespan_ms, std::size_t bytes_moved = 0);
+                       double predicted_makespan_ms, double measured_makespan_ms, std::size_t bytes_moved = 0,
+                       double unmerged_makespan_ms = std::numeric_limits<double>::quiet_NaN());
   // One row of /decisions (run --tolerance / --budget), written with the
   // next flush; the first call makes the group. set_decision_measured()
   // writes the last row's measured frame time again.
@@ -145,8 +147,9 @@ class ResultWriter {
   H5Handle flushed_;  // /frames/flushed: frames written and flushed in full (live readers read those)
   // /schedule series: one row per recorded task, per wait, per frame.
   H5Handle sched_frame_, sched_task_, sched_device_, sched_pstart_, sched_pfinish_, sched_mstart_, sched_mfinish_;
+  H5Handle sched_merge_;
   H5Handle wait_frame_, wait_producer_, wait_consumer_, wait_pdevice_, wait_cdevice_;
-  H5Handle mk_frame_, mk_predicted_, mk_measured_, mk_bytes_;
+  H5Handle mk_frame_, mk_predicted_, mk_measured_, mk_bytes_, mk_unmerged_;
   H5Handle contact_active_, contact_min_distance_, contact_max_penetration_;  // /contact, per frame
   H5Handle surface_pairs_, surface_max_penetration_, surface_crossings_;
   std::vector<ContactFrame> resumed_contact_;

@@ -143,6 +143,7 @@ struct SolverDesc {
   std::string merge = "average_displacements";   // async: how a device merges another's result
   bool async_latest = true;                      // async: also merge the latest finished result, not only dependencies
   bool replay = false;                           // async: run the schedule on one device, in schedule order
+  bool task_merging = true;                      // heft: merge colour blocks where predicted to pay (auto | off)
   std::string executor = "auto";                 // auto | fused | events: how the devices run the schedule
   double wait_timeout_s = 10.0;                  // fused: a run in which no task finishes this long fails
   std::vector<MethodOptionDesc> method_options;  // every other key, in file order (then --set ones)

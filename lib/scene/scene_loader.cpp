@@ -33,9 +33,9 @@ constexpr std::array<std::string_view, 9> kSimulationKeys{
     "fps", "dt", "substeps", "iterations", "frames", "gravity", "ground", "air_drag", "energy_growth_limit"};
 // Keys under solver: that configure how the devices run a substep; every
 // other key is an option of a method (MethodOptionDesc).
-constexpr std::array<std::string_view, 12> kScheduleKeys{"method",      "schedule",  "async_depth", "merge",
-                                                         "async_fetch", "replay",    "executor",    "wait_timeout",
-                                                         "tolerance",   "budget_ms", "recheck",     "methods"};
+constexpr std::array<std::string_view, 13> kScheduleKeys{
+    "method",       "schedule",     "async_depth", "merge",     "async_fetch", "replay", "executor",
+    "wait_timeout", "task_merging", "tolerance",   "budget_ms", "recheck",     "methods"};
 constexpr std::array<std::string_view, 3> kExecutors{"auto", "fused", "events"};
 constexpr std::array<std::string_view, 4> kSchedules{"single", "split", "heft", "async"};
 constexpr std::array<std::string_view, 3> kMerges{"average_displacements", "average_positions", "main_precedence"};
@@ -264,6 +264,15 @@ SceneDesc parse_scene(const std::string& yaml_text, const std::string& source_na
                "use latest (merge the newest finished result) or dependencies (only what the graph requires)");
       }
       scene.solver.async_latest = fetch == "latest";
+    }
+    if (solver.has("task_merging")) {
+      const YamlReader m = solver.child("task_merging");
+      const std::string v = m.string();
+      if (v != "auto" && v != "off") {
+        m.fail(fmt::format("unknown task_merging '{}'", v),
+               "use auto (heft merges colour blocks where that is predicted to end the substep sooner) or off");
+      }
+      scene.solver.task_merging = v == "auto";
     }
     if (solver.has("executor")) {
       const YamlReader m = solver.child("executor");

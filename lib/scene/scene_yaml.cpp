@@ -152,6 +152,7 @@ std::string to_resolved_yaml(const SceneDesc& scene) {
   out << YAML::Key << "merge" << YAML::Value << solver.merge;
   out << YAML::Key << "async_fetch" << YAML::Value << (solver.async_latest ? "latest" : "dependencies");
   out << YAML::Key << "replay" << YAML::Value << (solver.replay ? "true" : "false");
+  out << YAML::Key << "task_merging" << YAML::Value << (solver.task_merging ? "auto" : "off");
   out << YAML::Key << "executor" << YAML::Value << solver.executor;
   out << YAML::Key << "wait_timeout" << YAML::Value << solver.wait_timeout_s;
   emit_accuracy(out, solver.accuracy);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "app/simulation.hpp"
 #include "io/result_reader.hpp"
@@ -123,4 +124,58 @@ TEST_CASE("a two-device schedule on one device is an input error", "[fast]") {
     CHECK(e.exit_code() == 2);
     CHECK(std::string(e.what()).find("cpu/2") != std::string::npos);
   }
+}
+
+// Task merging at run time (solver.task_merging; sched/merged_heft.hpp, whose
+// choice test_sched checks against makespans worked out by hand): what a run
+// records of it. Whether a run merges depends on its profiled costs, so this
+// checks what must hold either way, and that `off` merges nothing.
+TEST_CASE("a heft run records each task's merged group and the makespan HEFT predicted without merging", "[fast]") {
+  test::TempDir dir;
+  for (const std::string merging : {"auto", "off"}) {
+    const std::string scene = dir.write("cloth.yaml", test::hanging_cloth_yaml(20, 1e4, 1e-3, 6));
+    const std::string out = dir.file("merge_" + merging + ".h5");
+    app::RunOptions options;
+    options.scene_path = scene;
+    options.overrides = {"output.path=" + out,   "simulation.frames=6",    "devices=cpu/2",
+                         "solver.schedule=heft", "solver.executor=events", "solver.task_merging=" + merging};
+    app::run_simulation(options);
+    const hid_t f = H5Fopen(out.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    REQUIRE(f >= 0);
+    const auto frame = read_ints(f, "schedule/frame");
+    const auto task = read_ints(f, "schedule/task");
+    const auto device = read_ints(f, "schedule/device");
+    const auto group = read_ints(f, "schedule/merge_group");
+    const auto iteration = read_ints(f, "schedule/tasks/iteration");
+    const auto predicted = read_doubles(f, "schedule/makespan/predicted_ms");
+    const auto unmerged = read_doubles(f, "schedule/makespan/unmerged_predicted_ms");
+    H5Fclose(f);
+    INFO("task_merging: " << merging);
+    REQUIRE(group.size() == frame.size());
+    REQUIRE(unmerged.size() == predicted.size());
+    for (double u : unmerged) CHECK(std::isfinite(u));
+    // The members of a merged task ran on one device, all of one iteration.
+    std::map<std::pair<int, int>, std::pair<int, int>> seen;  // (frame, group) -> (device, iteration)
+    for (std::size_t r = 0; r < frame.size(); ++r) {
+      if (merging == "off") CHECK(group[r] == -1);
+      if (group[r] < 0) continue;
+      const auto key = std::make_pair(frame[r], group[r]);
+      const auto here = std::make_pair(device[r], iteration.at(static_cast<std::size_t>(task[r])));
+      const auto [it, fresh] = seen.emplace(key, here);
+      if (!fresh) CHECK(it->second == here);
+    }
+  }
+}
+
+TEST_CASE("a single-device run records no merges and no unmerged makespan", "[fast]") {
+  test::TempDir dir;
+  const std::string out = run_cloth(dir, "single", "cpu");
+  const hid_t f = H5Fopen(out.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  REQUIRE(f >= 0);
+  const auto group = read_ints(f, "schedule/merge_group");
+  const auto unmerged = read_doubles(f, "schedule/makespan/unmerged_predicted_ms");
+  H5Fclose(f);
+  REQUIRE_FALSE(group.empty());
+  for (int g : group) CHECK(g == -1);
+  for (double u : unmerged) CHECK(std::isnan(u));
 }
