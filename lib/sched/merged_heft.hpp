@@ -47,9 +47,12 @@ std::vector<std::vector<TaskId>> block_groups(const TaskGraph& graph, std::size_
 // schedule_heft_or_one_device on the graph and on each candidate of
 // `blocks_per_group` (e.g. {1, 2, 4, 8}); a merge is kept only when its
 // makespan is shorter by more than `min_gain` (relative) than every
-// schedule with fewer merged blocks, so that noise in the costs does not
-// flip the schedule from frame to frame.
+// schedule with fewer merged blocks. The default, 10 %, is the scheduler's
+// prediction error measured on two sub-devices (docs/benchmarks.md): with
+// 1 %, runs on them chose merges predicted 1-3 % shorter, and ran
+// 1.18-1.31x slower than without (docs/benchmarks.md, "Task merging at run
+// time").
 MergedHeft schedule_heft_merging(const TaskGraph& graph, const CostTable& costs, const DeviceLinks& links,
-                                 std::span<const std::size_t> blocks_per_group, double min_gain = 0.01);
+                                 std::span<const std::size_t> blocks_per_group, double min_gain = 0.10);
 
 }  // namespace atssim::sched
