@@ -156,12 +156,19 @@ std::optional<SolverChoice> AccuracyControl::recheck(int frame, const plan::Plan
   layout_.x = plan::values_of<solver::Float4>(state.positions);
   layout_.v = plan::values_of<solver::Float4>(state.velocities);
   ProbedState measured;
+  // A budget's re-check, once a state has resolved y (and the probe has
+  // ranked the choices by it), decides by the measured frame time alone: it
+  // computes no Newton reference (most of a re-check's time, 17-137 s each
+  // on the soft box under load) and records y and y_floor as NaN.
+  const bool by_time = goal_.tolerance <= 0.0 && resolved_;
+  if (by_time) measured.y_floor = kNaN;
   // Until a state resolves the tolerance, y is measured only on one that
   // does (elsewhere it is float32 rounding, and the choice stays).
   const double y =
-      probe_.measure(current_, layout_, frame, &measured, resolved_ ? 0.0 : sched::resolution_needed(goal_));
+      by_time ? kNaN
+              : probe_.measure(current_, layout_, frame, &measured, resolved_ ? 0.0 : sched::resolution_needed(goal_));
   const double measured_ms = interval_ms();
-  const bool resolves = sched::resolves(measured.y_floor, sched::resolution_needed(goal_));
+  const bool resolves = by_time || sched::resolves(measured.y_floor, sched::resolution_needed(goal_));
   const SolverChoice before = current_;
   if (!resolved_ && !resolves) {
     current_.y = y;
@@ -207,10 +214,8 @@ std::optional<SolverChoice> AccuracyControl::recheck(int frame, const plan::Plan
     if (k != current_.iterations) {
       current_.iterations = k;
       current_.predicted_ms = line.at(k);
-      current_.y = probe_.measure(current_, layout_, frame, nullptr);
-    } else {
-      current_.y = y;
     }
+    current_.y = y;  // NaN: a budget's re-check measures no y (above)
   }
   const bool changed = !current_.same_as(before);
   record(frame, y, measured.y_floor, changed, reason);
