@@ -143,6 +143,24 @@ NATIVE_VARIANTS = [  # label, loop, threads, ordering, methods
 ]
 
 
+def cell_text(cell) -> str:
+    """ms, then in parentheses what else the cell holds: (ms, prediction error or None[, bytes moved])."""
+    ms, err, *rest = cell
+    extra = [] if err is None else [f"{100 * err:.0f} %"]
+    if rest and rest[0]:
+        extra.append(f"{rest[0] / 2**20:.2f} MiB")
+    return f"{ms:.1f}" + (f" ({', '.join(extra)})" if extra else "")
+
+
+def print_cells(results: dict, columns) -> None:
+    """One Markdown row per (method, size): each column's cell, '–' where it was not measured."""
+    print("| method | cloth | " + " | ".join(columns) + " |")
+    print("|---|---|" + "---|" * len(columns))
+    for (method, size), cells in results.items():
+        row = [cell_text(cells[c]) if c in cells else "–" for c in columns]
+        print(f"| {method.upper()} | {size}×{size} | " + " | ".join(row) + " |")
+
+
 def spread(values) -> str:
     """min / median / max of a cell's rounds."""
     return f"{min(values):.1f} / {statistics.median(values):.1f} / {max(values):.1f}"
@@ -217,17 +235,7 @@ def main() -> int:
     # The fastest round of each cell (its prediction error with it).
     results = {key: {c: min(v, key=lambda r: r[0]) for c, v in cells.items()} for key, cells in rounds.items()}
 
-    print("| method | cloth | " + " | ".join(columns) + " |")
-    print("|---|---|" + "---|" * len(columns))
-    for (method, size), cells in results.items():
-        row = []
-        for c in columns:
-            if c not in cells:
-                row.append("–")
-                continue
-            ms, err = cells[c]
-            row.append(f"{ms:.1f}" + ("" if err is None else f" ({100 * err:.0f} %)"))
-        print(f"| {method.upper()} | {size}×{size} | " + " | ".join(row) + " |")
+    print_cells(results, columns)
     print()
     print(f"ms per frame (16 substeps x 8 iterations), median of the timed frames, fastest of {args.rounds} "
           f"interleaved rounds; in parentheses the scheduler's prediction error")

@@ -25,8 +25,8 @@ import subprocess
 import sys
 import tempfile
 
-from bench_devices import (BIN, bench_arguments, binaries_ready, frames_for, run_atssim_frames, run_native,
-                           spread)
+from bench_devices import (BIN, bench_arguments, binaries_ready, frames_for, print_cells, run_atssim_frames,
+                           run_native, spread)
 
 VARIANTS = [  # label, devices, schedule
     ("CPU device", "cpu", "single"),
@@ -90,20 +90,7 @@ def main() -> int:
         print("bench_hybrid: interrupted; the tables hold the cells measured before", file=sys.stderr)
     results = {key: {c: min(v, key=lambda r: r[0]) for c, v in cells.items() if v} for key, cells in rounds.items()}
 
-    print("| method | cloth | " + " | ".join(columns) + " |")
-    print("|---|---|" + "---|" * len(columns))
-    for (method, size), cells in results.items():
-        row = []
-        for c in columns:
-            if c not in cells:
-                row.append("–")
-                continue
-            ms, err, moved = cells[c]
-            extra = [] if err is None else [f"{100 * err:.0f} %"]
-            if moved:
-                extra.append(f"{moved / 2**20:.2f} MiB")
-            row.append(f"{ms:.1f}" + (f" ({', '.join(extra)})" if extra else ""))
-        print(f"| {method.upper()} | {size}×{size} | " + " | ".join(row) + " |")
+    print_cells(results, columns)
     print()
     print(f"ms per frame (16 substeps x 8 iterations), median of the timed frames, fastest of {args.rounds} "
           "interleaved rounds; in parentheses the scheduler's prediction error and the bytes copied between the "
