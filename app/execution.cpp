@@ -108,10 +108,8 @@ Execution prepare_async(const device::DeviceSet& devices, const plan::SubstepPla
 sched::CostTable profile(device::PlanExecutor& executor, int repetitions) {
   const sched::ProfileOptions options;
   sched::ProfileCosts costs(executor.plan().graph.size(), executor.device_count(), options);
-  // Two timed substeps at least; more while a device's profile has taken
-  // under a second (a paper-size dress's substep takes ~1.8 s).
-  constexpr double kProfileBudgetMs = 1000.0;
-  executor.profile(options.warmup + repetitions, costs, options.warmup + std::min(2, repetitions), kProfileBudgetMs);
+  executor.profile(options.warmup + repetitions, costs, options.warmup + std::min(options.min_timed, repetitions),
+                   options.budget_ms);
   return costs.costs();
 }
 

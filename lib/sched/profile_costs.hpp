@@ -13,6 +13,11 @@ struct ProfileOptions {
   int warmup = 1;          // substeps per device left out first (their launches may compile)
   double trim = 0.2;       // trimmed mean: the fraction dropped at each end (sched::trimmed_mean)
   double floor_ms = 1e-6;  // no task costs less (a cost of 0 would make a device look free)
+  // How long to profile: at least min_timed substeps per device after the
+  // warm-up; more, up to the caller's count, while a device's profile has
+  // taken under budget_ms (a paper-size dress's substep takes ~1.8 s).
+  int min_timed = 2;
+  double budget_ms = 1000.0;
 };
 
 // A task costs its device what sched::task_costs attributes to it in each
