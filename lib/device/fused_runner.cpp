@@ -8,6 +8,7 @@
 #include <limits>
 #include <map>
 #include <mutex>
+#include <string>
 
 #include <fmt/format.h>
 
@@ -64,12 +65,32 @@ std::uint64_t word_of(const plan::KernelArg& a, const std::vector<void*>& buffer
   return 0;
 }
 
+// A sanitizer build (ATSSIM_SANITIZE: ASan + UBSan) runs the host several
+// times slower, and on a loaded machine a device's spinning work-groups lose
+// whole time slices: a watched wait there gives up only after
+// ATSSIM_WAIT_SCALE (10, set by lib/device/CMakeLists.txt) times its limit,
+// so that a slow run is not reported as a stalled one. 1 elsewhere.
+#ifdef ATSSIM_WAIT_SCALE
+constexpr double wait_scale = ATSSIM_WAIT_SCALE;
+#else
+constexpr double wait_scale = 1.0;
+#endif
+
+// The limit as the error states it: "0.3 s", or under a sanitizer build
+// "0.3 s (3 s: this sanitizer build waits 10 times as long)".
+std::string limit_text(double timeout_s) {
+  if (wait_scale == 1.0) return fmt::format("{:g} s", timeout_s);
+  return fmt::format("{:g} s ({:g} s: this sanitizer build waits {:g} times as long)", timeout_s,
+                     timeout_s * wait_scale, wait_scale);
+}
+
 // Waits for `events` like finish() does, giving up after `timeout_s`
-// without a change of `progress()`; returns false when it gave up (the
-// abort flag is then set and every event has completed).
+// (times wait_scale) without a change of `progress()`; returns false when
+// it gave up (the abort flag is then set and every event has completed).
 template <typename Progress>
 bool wait_watched(std::vector<cl_event>& events, Completion& completion, int* abort_flag, double timeout_s,
                   Progress progress) {
+  timeout_s *= wait_scale;
   bool gave_up = false;
   {
     std::unique_lock<std::mutex> lock(completion.mutex);
@@ -358,9 +379,9 @@ struct FusedRunner::Impl {
     if (!completed) {
       broken = true;
       throw runtime_error(
-          fmt::format("fused executor: no task finished on any device for {:g} s: {}; a device "
+          fmt::format("fused executor: no task finished on any device for {}: {}; a device "
                       "failed or the devices do not run at the same time (try --executor events)",
-                      options.wait_timeout_s, stall_message()));
+                      limit_text(options.wait_timeout_s), stall_message()));
     }
     if (!failed.empty()) {
       broken = true;
