@@ -115,13 +115,21 @@ void AccuracyControl::frame_done(double frame_ms) {
   frames_.push_back(frame_ms);
 }
 
-std::optional<std::string> AccuracyControl::budget_report() const {
+std::optional<std::string> AccuracyControl::budget_report() {
   if (goal_.tolerance > 0.0 || !(goal_.budget_ms > 0.0)) return std::nullopt;
   const double ms = median(frames_);
   const int most = probe_.max_iterations();
   const std::string head = fmt::format("the median frame took {:.3g} ms against a budget of {:g} ms ({:+.0f} %)", ms,
                                        goal_.budget_ms, 100.0 * (ms / goal_.budget_ms - 1.0));
-  switch (sched::budget_miss(goal_.budget_ms, ms, current_.iterations, most)) {
+  // One iteration more, predicted by the cost line scaled to what was measured.
+  // (NaN where the probe has no line for the choice, e.g. one resumed from a
+  // run on other devices.)
+  double next_ms = kNaN;
+  if (current_.predicted_ms > 0.0 && probe_.has_cost_line(current_.method, current_.schedule)) {
+    next_ms =
+        probe_.cost_line(current_.method, current_.schedule).at(current_.iterations + 1) * ms / current_.predicted_ms;
+  }
+  switch (sched::budget_miss(goal_.budget_ms, ms, current_.iterations, most, 0.1, next_ms)) {
     case sched::BudgetMiss::none:
       return std::nullopt;
     case sched::BudgetMiss::too_small:
@@ -132,6 +140,11 @@ std::optional<std::string> AccuracyControl::budget_report() const {
     case sched::BudgetMiss::too_large:
       return fmt::format("{}: {} iterations of {}, the most the probe tries, take less; no choice needs the budget",
                          head, most, current_.method);
+    case sched::BudgetMiss::granular:
+      return fmt::format(
+          "{}: {} iterations of {} are the most that fit; {} would take about {:.3g} ms, over the budget "
+          "(iterations come in whole steps of about {:.2g} ms a frame here); a budget of {:.3g} ms or more allows them",
+          head, current_.iterations, current_.method, current_.iterations + 1, next_ms, next_ms - ms, next_ms);
     case sched::BudgetMiss::unsettled:
       break;
   }

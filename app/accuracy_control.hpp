@@ -57,7 +57,7 @@ class AccuracyControl {
   // With a budget alone, when the median frame of the run (of this process)
   // is off the budget by more than 10 %: one line saying so and why. Empty
   // otherwise.
-  std::optional<std::string> budget_report() const;
+  std::optional<std::string> budget_report();
   const SolverChoice& current() const { return current_; }
   AccuracyProbe& probe() { return probe_; }
   // The start layout with the state of the last re-check (the plans of a

@@ -350,6 +350,11 @@ sched::IterationCost AccuracyProbe::cost_line(const std::string& method, const s
   return impl_->line(m, static_cast<int>(s - impl_->schedules.begin()));
 }
 
+bool AccuracyProbe::has_cost_line(const std::string& method, const std::string& schedule) const {
+  return impl_->index_of(method) >= 0 &&
+         std::find(impl_->schedules.begin(), impl_->schedules.end(), schedule) != impl_->schedules.end();
+}
+
 double AccuracyProbe::predicted_ms(const std::string& method, int iterations, const std::string& schedule) {
   return cost_line(method, schedule).at(iterations);
 }

@@ -85,6 +85,7 @@ class AccuracyProbe {
   // The cost model's frame time for a choice, and its line in the iterations.
   double predicted_ms(const std::string& method, int iterations, const std::string& schedule);
   sched::IterationCost cost_line(const std::string& method, const std::string& schedule);
+  bool has_cost_line(const std::string& method, const std::string& schedule) const;
 
   const std::vector<std::string>& methods() const;
   int max_iterations() const;

@@ -110,11 +110,13 @@ int iterations_for_budget(const IterationCost& predicted, double predicted_ms, d
   return std::max(1, predicted.most_within(budget_ms / scale));
 }
 
-BudgetMiss budget_miss(double budget_ms, double measured_ms, int iterations, int max_iterations, double band) {
+BudgetMiss budget_miss(double budget_ms, double measured_ms, int iterations, int max_iterations, double band,
+                       double next_ms) {
   if (!(budget_ms > 0.0) || !std::isfinite(measured_ms) || !(measured_ms > 0.0)) return BudgetMiss::none;
   if (std::abs(measured_ms - budget_ms) <= band * budget_ms) return BudgetMiss::none;
   if (measured_ms > budget_ms && iterations <= 1) return BudgetMiss::too_small;
   if (measured_ms < budget_ms && iterations >= max_iterations) return BudgetMiss::too_large;
+  if (measured_ms < budget_ms && next_ms > budget_ms) return BudgetMiss::granular;
   return BudgetMiss::unsettled;
 }
 

@@ -6,6 +6,7 @@
 // meets a tolerance, or the most accurate one that fits a budget. Pure:
 // tables in, a choice out; the same table always gives the same choice.
 #include <cstddef>
+#include <limits>
 #include <optional>
 #include <span>
 #include <vector>
@@ -71,14 +72,17 @@ int iterations_for_budget(const IterationCost& predicted, double predicted_ms, d
 
 // Why a budget alone was not held: the run's median frame time
 // `measured_ms`, with `iterations` in force at the end (of at most
-// `max_iterations`), against budget·(1 ± band).
+// `max_iterations`), against budget·(1 ± band). `next_ms`: the frame time
+// predicted for one iteration more, on the measured scale (NaN: not known).
 enum class BudgetMiss {
   none,       // within the band (or nothing measured)
   too_small,  // above it with one iteration: what a frame costs besides the iterations exceeds the budget
   too_large,  // below it with the most iterations tried: no choice needs that much time
+  granular,   // below it, and one iteration more is predicted over the budget: the budget lies between two counts
   unsettled,  // off it with iterations to spare: the frame time moved (load), or the run ended before a re-check
 };
-BudgetMiss budget_miss(double budget_ms, double measured_ms, int iterations, int max_iterations, double band = 0.1);
+BudgetMiss budget_miss(double budget_ms, double measured_ms, int iterations, int max_iterations, double band = 0.1,
+                       double next_ms = std::numeric_limits<double>::quiet_NaN());
 
 // What a re-check on the live state does with the choice in force.
 enum class Recheck {

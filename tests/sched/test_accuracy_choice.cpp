@@ -173,7 +173,9 @@ TEST_CASE("a budget alone rescales when the measured frame time leaves the 10 % 
   CHECK(sched::recheck_verdict(budget, 0.5, true, not_measured) == Recheck::keep);
 }
 
-TEST_CASE("a budget missed by more than 10 % names why: one iteration, the most iterations, or a moving frame time") {
+TEST_CASE(
+    "a budget missed by more than 10 % names why: one iteration, the most iterations, a budget between two counts, or "
+    "a moving frame time") {
   using sched::BudgetMiss;
   CHECK(sched::budget_miss(20.0, 21.9, 1, 1024) == BudgetMiss::none);
   CHECK(sched::budget_miss(20.0, 18.1, 1024, 1024) == BudgetMiss::none);
@@ -183,6 +185,13 @@ TEST_CASE("a budget missed by more than 10 % names why: one iteration, the most 
   CHECK(sched::budget_miss(20.0, 17.9, 1024, 1024) == BudgetMiss::too_large);
   CHECK(sched::budget_miss(20.0, 17.9, 1, 1024) == BudgetMiss::unsettled);
   CHECK(sched::budget_miss(20.0, 25.0, 1, 1024, 0.3) == BudgetMiss::none);
+  // docs/accuracy.md, --budget 30: VBD 2 measured 20.5 ms, VBD 3 predicted
+  // ~31 ms on the measured scale: the budget lies between two counts.
+  CHECK(sched::budget_miss(30.0, 20.5, 2, 1024, 0.1, 31.0) == BudgetMiss::granular);
+  CHECK(sched::budget_miss(30.0, 20.5, 2, 1024, 0.1, 29.0) == BudgetMiss::unsettled);  // 3 would fit: not granular
+  CHECK(sched::budget_miss(30.0, 20.5, 1024, 1024, 0.1, 31.0) == BudgetMiss::too_large);
+  CHECK(sched::budget_miss(30.0, 34.0, 2, 1024, 0.1, 45.0) == BudgetMiss::unsettled);  // above: fewer would fit
+  CHECK(sched::budget_miss(30.0, 28.0, 2, 1024, 0.1, 40.0) == BudgetMiss::none);
 }
 
 TEST_CASE("a state resolves a tolerance when its float32 floor lies four times below it") {
