@@ -19,7 +19,8 @@
 #           at most 8 of them and 240 s (--quick; full: 24 and 1200 s), the files
 #           left unchecked named on stderr: relative to the
 #           merge-base with main, or to HEAD~1 on main itself (CI); CHECK_BASE=<commit>
-#           sets it
+#           sets it. A shallow clone is deepened from its remote; with no base at
+#           all, --quick notes "no file checked" in its summary and the full check fails
 # Installs what it needs first (`scripts/setup.sh check`: clang, clang-tidy,
 # clang-format, libclang-rt-dev).
 set -uo pipefail
@@ -160,6 +161,16 @@ changed_files() {
     if [ -n "$main_ref" ]; then base="$(git merge-base HEAD "$main_ref")"; fi
     if [ -z "$base" ] || [ "$base" = "$(git rev-parse HEAD)" ]; then base="HEAD~1"; fi
   fi
+  # A shallow clone may lack the base: deepen it from its remote if it has
+  # one; otherwise nothing can say what changed, and tidy says so.
+  if ! git rev-parse -q --verify "$base^{commit}" >/dev/null && [ -f "$(git rev-parse --git-dir)/shallow" ]; then
+    git fetch -q --deepen=50 2>/dev/null || true
+  fi
+  if ! git rev-parse -q --verify "$base^{commit}" >/dev/null; then
+    echo "check.sh: clang-tidy has no base: '$base' is not in this clone (shallow, or one commit);" \
+      "clone with history or set CHECK_BASE=<commit>" >&2
+    return 3
+  fi
   echo "check.sh: clang-tidy over the C++ files changed since $base" >&2
   git diff --name-only --diff-filter=d "$base" -- '*.cpp' '*.hpp' '*.h'
 }
@@ -167,14 +178,25 @@ changed_files() {
 tidy() {
   local db="$bdir/compile_commands.json" files=() f cpp
   [ -f "$db" ] || { echo "check.sh: $db is missing (the build step failed?)" >&2; return 1; }
+  # changed_files's status 3: no base to compare with (named on stderr).
+  # --quick (CI) goes on and notes it in the summary; the full check fails.
+  local changed listed
+  changed="$(changed_files)"
+  listed=$?
+  if [ "$listed" -eq 3 ]; then
+    tidy_note="tidy: no base commit in this clone, no file checked"
+    [ "$quick" -eq 1 ] && return 0
+    return 1
+  fi
   while IFS= read -r f; do
+    [ -n "$f" ] || continue
     case "$f" in
       kernels/* | tests/fuzz/*) continue ;;  # OpenCL C headers; the fuzzer is built by clang itself
       *.cpp) cpp="$f" ;;
       *) cpp="${f%.*}.cpp" ;;  # a header: checked through its own .cpp
     esac
     [ -f "$cpp" ] && grep -q "\"$root/$cpp\"" "$db" && files+=("$cpp")
-  done < <(changed_files)
+  done <<<"$changed"
   if [ ${#files[@]} -eq 0 ]; then
     echo "check.sh: no changed C++ file to check" >&2
     return 0
@@ -217,7 +239,9 @@ step format format_check
 step build sanitizer_build
 if [ "$quick" -eq 1 ]; then step tests quick_tests; else step tests full_tests; fi
 start_fuzz
+tidy_note=""
 step tidy tidy
+[ -n "$tidy_note" ] && results+=("       ($tidy_note)")
 step fuzz fuzz
 echo "== check.sh$([ "$quick" -eq 1 ] && echo " --quick"): $(($(date +%s) - started)) s, commit $(git rev-parse --short HEAD)" >&2
 printf '   %s\n' "${results[@]}" >&2

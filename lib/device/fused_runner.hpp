@@ -5,8 +5,9 @@
 // per run, which walks the device's slots for every substep and waits
 // through completion counters in fine-grain SVM. The host only starts the
 // launches and watches their progress: a run in which no slot finishes on
-// any device for `wait_timeout_s` is aborted through an SVM flag and
-// reported, never left hanging.
+// any device for `wait_timeout_s` (ten times that in a sanitizer build:
+// ATSSIM_WAIT_SCALE) is aborted through an SVM flag and reported, never
+// left hanging.
 #include <memory>
 #include <vector>
 
@@ -17,9 +18,9 @@
 namespace atssim::device {
 
 struct FusedOptions {
-  double wait_timeout_s = 10.0;
-  bool task_clock = true;  // stamp tasks where the device has a cycle counter
-  int never_publish = -1;  // tests: this task never reports completion
+  double wait_timeout_s = 10.0;  // times ATSSIM_WAIT_SCALE (10) in a sanitizer build
+  bool task_clock = true;        // stamp tasks where the device has a cycle counter
+  int never_publish = -1;        // tests: this task never reports completion
 };
 
 class FusedRunner {

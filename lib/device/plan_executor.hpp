@@ -7,7 +7,8 @@
 //   - fused: per device one launch of a dispatcher kernel per call of
 //     run_substeps(), which walks the device's slots in schedule order and
 //     waits through completion counters in fine-grain SVM. A wait that makes
-//     no progress for ExecutorOptions::wait_timeout_s ends with an error.
+//     no progress for ExecutorOptions::wait_timeout_s (ten times that in a
+//     sanitizer build: ATSSIM_WAIT_SCALE) ends with an error.
 // Both give the same bits. Knows nothing of physics.
 #include <memory>
 #include <span>
@@ -30,9 +31,9 @@ struct ExecutorOptions {
   SvmMode svm = SvmMode::automatic;  // events: automatic = fine grain when every device offers it; fused: fine
   std::size_t device = 0;            // the device that runs everything until a schedule is set
   std::size_t local_size = 64;       // events: fixed per kernel, pocl recompiles for each new size
-  double wait_timeout_s = 10.0;      // fused: no task finished on any device for this long = failure
-  bool task_clock = true;            // fused: time each task with the device's cycle counter where it has one
-  int never_publish = -1;            // fused, tests only: this task never reports completion
+  double wait_timeout_s = 10.0;  // fused: no task finished on any device for this long (×10 under sanitizers) = failure
+  bool task_clock = true;        // fused: time each task with the device's cycle counter where it has one
+  int never_publish = -1;        // fused, tests only: this task never reports completion
 };
 
 class PlanExecutor {
