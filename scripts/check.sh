@@ -8,11 +8,12 @@
 #   format  clang-format over every C, C++ and OpenCL file of the repository (check only)
 #   build   the sanitizer build (ASan + UBSan, no benchmarks): --quick: the preset
 #           `sanitize-quick` (-O0, build/sanitize-quick), only the target check_quick
-#           (the libraries and the unit-test binaries tests/quick_tests.txt names);
+#           (the libraries, atssim and the test binaries tests/quick_tests.txt names);
 #           full: the preset `sanitize` (-O1, build/sanitize), everything.
 #           The fuzzer (scripts/fuzz_scene.sh --build-only) is built beside it
 #   tests   --quick: each binary of tests/quick_tests.txt, one process each, without
-#           the cases tagged [slow]; full: `ctest --preset sanitize` (the whole suite)
+#           the cases tagged [slow] (test_app_core: only those tagged [fast], the app
+#           layer through the sanitized binary); full: `ctest --preset sanitize` (the whole suite)
 #   fuzz    libFuzzer on the scene parser (scripts/fuzz_scene.sh) from the kept corpus
 #           tests/fuzz/corpus: 2 minutes (--quick) or 10; one core, beside tidy
 #   tidy    clang-tidy (.clang-tidy's check set) over the C++ files the change touched,
@@ -95,19 +96,23 @@ sanitizer_build() {
 # builds), -w NoTests: a binary that runs no test fails. Cases tagged [slow]
 # (minutes under ASan) are left to the full run and to ctest.
 quick_tests() {
-  local rc=0 bin count=0 list=$bdir/quick_tests.txt
+  local rc=0 bin filter count=0 list=$bdir/quick_tests.txt
   [ -f "$list" ] || { echo "check.sh: $list is missing (the build step failed?)" >&2; return 1; }
-  while IFS= read -r bin; do
+  while IFS=$'\t' read -r bin filter; do
+    [ -n "$bin" ] || continue
     count=$((count + 1))
     if [ ! -x "$bin" ]; then
       echo "check.sh: $bin was not built" >&2
       rc=1
       continue
     fi
-    echo "-- $bin ~[slow]" >&2
-    "$bin" --list-test-names-only "[slow]" 2>/dev/null | grep . | sed 's/^/   left out ([slow]; the full check and ctest run it): /' >&2
+    if [ -z "$filter" ]; then
+      filter="~[slow]"
+      "$bin" --list-test-names-only "[slow]" 2>/dev/null | grep . | sed 's/^/   left out ([slow]; the full check and ctest run it): /' >&2
+    fi
+    echo "-- $bin $filter" >&2
     local start=$(date +%s)
-    (cd "$bdir" && "$bin" -w NoTests "~[slow]") || rc=1
+    (cd "$bdir" && "$bin" -w NoTests "$filter") || rc=1
     echo "-- $(basename "$bin"): $(($(date +%s) - start)) s" >&2
   done <"$list"
   if [ "$count" -eq 0 ]; then
