@@ -12,6 +12,7 @@
 #include <assimp/Importer.hpp>
 
 #include "scene/input_file.hpp"
+#include "scene/ply_header.hpp"
 #include "util/error.hpp"
 
 namespace atssim::scene {
@@ -106,6 +107,7 @@ void check_vertices(const aiScene& scene, const std::string& path, const std::st
 
 TriangleMesh load_triangle_mesh(const std::string& path, const std::string& where) {
   check_input_file(path, "mesh file", where, kMaxMeshBytes);
+  check_ply_counts(path, where);
 
   Assimp::Importer importer;
   // Drop normals, UVs and colours so JoinIdenticalVertices welds by position.
