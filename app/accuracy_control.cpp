@@ -142,9 +142,10 @@ std::optional<std::string> AccuracyControl::budget_report() {
                          head, most, current_.method);
     case sched::BudgetMiss::granular:
       return fmt::format(
-          "{}: {} iterations of {} are the most that fit; {} would take about {:.3g} ms, over the budget "
-          "(iterations come in whole steps of about {:.2g} ms a frame here); a budget of {:.3g} ms or more allows them",
-          head, current_.iterations, current_.method, current_.iterations + 1, next_ms, next_ms - ms, next_ms);
+          "{}: {} {} of {} {} the most that fit; {} would take about {:.3g} ms, over the budget (iterations "
+          "come in whole steps of about {:.2g} ms a frame here); a budget of {:.3g} ms or more allows them",
+          head, current_.iterations, current_.iterations == 1 ? "iteration" : "iterations", current_.method,
+          current_.iterations == 1 ? "is" : "are", current_.iterations + 1, next_ms, next_ms - ms, next_ms);
     case sched::BudgetMiss::unsettled:
       break;
   }
