@@ -51,23 +51,9 @@ int obj_line_of_bad_vertex(const std::string& path) {
 // The 1-based line of vertex `index` of an ASCII PLY file whose first
 // element is its vertices; 0 for any other file.
 int ply_line_of_vertex(const std::string& path, std::size_t index) {
-  std::ifstream in(path);
-  std::string l;
-  if (!std::getline(in, l) || l.rfind("ply", 0) != 0) return 0;
-  int line = 1;
-  bool ascii = false, vertices_first = false, seen_element = false;
-  while (std::getline(in, l)) {
-    ++line;
-    if (l.rfind("format ascii", 0) == 0) ascii = true;
-    if (l.rfind("element ", 0) == 0 && !seen_element) {
-      seen_element = true;
-      vertices_first = l.rfind("element vertex ", 0) == 0;
-    }
-    if (l.rfind("end_header", 0) == 0) {
-      return ascii && vertices_first ? line + static_cast<int>(index) + 1 : 0;
-    }
-  }
-  return 0;
+  const PlyHeader header = read_ply_header(path);
+  if (header.binary || header.elements.empty() || header.elements.front().name != "vertex") return 0;
+  return header.end_line + static_cast<int>(index) + 1;
 }
 
 // Vertices as the file gives them, before assimp welds or drops any (a NaN

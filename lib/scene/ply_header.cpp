@@ -65,6 +65,7 @@ PlyHeader read_ply_header(const std::string& path) {
       const auto at = in.tellg();
       if (at < 0) return header;
       header.header_bytes = static_cast<std::uint64_t>(at);
+      header.end_line = line;
       header.elements = std::move(elements);
       return header;
     }

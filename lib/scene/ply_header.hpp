@@ -19,6 +19,7 @@ struct PlyElement {
 struct PlyHeader {
   bool binary = false;
   std::uint64_t header_bytes = 0;  // through the newline after end_header
+  int end_line = 0;                // 1-based line of end_header
   std::vector<PlyElement> elements;
 };
 

@@ -51,6 +51,7 @@ TEST_CASE("a PLY header's counts give the least bytes each element takes") {
   CHECK_FALSE(a.binary);
   CHECK(a.elements[0].min_bytes == 4);  // a digit and a separator per value
   CHECK(a.header_bytes == ascii.size());
+  CHECK(a.end_line == 6);
   CHECK(scene::read_ply_header(dir.write("x.obj", "v 0 0 0\n")).elements.empty());
 }
 
