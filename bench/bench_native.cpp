@@ -6,7 +6,8 @@
 //
 //   bench_native --scene scenes/hanging_cloth.yaml --method xpbd|vbd|explicit --resolution N
 //                --threads 1|2 --frames F [--warmup W] [--integrator semi_euler|midpoint|rk4]
-//                [--shape cloth|solid] [--ordering colors|batches] [--loop reference|plain]
+//                [--shape cloth|solid] [--ordering colors|batches|color_batches]
+//                [--loop reference|plain]
 // (explicit: the explicit reference's semi-implicit Euler, midpoint or RK4;
 // solid: N sets objects.0.box.resolution=[N,N,N] instead of the grid's.)
 //
@@ -17,8 +18,11 @@
 // bend, tets).
 //
 // --loop plain (XPBD): the sceptic's baseline instead of the project's host
-// reference, bench/plain_xpbd.hpp (colors: a parallel_for per color block)
-// or bench/plain_xpbd_batches.hpp (batches: float8 lanes, one thread).
+// reference, bench/plain_xpbd.hpp (colors: a parallel_for per color block),
+// bench/plain_xpbd_batches.hpp (batches: float8 lanes, one thread) or
+// bench/plain_xpbd_color_batches.hpp (color_batches: the color blocks cut
+// into groups of 8 float8 lanes, a parallel_for per block over its groups;
+// plain loop only).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -33,6 +37,7 @@
 #include "model/cloth_builder.hpp"
 #include "plain_xpbd.hpp"
 #include "plain_xpbd_batches.hpp"
+#include "plain_xpbd_color_batches.hpp"
 #include "scene/scene_loader.hpp"
 #include "solver/explicit/explicit_reference.hpp"
 #include "solver/layout/sim_layout.hpp"
@@ -60,7 +65,7 @@ struct Options {
   std::string integrator = "semi_euler";
   std::string shape = "cloth";
   int substeps = 0;                 // 0: the scene's
-  std::string ordering = "colors";  // xpbd: colors or batches (solver/xpbd/xpbd_batches)
+  std::string ordering = "colors";  // xpbd: colors, batches or color_batches (solver/xpbd/xpbd_batches)
   std::string loop = "reference";   // xpbd: reference (the project's host reference) or plain (plain_xpbd.hpp)
 };
 
@@ -112,12 +117,19 @@ int run(const Options& o) {
     bench::PlainXpbdBatches loop(layout, h, sim.iterations);
     times = time_frames(loop, sim.substeps, o);
     sum = checksum(loop.positions());
+  } else if (method == Method::xpbd && o.loop == "plain" && o.ordering == "color_batches") {
+    bench::PlainXpbdColorBatches loop(layout, h, sim.iterations, o.threads > 1);
+    tbb::task_arena arena(o.threads);  // entered once, around every frame
+    arena.execute([&] { times = time_frames(loop, sim.substeps, o); });
+    sum = checksum(loop.positions());
   } else if (method == Method::xpbd && o.loop == "plain") {
     bench::PlainXpbd loop(layout, h, sim.iterations, o.threads > 1);
     tbb::task_arena arena(o.threads);  // entered once, around every frame
     arena.execute([&] { times = time_frames(loop, sim.substeps, o); });
     sum = checksum(loop.positions());
   } else if (method == Method::xpbd) {
+    if (o.ordering == "color_batches")
+      throw input_error("--ordering color_batches runs the plain loop only (--loop plain)");
     if (o.ordering == "batches" && o.threads != 1)
       throw input_error("--ordering batches runs one thread (--threads 1)");
     solver::xpbd::XpbdReference reference(o.ordering == "batches" ? solver::xpbd::in_batch_order(layout) : layout,
@@ -156,12 +168,14 @@ int main(int argc, char** argv) {
       ->required()
       ->check(CLI::IsMember({"xpbd", "vbd", "explicit"}));
   cli.add_option("--ordering", o.ordering,
-                 "xpbd: colors, or batches (the constraints in the order of "
-                 "solver.ordering: batches, one thread)")
-      ->check(CLI::IsMember({"colors", "batches"}));
+                 "xpbd: colors, batches (the constraints in the order of solver.ordering: batches, one thread) "
+                 "or color_batches (--loop plain: each color block cut into groups of 8 float lanes, "
+                 "bench/plain_xpbd_color_batches.hpp; 1 or more threads)")
+      ->check(CLI::IsMember({"colors", "batches", "color_batches"}))
+      ->capture_default_str();
   cli.add_option("--loop", o.loop,
-                 "xpbd: reference (the project's host reference) or plain (bench/plain_xpbd.hpp, the "
-                 "sceptic's per-color parallel_for over copies of the same arrays)")
+                 "xpbd: reference (the project's host reference) or plain (bench/plain_xpbd*.hpp, the "
+                 "sceptic's loops over copies of the same arrays)")
       ->check(CLI::IsMember({"reference", "plain"}))
       ->capture_default_str();
   cli.add_option("--integrator", o.integrator, "explicit: semi_euler, midpoint or rk4")

@@ -8,11 +8,15 @@ times
     color block on two threads, both compiled -O3 -march=native), and for
     XPBD the sceptic's baseline beside it (bench_native --loop plain:
     bench/plain_xpbd.hpp, the same per-color parallel_for written apart from
-    the reference; and the batches ordering with float8 lanes on 1 thread,
-    bench/plain_xpbd_batches.hpp);
+    the reference; the batches ordering with float8 lanes on 1 thread,
+    bench/plain_xpbd_batches.hpp; and the color_batches ordering, the color
+    blocks cut into groups of 8 float8 lanes, on 1 thread and with a
+    parallel_for per block on 2, bench/plain_xpbd_color_batches.hpp);
   - atssim with each executor asked for (--executor events,fused) on one
     1-CU sub-device (cpu/2:0), the whole 2-CU device (cpu), and the two
-    sub-devices with the split and heft schedules (cpu/2);
+    sub-devices with the split and heft schedules (cpu/2); for XPBD again
+    with each other solver.ordering asked for (--orderings colors,color_batches:
+    the columns repeated with the ordering's name after them);
 and prints one Markdown table of median frame times (ms; the prediction error
 |measured - predicted| / measured substep makespan, median over frames, in
 parentheses), a second with each cell's spread over the rounds (min / median
@@ -21,7 +25,7 @@ interleaved round by round so that drift hits them alike; the fastest round
 counts in the first table.
 
 usage: scripts/bench_devices.py [--executor events,fused|none] [--methods xpbd,vbd]
-                                [--sizes 64,128,256] [--rounds 2] [--frames 10]
+                                [--orderings colors,color_batches] [--sizes 64,128,256] [--rounds 2] [--frames 10]
 Build first (scripts/test.sh or scripts/quickstart.sh).
 """
 import argparse
@@ -116,11 +120,14 @@ def xpbd_frame_work(counts: dict):
 
 
 def run_atssim_frames(method: str, size: int, executor: str, devices: str, schedule: str, frames: int, out: str,
-                     memory: str = "shared"):
+                     memory: str = "shared", ordering: str = "colors"):
     """Median frame ms, median prediction error and median bytes copied between memories per frame."""
-    subprocess.run([BIN, "run", SCENE, "-o", out, "--frames", str(frames + 2), "--devices", devices, "--schedule",
-                    schedule, "--executor", executor, "--memory", memory, "--set", f"solver.method={method}", "--set",
-                    f"objects.0.grid.resolution=[{size},{size}]", "--quiet"], check=True)
+    command = [BIN, "run", SCENE, "-o", out, "--frames", str(frames + 2), "--devices", devices, "--schedule", schedule,
+               "--executor", executor, "--memory", memory, "--set", f"solver.method={method}", "--set",
+               f"objects.0.grid.resolution=[{size},{size}]", "--quiet"]
+    if ordering != "colors":  # XPBD only (solver.ordering is an XPBD option)
+        command += ["--set", f"solver.ordering={ordering}"]
+    subprocess.run(command, check=True)
     with h5py.File(out, "r") as f:
         frame_ms = f["timing/frame_ms"][3:]  # skip the initial state and two warm-up frames
         pred = f["schedule/makespan/predicted_ms"][2:]
@@ -130,8 +137,9 @@ def run_atssim_frames(method: str, size: int, executor: str, devices: str, sched
         return float(np.median(frame_ms)), float(np.median(err)), float(np.median(moved))
 
 
-def run_atssim(method: str, size: int, executor: str, devices: str, schedule: str, frames: int, out: str):
-    return run_atssim_frames(method, size, executor, devices, schedule, frames, out)[:2]
+def run_atssim(method: str, size: int, executor: str, devices: str, schedule: str, frames: int, out: str,
+               ordering: str = "colors"):
+    return run_atssim_frames(method, size, executor, devices, schedule, frames, out, ordering=ordering)[:2]
 
 
 NATIVE_VARIANTS = [  # label, loop, threads, ordering, methods
@@ -140,7 +148,17 @@ NATIVE_VARIANTS = [  # label, loop, threads, ordering, methods
     ("plain 1 thread", "plain", 1, "colors", ("xpbd",)),
     ("plain TBB 2 threads", "plain", 2, "colors", ("xpbd",)),
     ("plain batches float8 1 thread", "plain", 1, "batches", ("xpbd",)),
+    ("plain color batches float8 1 thread", "plain", 1, "color_batches", ("xpbd",)),
+    ("plain color batches float8 TBB 2 threads", "plain", 2, "color_batches", ("xpbd",)),
 ]
+
+
+def device_columns(executors, orderings):
+    """(column, executor, devices, schedule, ordering, methods) of each atssim run: every executor on every
+    DEVICE_VARIANTS row, for colors as before and, XPBD only, for each other ordering under its name."""
+    return [(f"{e} {label}" + ("" if o == "colors" else f" {o}"), e, devices, schedule, o,
+             ("xpbd", "vbd") if o == "colors" else ("xpbd",))
+            for o in orderings for e in executors for label, devices, schedule in DEVICE_VARIANTS]
 
 
 def cell_text(cell) -> str:
@@ -166,7 +184,7 @@ def spread(values) -> str:
     return f"{min(values):.1f} / {statistics.median(values):.1f} / {max(values):.1f}"
 
 
-def print_roofline(machine: dict, results: dict, executors, native) -> None:
+def print_roofline(machine: dict, results: dict, device, native) -> None:
     """% of limit: the time the machine's limits allow for a frame's bytes and flops over the measured time."""
     print()
     print(f"machine (bench/bench_roofline, 2 threads): stream triad {machine['triad_memory_gbs_n']:.1f} GB/s from "
@@ -174,8 +192,7 @@ def print_roofline(machine: dict, results: dict, executors, native) -> None:
           f"{machine['fma_gflops_n']:.1f} GFLOP/s (1 thread: {machine['triad_memory_gbs_1']:.1f}, "
           f"{machine['triad_cache_gbs_1']:.1f} GB/s, {machine['fma_gflops_1']:.1f} GFLOP/s)")
     print()
-    two_core = [n[0] for n in native if n[2] == 2] + [f"{e} {v[0]}" for e in executors
-                                                      for v in DEVICE_VARIANTS if v[1] != "cpu/2:0"]
+    two_core = [n[0] for n in native if n[2] == 2] + [d[0] for d in device if d[2] != "cpu/2:0"]
     print("| method | cloth | MB / frame | MFLOP / frame | memory limit ms | cache limit ms | flop limit ms | "
           + " | ".join(f"{c}: % of memory limit / % of cache limit" for c in two_core) + " |")
     print("|---|---|---|---|---|---|---|" + "---|" * len(two_core))
@@ -187,7 +204,7 @@ def print_roofline(machine: dict, results: dict, executors, native) -> None:
         cache_ms = bytes_ / (machine["triad_cache_gbs_n"] * 1e9) * 1e3
         flop_ms = flops / (machine["fma_gflops_n"] * 1e9) * 1e3
         row = [f"{100 * max(memory_ms, flop_ms) / cells[c][0]:.0f} / {100 * max(cache_ms, flop_ms) / cells[c][0]:.0f}"
-               for c in two_core]
+               if c in cells else "–" for c in two_core]
         print(f"| XPBD | {size}×{size} | {bytes_ / 1e6:.0f} | {flops / 1e6:.0f} | {memory_ms:.1f} | {cache_ms:.1f} | "
               f"{flop_ms:.1f} | " + " | ".join(row) + " |")
     print()
@@ -199,6 +216,9 @@ def main() -> int:
     ap = bench_arguments("64,128,256")
     ap.add_argument("--executor", default="events,fused",
                     help="comma separated: events, fused; none: the native loops alone")
+    ap.add_argument("--orderings", default="colors",
+                    help="comma separated XPBD solver.ordering values for the atssim runs (colors, color_batches); "
+                    "each but colors repeats the device columns with its name after them")
     ap.add_argument("--roofline", action="store_true", help="XPBD: also run bench/bench_roofline and print the "
                     "fraction of the machine's limits each loop reaches")
     args = ap.parse_args()
@@ -212,7 +232,8 @@ def main() -> int:
     methods = args.methods.split(",")
     sizes = [int(s) for s in args.sizes.split(",")]
     native = [v for v in NATIVE_VARIANTS if any(m in v[4] for m in methods)]
-    columns = [v[0] for v in native] + [f"{e} {v[0]}" for e in executors for v in DEVICE_VARIANTS]
+    device = [d for d in device_columns(executors, args.orderings.split(",")) if any(m in d[5] for m in methods)]
+    columns = [v[0] for v in native] + [d[0] for d in device]
     rounds = {}  # (method, size) -> column -> [(ms, error or None) per round]
     with tempfile.TemporaryDirectory() as tmp:
         out = os.path.join(tmp, "out.h5")
@@ -225,9 +246,9 @@ def main() -> int:
                     for label, loop, threads, ordering, for_methods in native:
                         if method in for_methods:
                             measured[label] = (run_native(method, size, threads, frames, loop, ordering), None)
-                    for e in executors:
-                        for label, devices, schedule in DEVICE_VARIANTS:
-                            measured[f"{e} {label}"] = run_atssim(method, size, e, devices, schedule, frames, out)
+                    for column, e, devices, schedule, ordering, for_methods in device:
+                        if method in for_methods:
+                            measured[column] = run_atssim(method, size, e, devices, schedule, frames, out, ordering)
                     for c, v in measured.items():
                         cells.setdefault(c, []).append(v)
                 rounds[(method, size)] = cells
@@ -259,8 +280,8 @@ def main() -> int:
             print(f"| {method.upper()} | {size}×{size} | {r1:.2f}{' ✓' if r1 <= 1.1 else ' ✗'} | "
                   f"{r2:.2f}{' ✓' if r2 <= 1.1 else ' ✗'} |")
     if machine is not None:
-        print_roofline(machine, results, executors, native)
-    if "fused" not in executors:
+        print_roofline(machine, results, device, native)
+    if "fused" not in executors or "colors" not in args.orderings.split(","):
         return 0
     print()
     print("| method | cloth | fused 1 sub vs events 1 sub (>= 2x at 64) | fused 1 sub / native 1 thread (<= 1.2 at 64, "

@@ -61,13 +61,18 @@ ATS_TASK void xpbd_bend(int i, __global float4* x, __global const ats_bend_c* c,
  * (graph/simd_batches), batch after batch: a Gauss-Seidel order with no
  * barrier between colors. A lane whose first particle is n or past it is
  * NvCloth's padding dummy and does nothing. */
-/* Undamped distance constraints (common/xpbd_distance.h, the same
- * operations) of one batch of 8 as float8 lanes: gather, solve, scatter.
- * A batch's lanes share no particle, so this equals the lanes one after
- * another. pocl's compiler left the scalar lane loop scalar (vsqrtss). */
-static inline void xpbd_stretch_batch8(int k0, __global float4* x, __global const ats_distance_c* c,
-                                       __global float* lambda, float dt, int reset, int n) {
-  float ax[8], ay[8], az[8], aw[8], bx[8], by[8], bz[8], bw[8], rest[8], comp[8];
+/* Distance constraints (common/xpbd_distance.h: ats_xpbd_distance and, where
+ * the set has a damped spring, ats_xpbd_distance_damped: the same operations)
+ * of one batch of 8 as float8 lanes: gather, solve, scatter. A batch's lanes
+ * share no particle, so this equals the lanes one after another. inv_h = 0:
+ * no spring of the set is damped and x_start is not read; otherwise an
+ * undamped lane has gamma 0, for which the damped formula is the undamped
+ * one ((1 + 0)(wa + wb) = wa + wb, less 0 · moved). pocl's compiler left the
+ * scalar lane loop scalar (vsqrtss). */
+static inline void xpbd_stretch_lanes8(int k0, __global float4* x, __global const ats_distance_c* c,
+                                       __global float* lambda, float dt, int reset, __global const float4* x_start,
+                                       float inv_h, int n) {
+  float ax[8], ay[8], az[8], aw[8], bx[8], by[8], bz[8], bw[8], rest[8], comp[8], damp[8];
   int ia[8], ib[8];
   ATS_UNROLL for (int l = 0; l < 8; ++l) {
     const ats_distance_c con = c[k0 + l];
@@ -86,6 +91,7 @@ static inline void xpbd_stretch_batch8(int k0, __global float4* x, __global cons
     bw[l] = pb.w;
     rest[l] = con.rest;
     comp[l] = con.compliance;
+    damp[l] = con.damping;
   }
   const float8 lam = reset ? (float8)(0.0f) : vload8(0, lambda + k0);
   const float8 wa = vload8(0, aw), wb = vload8(0, bw);
@@ -93,10 +99,26 @@ static inline void xpbd_stretch_batch8(int k0, __global float4* x, __global cons
                dz = vload8(0, az) - vload8(0, bz);
   const float8 alpha = vload8(0, comp) / (dt * dt);
   const float8 len = sqrt(dx * dx + dy * dy + dz * dz);
-  const float8 denom = wa + wb + alpha;
+  float8 denom = wa + wb + alpha;
+  const float8 inv_len = 1.0f / len;
+  float8 moved = (float8)(0.0f), gamma = (float8)(0.0f);
+  if (inv_h > 0.0f) {
+    float mx[8], my[8], mz[8];
+    ATS_UNROLL for (int l = 0; l < 8; ++l) {
+      const float4 a0 = x_start[ia[l] >= 0 ? ia[l] : 0];
+      const float4 b0 = x_start[ia[l] >= 0 ? ib[l] : 0];
+      mx[l] = (ax[l] - a0.x) - (bx[l] - b0.x);
+      my[l] = (ay[l] - a0.y) - (by[l] - b0.y);
+      mz[l] = (az[l] - a0.z) - (bz[l] - b0.z);
+    }
+    gamma = vload8(0, damp) * inv_h;
+    moved = dx * inv_len * vload8(0, mx) + dy * inv_len * vload8(0, my) + dz * inv_len * vload8(0, mz);
+    denom = (1.0f + gamma) * (wa + wb) + alpha;
+  }
   const int8 solved = len > 1e-20f && denom > 0.0f;
-  const float8 dl = select((float8)(0.0f), (-(len - vload8(0, rest)) - alpha * lam) / denom, solved);
-  const float8 inv = select((float8)(0.0f), 1.0f / len, solved);
+  const float8 dl =
+      select((float8)(0.0f), (-(len - vload8(0, rest)) - alpha * lam - gamma * moved) / denom, solved);
+  const float8 inv = select((float8)(0.0f), inv_len, solved);
   const float8 nx = dx * inv, ny = dy * inv, nz = dz * inv;
   vstore8(lam + dl, 0, lambda + k0);
   const float8 sa = wa * dl, sb = -wb * dl;
@@ -121,8 +143,8 @@ ATS_TASK void xpbd_stretch_batches(int i, __global float4* x, __global const ats
   (void)i;
   for (int b = 0; b < batches; ++b) {
     const int k0 = b * ATS_XPBD_BATCH_WIDTH;
-    if (inv_h == 0.0f && ATS_XPBD_BATCH_WIDTH == 8) {
-      xpbd_stretch_batch8(k0, x, c, lambda, dt, reset, n);
+    if (ATS_XPBD_BATCH_WIDTH == 8) {
+      xpbd_stretch_lanes8(k0, x, c, lambda, dt, reset, x_start, inv_h, n);
       continue;
     }
     ATS_UNROLL for (int l = 0; l < ATS_XPBD_BATCH_WIDTH; ++l) {
@@ -191,21 +213,46 @@ static inline void xpbd_bend_batch8(int k0, __global float4* x, __global const a
   }
 }
 
+/* One batch of bending stencils from element k0: float8 lanes unless a lane
+ * is a dihedral stencil, then the lanes one after another. */
+static inline void xpbd_bend_batch(int k0, __global float4* x, __global const ats_bend_c* c, __global float4* lambda,
+                                   float dt, int reset, int n) {
+  int dihedral = 0;
+  for (int l = 0; l < ATS_XPBD_BATCH_WIDTH; ++l) dihedral |= c[k0 + l].model == ATS_BEND_DIHEDRAL;
+  if (!dihedral && ATS_XPBD_BATCH_WIDTH == 8) {
+    xpbd_bend_batch8(k0, x, c, lambda, dt, reset, n);
+    return;
+  }
+  for (int l = 0; l < ATS_XPBD_BATCH_WIDTH; ++l) {
+    if (c[k0 + l].v[0] < n) xpbd_bend(k0 + l, x, c, lambda, dt, reset);
+  }
+}
+
 ATS_TASK void xpbd_bend_batches(int i, __global float4* x, __global const ats_bend_c* c, __global float4* lambda,
                                 float dt, int reset, int batches, int n) {
   (void)i;
-  for (int b = 0; b < batches; ++b) {
-    const int k0 = b * ATS_XPBD_BATCH_WIDTH;
-    int dihedral = 0;
-    for (int l = 0; l < ATS_XPBD_BATCH_WIDTH; ++l) dihedral |= c[k0 + l].model == ATS_BEND_DIHEDRAL;
-    if (!dihedral && ATS_XPBD_BATCH_WIDTH == 8) {
-      xpbd_bend_batch8(k0, x, c, lambda, dt, reset, n);
-      continue;
-    }
-    for (int l = 0; l < ATS_XPBD_BATCH_WIDTH; ++l) {
-      if (c[k0 + l].v[0] < n) xpbd_bend(k0 + l, x, c, lambda, dt, reset);
-    }
+  for (int b = 0; b < batches; ++b) xpbd_bend_batch(b * ATS_XPBD_BATCH_WIDTH, x, c, lambda, dt, reset, n);
+}
+
+/* solver.ordering: color_batches. Work-item i is batch i of a color block
+ * cut into batches (solver/xpbd/xpbd_batches: color_batches): its lanes share
+ * no particle with any other batch of the block, so a block's batches run in
+ * any order and on any device, as a color block's elements do. */
+ATS_TASK void xpbd_stretch_lanes(int i, __global float4* x, __global const ats_distance_c* c, __global float* lambda,
+                                 float dt, int reset, __global const float4* x_start, float inv_h, int n) {
+  const int k0 = i * ATS_XPBD_BATCH_WIDTH;
+  if (ATS_XPBD_BATCH_WIDTH == 8) {
+    xpbd_stretch_lanes8(k0, x, c, lambda, dt, reset, x_start, inv_h, n);
+    return;
   }
+  for (int l = 0; l < ATS_XPBD_BATCH_WIDTH; ++l) {
+    if (c[k0 + l].a < n) xpbd_stretch(k0 + l, x, c, lambda, dt, reset, x_start, inv_h);
+  }
+}
+
+ATS_TASK void xpbd_bend_lanes(int i, __global float4* x, __global const ats_bend_c* c, __global float4* lambda,
+                              float dt, int reset, int n) {
+  xpbd_bend_batch(i * ATS_XPBD_BATCH_WIDTH, x, c, lambda, dt, reset, n);
 }
 
 /* One StVK tet per work-item: its seven strain constraints in sequence

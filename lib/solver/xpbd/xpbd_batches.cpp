@@ -67,7 +67,38 @@ void as_one_block(std::vector<Element>& set, std::vector<int>& blocks, int parti
   blocks = {0, static_cast<int>(set.size())};
 }
 
+template <class Element>
+ColorBatches<Element> cut_blocks(const std::vector<Element>& set, const std::vector<int>& blocks, int particle_count) {
+  using Tuple = decltype(particles(set.front()));
+  Element dummy{};
+  set_particles(dummy, graph::padding_dummy<std::tuple_size_v<Tuple>>(particle_count));
+  ColorBatches<Element> out;
+  out.blocks.push_back(0);
+  for (std::size_t b = 0; b + 1 < blocks.size(); ++b) {
+    for (int e = blocks[b]; e < blocks[b + 1]; ++e) {
+      out.set.source.push_back(e);
+      out.set.elements.push_back(set[static_cast<std::size_t>(e)]);
+    }
+    while (out.set.source.size() % kBatchWidth != 0) {
+      out.set.source.push_back(-1);
+      out.set.elements.push_back(dummy);
+    }
+    out.blocks.push_back(out.set.batches());
+  }
+  return out;
+}
+
 }  // namespace
+
+ColorBatches<ats_distance_c> color_batches(const std::vector<ats_distance_c>& stretch, const std::vector<int>& blocks,
+                                           int particle_count) {
+  return cut_blocks(stretch, blocks, particle_count);
+}
+
+ColorBatches<ats_bend_c> color_batches(const std::vector<ats_bend_c>& bend, const std::vector<int>& blocks,
+                                       int particle_count) {
+  return cut_blocks(bend, blocks, particle_count);
+}
 
 SimLayout in_batch_order(SimLayout layout) {
   const int n = static_cast<int>(layout.x.size());

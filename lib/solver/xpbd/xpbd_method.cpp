@@ -10,13 +10,14 @@ constexpr plan::TaskKind kKinds[] = {kStretch, kBend, kTet};
 // The strain constraints (common/xpbd_tet.h) minimise the StVK energy only.
 // springs: tet-edge springs in the stretch set (model/tet_builder.cpp).
 constexpr scene::SolidModel kSolids[] = {scene::SolidModel::stvk, scene::SolidModel::springs};
-constexpr std::string_view kOrderings[] = {"colors", "batches"};  // XpbdOrdering's values in order
+constexpr std::string_view kOrderings[] = {"colors", "color_batches", "batches"};  // XpbdOrdering's values in order
 
 constexpr MethodOption kOptions[] = {
-    {"ordering", 0.0, 0.0, 1.0, false, false,
-     "colors or batches: the order of the stretch and bending constraints, one task per color block or one "
-     "sweep of NvCloth's simd batches per element set (xpbd; batches: schedule single only)",
-     kOrderings, false, 1},
+    {"ordering", 0.0, 0.0, 2.0, false, false,
+     "colors, color_batches or batches: the order of the stretch and bending constraints, one task per color "
+     "block, one task per color block cut into batches of 8 float lanes, or one sweep of NvCloth's simd batches "
+     "per element set (xpbd; batches: schedule single only)",
+     kOrderings, false, 2},
 };
 
 plan::SubstepPlan build(const SimLayout& layout, const MethodSettings& s) {

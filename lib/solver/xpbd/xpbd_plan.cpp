@@ -80,21 +80,29 @@ plan::SubstepPlan make_xpbd_plan(const SimLayout& layout, const XpbdSettings& se
   XpbdBuffers b;
   using plan::BufferRole;
   const bool batched = settings.ordering == XpbdOrdering::batches;
-  if (batched) plan.one_device_reason = "solver.ordering 'batches' sweeps each element set in one task on one device";
+  if (batched)
+    plan.one_device_reason =
+        "solver.ordering 'batches' sweeps each element set in one task on one device (color_batches cuts "
+        "each color block into batches of 8 lanes and runs on two)";
   const int n = plan.particle_count;
   const auto stretch_batches = batched ? batch_elements(layout.stretch, n) : ElementBatches<ats_distance_c>{};
   const auto bend_batches = batched ? batch_elements(layout.bend, n) : ElementBatches<ats_bend_c>{};
+  // solver.ordering: color_batches: the color blocks cut into batches of 8 lanes.
+  const bool lanes = settings.ordering == XpbdOrdering::color_batches;
+  const auto stretch_lanes =
+      lanes ? color_batches(layout.stretch, layout.stretch_blocks, n) : ColorBatches<ats_distance_c>{};
+  const auto bend_lanes = lanes ? color_batches(layout.bend, layout.bend_blocks, n) : ColorBatches<ats_bend_c>{};
   b.x = plan.add_buffer("x", BufferRole::positions, plan::bytes_of(layout.x));
   b.v = plan.add_buffer("v", BufferRole::velocities, plan::bytes_of(layout.v));
   b.x_prev = plan.add_buffer("x_prev", BufferRole::start_positions, plan::bytes_of(layout.x));
   if (!layout.stretch.empty()) {
-    const auto& stretch = batched ? stretch_batches.elements : layout.stretch;
+    const auto& stretch = batched ? stretch_batches.elements : lanes ? stretch_lanes.set.elements : layout.stretch;
     b.stretch = plan.add_buffer("stretch", BufferRole::elements, plan::bytes_of(stretch));
     b.stretch_lambda = plan.add_buffer("stretch_lambda", BufferRole::multipliers,
                                        std::vector<std::byte>(stretch.size() * sizeof(float)));
   }
   if (!layout.bend.empty()) {
-    const auto& bend = batched ? bend_batches.elements : layout.bend;
+    const auto& bend = batched ? bend_batches.elements : lanes ? bend_lanes.set.elements : layout.bend;
     b.bend = plan.add_buffer("bend", BufferRole::elements, plan::bytes_of(bend));
     b.bend_lambda = plan.add_buffer("bend_lambda", BufferRole::multipliers,
                                     std::vector<std::byte>(bend.size() * 4 * sizeof(float)));
@@ -125,23 +133,32 @@ plan::SubstepPlan make_xpbd_plan(const SimLayout& layout, const XpbdSettings& se
   SelfContactBuffers sc = add_self_contact_buffers(plan, layout, colliders);
   add_self_contact_projection_buffers(plan, layout, sc);
   last = add_self_contact_detection(plan, last, layout, sc, b.x_prev, b.x);
-  const auto stretch_particles = particles_of(layout.stretch);
-  const auto bend_particles = particles_of(layout.bend);
+  const auto stretch_particles = particles_of(lanes ? stretch_lanes.set.elements : layout.stretch);
+  const auto bend_particles = particles_of(lanes ? bend_lanes.set.elements : layout.bend);
+  // A batch of lanes writes its kBatchWidth elements' particles and multipliers.
+  const int width = lanes ? kBatchWidth : 1;
+  std::vector<Arg> stretch_extra = spring_damping, bend_extra;
+  if (lanes) {
+    stretch_extra.push_back(Arg::of_int(n));
+    bend_extra.push_back(Arg::of_int(n));
+  }
   const auto tet_particles = particles_of(layout.tets);
   for (int it = 0; it < settings.iterations; ++it) {
     if (b.stretch >= 0 && batched) {
       last = add_batch_sweep(plan, last, stretch_batches.batches(), kStretch, "xpbd_stretch_batches", b.x, b.stretch,
                              b.stretch_lambda, dt, it, spring_damping);
     } else if (b.stretch >= 0) {
-      last = add_blocks(plan, last, layout.stretch_blocks, kStretch, "xpbd_stretch", b.x, b.stretch, b.stretch_lambda,
-                        dt, it, stretch_particles, 2, sizeof(float), spring_damping);
+      last = add_blocks(plan, last, lanes ? stretch_lanes.blocks : layout.stretch_blocks, kStretch,
+                        lanes ? "xpbd_stretch_lanes" : "xpbd_stretch", b.x, b.stretch, b.stretch_lambda, dt, it,
+                        stretch_particles, 2 * width, width * sizeof(float), stretch_extra);
     }
     if (b.bend >= 0 && batched) {
       last = add_batch_sweep(plan, last, bend_batches.batches(), kBend, "xpbd_bend_batches", b.x, b.bend, b.bend_lambda,
                              dt, it);
     } else if (b.bend >= 0) {
-      last = add_blocks(plan, last, layout.bend_blocks, kBend, "xpbd_bend", b.x, b.bend, b.bend_lambda, dt, it,
-                        bend_particles, 4, 4 * sizeof(float));
+      last = add_blocks(plan, last, lanes ? bend_lanes.blocks : layout.bend_blocks, kBend,
+                        lanes ? "xpbd_bend_lanes" : "xpbd_bend", b.x, b.bend, b.bend_lambda, dt, it, bend_particles,
+                        4 * width, width * 4 * sizeof(float), bend_extra);
     }
     if (b.tet >= 0) {
       last = add_blocks(plan, last, layout.tet_blocks, kTet, "xpbd_tet", b.x, b.tet, b.tet_lambda, dt, it,

@@ -24,8 +24,10 @@ inline constexpr plan::TaskKind kTet{{"tet", true, false, false}};          // t
 // The order of the stretch and bending constraints (solver.ordering):
 // colors = one task per color block, the blocks one after another;
 // batches = one task per element set sweeping NvCloth's simd batches
-// (solver/xpbd/xpbd_batches), a one-device order (no part to cut).
-enum class XpbdOrdering { colors, batches };
+// (solver/xpbd/xpbd_batches), a one-device order (no part to cut);
+// color_batches = the color order, each color block cut into batches of 8
+// elements that run as float8 lanes, one task per block (cut like colors).
+enum class XpbdOrdering { colors, color_batches, batches };  // solver.ordering's choices in order
 
 struct XpbdSettings {
   double substep_dt = 1.0 / 960.0;

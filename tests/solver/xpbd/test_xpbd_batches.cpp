@@ -29,9 +29,11 @@ std::vector<int> particles(const ats_distance_c& c) { return {c.a, c.b}; }
 std::vector<int> particles(const ats_bend_c& c) { return {c.v[0], c.v[1], c.v[2], c.v[3]}; }
 
 // Every element of `set` exactly once, bit for bit; the dummy's particles past
-// the last one; no two real lanes of a batch sharing a particle.
+// the last one; no two real lanes of a batch sharing a particle (with `x`,
+// a movable one: lanes that share a pinned particle write it unchanged).
 template <class Element>
-void check_batches(const std::vector<Element>& set, const ElementBatches<Element>& b, int n) {
+void check_batches(const std::vector<Element>& set, const ElementBatches<Element>& b, int n,
+                   const std::vector<Float4>* x = nullptr) {
   REQUIRE(b.elements.size() == b.source.size());
   REQUIRE(b.elements.size() % kBatchWidth == 0);
   std::vector<int> times(set.size(), 0);
@@ -48,8 +50,11 @@ void check_batches(const std::vector<Element>& set, const ElementBatches<Element
       }
       ++times[static_cast<std::size_t>(s)];
       CHECK(std::memcmp(&b.elements[k], &set[static_cast<std::size_t>(s)], sizeof(Element)) == 0);
-      for (int p : particles(b.elements[k])) seen.insert(p);
-      used += static_cast<int>(particles(b.elements[k]).size());
+      for (int p : particles(b.elements[k])) {
+        if (x != nullptr && (*x)[static_cast<std::size_t>(p)].w == 0.0f) continue;
+        seen.insert(p);
+        ++used;
+      }
     }
     conflicting_batches += static_cast<int>(seen.size()) == used ? 0 : 1;
   }
@@ -91,4 +96,57 @@ TEST_CASE("the batches plan: one stretch and one bending sweep per iteration, fo
   CHECK(plan.buffers[ids.stretch].initial.size() == padded.elements.size() * sizeof(ats_distance_c));
   CHECK_FALSE(plan.one_device_reason.empty());
   CHECK(make_xpbd_plan(layout, {1.0 / 240.0, iterations}).one_device_reason.empty());
+}
+
+// solver.ordering: color_batches: each color block cut into batches, the
+// blocks' boundaries on whole batches, every batch's elements from its block.
+template <class Element>
+void check_color_batches(const std::vector<Element>& set, const std::vector<int>& blocks,
+                         const ColorBatches<Element>& cb, const std::vector<Float4>& x) {
+  const int n = static_cast<int>(x.size());
+  check_batches(set, cb.set, n, &x);
+  REQUIRE(cb.blocks.size() == blocks.size());
+  CHECK(cb.blocks.front() == 0);
+  CHECK(cb.blocks.back() == cb.set.batches());
+  for (std::size_t b = 0; b + 1 < blocks.size(); ++b) {
+    const int count = blocks[b + 1] - blocks[b];
+    // As few batches as the block's elements need: at most 7 dummies a block.
+    CHECK(cb.blocks[b + 1] - cb.blocks[b] == (count + kBatchWidth - 1) / kBatchWidth);
+    for (int k = cb.blocks[b] * kBatchWidth; k < cb.blocks[b + 1] * kBatchWidth; ++k) {
+      const int s = cb.set.source[static_cast<std::size_t>(k)];
+      if (s >= 0) CHECK((s >= blocks[b] && s < blocks[b + 1]));
+    }
+  }
+}
+
+TEST_CASE("color batches of a cloth: every element once, in its color block, every batch conflict-free") {
+  const SimLayout layout = cloth_layout(GENERATE(5, 16));
+  const int n = static_cast<int>(layout.x.size());
+  check_color_batches(layout.stretch, layout.stretch_blocks, color_batches(layout.stretch, layout.stretch_blocks, n),
+                      layout.x);
+  check_color_batches(layout.bend, layout.bend_blocks, color_batches(layout.bend, layout.bend_blocks, n), layout.x);
+}
+
+TEST_CASE("the color_batches plan: one task per color block and iteration, a work-item per batch, any schedule") {
+  const SimLayout layout = cloth_layout(10);
+  const int n = static_cast<int>(layout.x.size());
+  const int iterations = 3;
+  XpbdBuffers ids;
+  const auto plan = make_xpbd_plan(layout, {1.0 / 240.0, iterations, XpbdOrdering::color_batches}, &ids);
+  const auto stretch = color_batches(layout.stretch, layout.stretch_blocks, n);
+  const auto stretch_tasks = plan.tasks_of(solver::xpbd::kStretch);
+  REQUIRE(stretch_tasks.size() == (layout.stretch_blocks.size() - 1) * std::size_t(iterations));
+  CHECK(plan.tasks_of(solver::xpbd::kBend).size() == (layout.bend_blocks.size() - 1) * std::size_t(iterations));
+  for (std::size_t k = 0; k < stretch_tasks.size(); ++k) {
+    const auto& launch = plan.launches[stretch_tasks[k]].at(0);
+    const std::size_t b = k % (layout.stretch_blocks.size() - 1);
+    CHECK(launch.function == "xpbd_stretch_lanes");
+    CHECK(launch.range.first == stretch.blocks[b]);
+    CHECK(launch.range.count == stretch.blocks[b + 1] - stretch.blocks[b]);
+    // A batch writes its 8 elements' particles (16) and multipliers (8 floats).
+    CHECK(launch.writes.at(0).arity == 2 * kBatchWidth);
+    CHECK(launch.writes.at(1).element_bytes == kBatchWidth * sizeof(float));
+  }
+  CHECK(plan.buffers[ids.stretch].initial.size() == stretch.set.elements.size() * sizeof(ats_distance_c));
+  CHECK(plan.one_device_reason.empty());
 }
