@@ -65,7 +65,7 @@ sched::TaskId add_self_contact_projection(plan::SubstepPlan& plan, sched::TaskId
 // start + h velocities. Returns the new last task, or `last` when the layout
 // has no self contact or no friction.
 sched::TaskId add_self_contact_friction(plan::SubstepPlan& plan, sched::TaskId last, const SimLayout& layout,
-                                        const SelfContactBuffers& b, plan::BufferId start, plan::BufferId positions,
+                                        SelfContactBuffers& b, plan::BufferId start, plan::BufferId positions,
                                         plan::BufferId velocities, plan::BufferId friction, double h);
 
 }  // namespace atssim::solver

@@ -35,7 +35,7 @@ plan::SubstepPlan make_jpgd_plan(const SimLayout& layout, const JpgdSettings& se
   const double hi = inertia_dt(layout, settings.substep_dt);  // air drag weighs the inertia (sim_layout.hpp)
   const float inv_h2 = static_cast<float>(1.0 / (hi * hi));
   const bool heavy_ball = settings.momentum > 0.0;
-  const SelfContactBuffers sc = add_self_contact_buffers(plan, layout, b.colliders);
+  SelfContactBuffers sc = add_self_contact_buffers(plan, layout, b.colliders);
   last = add_self_contact_detection(plan, last, layout, sc, b.x_prev, b.x);
   const std::vector<double> omega = chebyshev_weights(settings.iterations, heavy_ball ? 0.0 : settings.chebyshev_rho);
   const float beta = heavy_ball ? static_cast<float>(settings.momentum) : 0.0f;

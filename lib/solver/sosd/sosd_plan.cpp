@@ -55,7 +55,7 @@ plan::SubstepPlan make_sosd_plan(const SimLayout& layout, double substep_dt, int
   const float inv_h2 = static_cast<float>(1.0 / (hi * hi));
   using Arg = plan::KernelArg;
   const std::vector<Arg> damping = vertex::damping_args(layout, b, substep_dt);
-  const SelfContactBuffers sc = add_self_contact_buffers(plan, layout, b.colliders);
+  SelfContactBuffers sc = add_self_contact_buffers(plan, layout, b.colliders);
   last = add_self_contact_detection(plan, last, layout, sc, b.x_prev, b.x);
   const std::vector<Arg> sc_args = self_contact_args(layout, sc, hi);
   for (int it = 0; it < iterations; ++it) {

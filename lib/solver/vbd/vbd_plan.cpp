@@ -16,7 +16,7 @@ plan::SubstepPlan make_vbd_plan(const SimLayout& layout, double substep_dt, int 
   vertex::VertexBuffers b;
   sched::TaskId last = vertex::begin_vertex_plan(plan, layout, vertices, substep_dt, b);
   const double hi = inertia_dt(layout, substep_dt);  // air drag weighs the inertia (sim_layout.hpp)
-  const SelfContactBuffers sc = add_self_contact_buffers(plan, layout, b.colliders);
+  SelfContactBuffers sc = add_self_contact_buffers(plan, layout, b.colliders);
   last = add_self_contact_detection(plan, last, layout, sc, b.x_prev, b.x);
   const float inv_h2 = static_cast<float>(1.0 / (hi * hi));
   // Element k of a color writes particle order[k].
