@@ -284,33 +284,41 @@ def main() -> int:
     if "fused" not in executors or "colors" not in args.orderings.split(","):
         return 0
     print()
-    print("| method | cloth | fused 1 sub vs events 1 sub (>= 2x at 64) | fused 1 sub / native 1 thread (<= 1.2 at 64, "
-          "256) | best two-sub fused vs fused 1 sub (>= 1.6x at 64, 1.8x above) | vs fused whole device (>= 1; "
-          "rounds that hold) | vs fastest native loop on 2 cores (>= 1.1) | worst prediction error (<= 10 %) |")
-    print("|---|---|---|---|---|---|---|---|")
+    print("| method | cloth | ordering | fused 1 sub vs events 1 sub (>= 2x at 64) | fused 1 sub / native 1 thread "
+          "(<= 1.2 at 64, 256) | best two-sub fused vs fused 1 sub (>= 1.6x at 64, 1.8x above) | vs fused whole "
+          "device, same ordering (>= 1; rounds that hold) | vs fused whole device, colors (>= 1) | vs fastest "
+          "native loop on 2 cores (>= 1.1) | worst prediction error (<= 10 %) |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     for (method, size), cells in results.items():
-        fused_one = cells["fused 1 sub-device"][0]
-        two = min(cells["fused split"][0], cells["fused heft"][0])
-        events_one = cells["events 1 sub-device"][0] if "events" in executors else float("nan")
-        worst = max(v[1] for c, v in cells.items() if v[1] is not None)
-        per_round = rounds[(method, size)]
-        held = sum(w[0] >= min(sp[0], h[0]) for w, sp, h in zip(per_round["fused whole device"],
-                                                                 per_round["fused split"], per_round["fused heft"]))
-        fastest_native = min(cells[n[0]][0] for n in native if n[0] in cells)  # any native loop, 1 or 2 threads
+        for ordering in args.orderings.split(","):
+            suffix = "" if ordering == "colors" else f" {ordering}"
+            if f"fused 1 sub-device{suffix}" not in cells:
+                continue
+            fused_one = cells[f"fused 1 sub-device{suffix}"][0]
+            two = min(cells[f"fused split{suffix}"][0], cells[f"fused heft{suffix}"][0])
+            whole = cells[f"fused whole device{suffix}"][0]
+            events_one = cells["events 1 sub-device" + suffix][0] if "events" in executors else float("nan")
+            worst = max(v[1] for c, v in cells.items()
+                        if v[1] is not None and c.endswith(suffix) and (suffix or not c.endswith("batches")))
+            per_round = rounds[(method, size)]
+            held = sum(w[0] >= min(sp[0], h[0]) for w, sp, h in zip(per_round[f"fused whole device{suffix}"],
+                                                                     per_round[f"fused split{suffix}"],
+                                                                     per_round[f"fused heft{suffix}"]))
+            fastest_native = min(cells[n[0]][0] for n in native if n[0] in cells)  # any native loop, 1 or 2 threads
 
-        def mark(value, ok):
-            return f"{value:.2f}{' ✓' if ok else ' ✗'}"
-        need_two = 1.6 if size <= 64 else 1.8
-        r1 = events_one / fused_one
-        print(f"| {method.upper()} | {size}×{size} | " + " | ".join([
-            mark(r1, r1 >= 2.0 or size != 64) if "events" in executors else "–",
-            mark(fused_one / cells["native 1 thread"][0], fused_one / cells["native 1 thread"][0] <= 1.2 or
-                 size not in (64, 256)),
-            mark(fused_one / two, fused_one / two >= need_two),
-            mark(cells["fused whole device"][0] / two, cells["fused whole device"][0] / two >= 1.0) +
-            f" ({held}/{len(per_round['fused split'])})",
-            mark(fastest_native / two, fastest_native / two >= 1.1),
-            f"{100 * worst:.0f} %{' ✓' if worst <= 0.10 else ' ✗'}"]) + " |")
+            def mark(value, ok):
+                return f"{value:.2f}{' ✓' if ok else ' ✗'}"
+            need_two = 1.6 if size <= 64 else 1.8
+            r1 = events_one / fused_one
+            print(f"| {method.upper()} | {size}×{size} | {ordering} | " + " | ".join([
+                mark(r1, r1 >= 2.0 or size != 64) if "events" in executors else "–",
+                mark(fused_one / cells["native 1 thread"][0], fused_one / cells["native 1 thread"][0] <= 1.2 or
+                     size not in (64, 256)),
+                mark(fused_one / two, fused_one / two >= need_two),
+                mark(whole / two, whole / two >= 1.0) + f" ({held}/{len(per_round[f'fused split{suffix}'])})",
+                mark(cells["fused whole device"][0] / two, cells["fused whole device"][0] / two >= 1.0),
+                mark(fastest_native / two, fastest_native / two >= 1.1),
+                f"{100 * worst:.0f} %{' ✓' if worst <= 0.10 else ' ✗'}"]) + " |")
     return 0
 
 
