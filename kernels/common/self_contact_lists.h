@@ -191,10 +191,17 @@ ATS_FN float sc_side_bound(ATS_GLOBAL const float* bound, int a, int b, int c) {
   return c >= 0 ? fmax(m, bound[c]) : m;
 }
 
-ATS_FN int sc_near_store(ATS_GLOBAL const int* list, const int* keep, ATS_GLOBAL int* out) {
+/* The kept entries' ids into out, and their distances at x_t moved to the
+ * front of the list's distances d (in place: the bound has read them), so
+ * that d[2 + k] is near entry k's; the iterations and friction skip an
+ * entry whose pair cannot have come within reach (sc_still_apart). */
+ATS_FN int sc_near_store(ATS_GLOBAL const int* list, const int* keep, ATS_GLOBAL int* out, ATS_GLOBAL float* d) {
   int count = 0;
-  for (int m = 0; m < list[0]; ++m)
-    if (keep[m]) out[2 + count++] = list[2 + m];
+  for (int m = 0; m < list[0]; ++m) {
+    if (!keep[m]) continue;
+    d[2 + count] = d[2 + m];
+    out[2 + count++] = list[2 + m];
+  }
   out[0] = count;
   out[1] = list[1];
   return count;
@@ -205,44 +212,44 @@ ATS_FN int sc_near_store(ATS_GLOBAL const int* list, const int* keep, ATS_GLOBAL
  * through its triangles and through its edges, so that a vertex without any
  * skips the gathers (contact/self_contact.cl SC_FOR_EACH_PAIR). */
 ATS_FN void sc_near_vertex(int i, ATS_GLOBAL const int* inc, int n, ATS_GLOBAL const int* tris,
-                           ATS_GLOBAL const int* vt, ATS_GLOBAL const float* vt_d, ATS_GLOBAL const float* bound,
+                           ATS_GLOBAL const int* vt, ATS_GLOBAL float* vt_d, ATS_GLOBAL const float* bound,
                            float r, ATS_GLOBAL const int* tv_near, ATS_GLOBAL const int* ee_near,
                            ATS_GLOBAL int* vt_near) {
   ATS_GLOBAL const int* l = vt + i * ATS_SC_STRIDE;
-  ATS_GLOBAL const float* d = vt_d + i * ATS_SC_STRIDE;
+  ATS_GLOBAL float* d = vt_d + i * ATS_SC_STRIDE;
   int keep[ATS_SC_CAPACITY];
   for (int m = 0; m < l[0]; ++m) {
     ATS_GLOBAL const int* f = tris + 4 * l[2 + m];
     keep[m] = d[2 + m] - bound[i] - sc_side_bound(bound, f[0], f[1], f[2]) < r;
   }
-  int total = sc_near_store(l, keep, vt_near + i * ATS_SC_STRIDE);
+  int total = sc_near_store(l, keep, vt_near + i * ATS_SC_STRIDE, d);
   for (int k = inc[i]; k < inc[i + 1]; ++k) total += tv_near[inc[k] * ATS_SC_STRIDE];
   for (int k = inc[n + 1 + i]; k < inc[n + 2 + i]; ++k) total += ee_near[inc[k] * ATS_SC_STRIDE];
   vt_near[i * ATS_SC_STRIDE + 1] = total;
 }
 
-ATS_FN void sc_near_triangle(int t, ATS_GLOBAL const int* tris, ATS_GLOBAL const int* tv, ATS_GLOBAL const float* tv_d,
+ATS_FN void sc_near_triangle(int t, ATS_GLOBAL const int* tris, ATS_GLOBAL const int* tv, ATS_GLOBAL float* tv_d,
                              ATS_GLOBAL const float* bound, float r, ATS_GLOBAL int* tv_near) {
   ATS_GLOBAL const int* l = tv + t * ATS_SC_STRIDE;
-  ATS_GLOBAL const float* d = tv_d + t * ATS_SC_STRIDE;
+  ATS_GLOBAL float* d = tv_d + t * ATS_SC_STRIDE;
   ATS_GLOBAL const int* f = tris + 4 * t;
   int keep[ATS_SC_CAPACITY];
   const float reach = sc_side_bound(bound, f[0], f[1], f[2]);
   for (int m = 0; m < l[0]; ++m) keep[m] = d[2 + m] - reach - bound[l[2 + m]] < r;
-  sc_near_store(l, keep, tv_near + t * ATS_SC_STRIDE);
+  sc_near_store(l, keep, tv_near + t * ATS_SC_STRIDE, d);
 }
 
-ATS_FN void sc_near_edge(int e, ATS_GLOBAL const int* edges, ATS_GLOBAL const int* ee, ATS_GLOBAL const float* ee_d,
+ATS_FN void sc_near_edge(int e, ATS_GLOBAL const int* edges, ATS_GLOBAL const int* ee, ATS_GLOBAL float* ee_d,
                          ATS_GLOBAL const float* bound, float r, ATS_GLOBAL int* ee_near) {
   ATS_GLOBAL const int* l = ee + e * ATS_SC_STRIDE;
-  ATS_GLOBAL const float* d = ee_d + e * ATS_SC_STRIDE;
+  ATS_GLOBAL float* d = ee_d + e * ATS_SC_STRIDE;
   int keep[ATS_SC_CAPACITY];
   const float reach = sc_side_bound(bound, edges[2 * e], edges[2 * e + 1], -1);
   for (int m = 0; m < l[0]; ++m) {
     const int o = l[2 + m];
     keep[m] = d[2 + m] - reach - sc_side_bound(bound, edges[2 * o], edges[2 * o + 1], -1) < r;
   }
-  sc_near_store(l, keep, ee_near + e * ATS_SC_STRIDE);
+  sc_near_store(l, keep, ee_near + e * ATS_SC_STRIDE, d);
 }
 
 #endif

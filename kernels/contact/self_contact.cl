@@ -97,15 +97,15 @@ ATS_TASK void sc_edge_distances_task(int e, __global const float4* x, __global c
   sc_edge_distances(e, x, (__global const int*)edges, ee, ee_d);
 }
 ATS_TASK void sc_near_vertices(int i, __global const int* inc, int n, __global const int4* tris, __global const int* vt,
-                               __global const float* vt_d, __global const float* bound, float r,
+                               __global float* vt_d, __global const float* bound, float r,
                                __global const int* tv_near, __global const int* ee_near, __global int* vt_near) {
   sc_near_vertex(i, inc, n, (__global const int*)tris, vt, vt_d, bound, r, tv_near, ee_near, vt_near);
 }
-ATS_TASK void sc_near_triangles(int t, __global const int4* tris, __global const int* tv, __global const float* tv_d,
+ATS_TASK void sc_near_triangles(int t, __global const int4* tris, __global const int* tv, __global float* tv_d,
                                 __global const float* bound, float r, __global int* tv_near) {
   sc_near_triangle(t, (__global const int*)tris, tv, tv_d, bound, r, tv_near);
 }
-ATS_TASK void sc_near_edges(int e, __global const int2* edges, __global const int* ee, __global const float* ee_d,
+ATS_TASK void sc_near_edges(int e, __global const int2* edges, __global const int* ee, __global float* ee_d,
                             __global const float* bound, float r, __global int* ee_near) {
   sc_near_edge(e, (__global const int*)edges, ee, ee_d, bound, r, ee_near);
 }
@@ -234,6 +234,28 @@ ATS_TASK void sc_bound(int i, __global const int* inc, int n, __global const int
  * one entry from the other side instead (a search of that side's list) made
  * the projection slower on the small dress (scratch measurement: 20 against
  * 12 ms per substep). */
+/* How far vertex i is from x_t, the substep's start x0 (sc_still_apart). */
+ATS_TASK void sc_moved_since(int i, __global const float4* x, __global const float4* x0, __global float* moved) {
+  const float4 a = x[i], b = x0[i];
+  moved[i] = length((float4)(a.x - b.x, a.y - b.y, a.z - b.z, 0.0f));
+}
+
+/* Whether the pair of near entry d0 (its distance at x_t) is still farther
+ * than `reach` at x: a distance between a point and a triangle, or two
+ * edges, moves by at most the largest displacement on each side (every
+ * point of a side is a convex combination of its vertices), so
+ * d(x) >= d0 - m_first - m_second, m the vertices' `moved`
+ * (sc_moved_since). pv[0 .. split - 1] are the first side. The evaluations
+ * below skip such a pair without its geometry: with reach 1 % beyond their
+ * own test, the float geometry would have found it inactive too, so the
+ * result is the same bit for bit. */
+static inline int sc_still_apart(float d0, const int* pv, int split, __global const float* moved, float reach) {
+  if (!(d0 > reach)) return 0;
+  float m[2] = {0.0f, 0.0f};
+  for (int j = 0; j < 4; ++j) m[j < split ? 0 : 1] = fmax(m[j < split ? 0 : 1], moved[pv[j]]);
+  return d0 - m[0] - m[1] > reach;
+}
+
 static inline int sc_store_lambda(ats_pair_geometry g, const int* pv, __global const float4* x, float r,
                                   __global float4* out) {
   float denom = 0.0f;
@@ -253,24 +275,29 @@ static inline void sc_end_lambdas(int active, int count, __global float4* out) {
 }
 
 /* The entries of vertex i's list (as the point of a vertex-triangle pair). */
-ATS_TASK void sc_pair_lambdas_points(int i, __global const float4* x, __global const int4* tris, __global const int* vt,
+ATS_TASK void sc_pair_lambdas_points(int i, __global const float4* x, __global const float* moved,
+                                     __global const int4* tris, __global const int* vt, __global const float* vt_d,
                                      float r, __global float4* out) {
   __global const int* l = vt + i * ATS_SC_STRIDE;
+  __global const float* d0 = vt_d + i * ATS_SC_STRIDE;
   const ats_vec3 p = sc_v(x[i]);
   __global float4* o = out + 2 * i * ATS_SC_CAPACITY;
   int k = 0;
   for (int m = 0; m < l[0]; ++m) {
     const int4 f = tris[l[2 + m]];
     const int pv[4] = {i, f.x, f.y, f.z};
+    if (sc_still_apart(d0[2 + m], pv, 1, moved, 1.01f * r)) continue;
     k += sc_store_lambda(ats_point_triangle(p, sc_v(x[f.x]), sc_v(x[f.y]), sc_v(x[f.z])), pv, x, r, o + 2 * k);
   }
   sc_end_lambdas(k, l[0], o);
 }
 
 /* The entries of triangle t's list (the points near it). */
-ATS_TASK void sc_pair_lambdas_triangles(int t, __global const float4* x, __global const int4* tris,
-                                        __global const int* tv, float r, __global float4* out) {
+ATS_TASK void sc_pair_lambdas_triangles(int t, __global const float4* x, __global const float* moved,
+                                        __global const int4* tris, __global const int* tv, __global const float* tv_d,
+                                        float r, __global float4* out) {
   __global const int* l = tv + t * ATS_SC_STRIDE;
+  __global const float* d0 = tv_d + t * ATS_SC_STRIDE;
   const int4 f = tris[t];
   const ats_vec3 a = sc_v(x[f.x]), b = sc_v(x[f.y]), c = sc_v(x[f.z]);
   __global float4* o = out + 2 * t * ATS_SC_CAPACITY;
@@ -278,15 +305,18 @@ ATS_TASK void sc_pair_lambdas_triangles(int t, __global const float4* x, __globa
   for (int m = 0; m < l[0]; ++m) {
     const int v = l[2 + m];
     const int pv[4] = {v, f.x, f.y, f.z};
+    if (sc_still_apart(d0[2 + m], pv, 1, moved, 1.01f * r)) continue;
     k += sc_store_lambda(ats_point_triangle(sc_v(x[v]), a, b, c), pv, x, r, o + 2 * k);
   }
   sc_end_lambdas(k, l[0], o);
 }
 
 /* The entries of edge e's list (the edges near it). */
-ATS_TASK void sc_pair_lambdas_edges(int e, __global const float4* x, __global const int2* edges, __global const int* ee,
+ATS_TASK void sc_pair_lambdas_edges(int e, __global const float4* x, __global const float* moved,
+                                    __global const int2* edges, __global const int* ee, __global const float* ee_d,
                                     float r, __global float4* out) {
   __global const int* l = ee + e * ATS_SC_STRIDE;
+  __global const float* d0 = ee_d + e * ATS_SC_STRIDE;
   const int2 s = edges[e];
   const ats_vec3 a = sc_v(x[s.x]), b = sc_v(x[s.y]);
   __global float4* o = out + 2 * e * ATS_SC_CAPACITY;
@@ -294,6 +324,7 @@ ATS_TASK void sc_pair_lambdas_edges(int e, __global const float4* x, __global co
   for (int m = 0; m < l[0]; ++m) {
     const int2 h = edges[l[2 + m]];
     const int pv[4] = {s.x, s.y, h.x, h.y};
+    if (sc_still_apart(d0[2 + m], pv, 2, moved, 1.01f * r)) continue;
     k += sc_store_lambda(ats_edge_edge(a, b, sc_v(x[h.x]), sc_v(x[h.y])), pv, x, r, o + 2 * k);
   }
   sc_end_lambdas(k, l[0], o);
@@ -415,14 +446,17 @@ static inline void sc_end_friction(int acting, int count, __global float4* out) 
 /* The entries of vertex i's near list (as the point of a vertex-triangle pair). */
 ATS_TASK void sc_friction_pairs_points(int i, __global const float4* x, __global const float4* x_prev,
                                        __global const float4* v, float h, __global const int4* tris,
-                                       __global const int* vt, float r, float mu_s, float mu_k,
-                                       __global const float2* pf, __global float4* out) {
+                                       __global const int* vt, __global const float* vt_d,
+                                       __global const float* moved, float r, float mu_s,
+                                       float mu_k, __global const float2* pf, __global float4* out) {
   __global const int* l = vt + i * ATS_SC_STRIDE;
+  __global const float* d0 = vt_d + i * ATS_SC_STRIDE;
   __global float4* o = out + 2 * i * ATS_SC_CAPACITY;
   int k = 0;
   for (int m = 0; m < l[0]; ++m) {
     const int4 f = tris[l[2 + m]];
     const int pv[4] = {i, f.x, f.y, f.z};
+    if (sc_still_apart(d0[2 + m], pv, 1, moved, 1.02f * r)) continue;
     const ats_pair_geometry g = ats_point_triangle(sc_v(x[i]), sc_v(x[f.x]), sc_v(x[f.y]), sc_v(x[f.z]));
     k += sc_store_friction(g, pv, x, x_prev, v, h, r, mu_s, mu_k, pf, o + 2 * k);
   }
@@ -432,15 +466,18 @@ ATS_TASK void sc_friction_pairs_points(int i, __global const float4* x, __global
 /* The entries of triangle t's near list (the points near it). */
 ATS_TASK void sc_friction_pairs_triangles(int t, __global const float4* x, __global const float4* x_prev,
                                           __global const float4* v, float h, __global const int4* tris,
-                                          __global const int* tv, float r, float mu_s, float mu_k,
-                                          __global const float2* pf, __global float4* out) {
+                                          __global const int* tv, __global const float* tv_d,
+                                          __global const float* moved, float r, float mu_s,
+                                          float mu_k, __global const float2* pf, __global float4* out) {
   __global const int* l = tv + t * ATS_SC_STRIDE;
+  __global const float* d0 = tv_d + t * ATS_SC_STRIDE;
   const int4 f = tris[t];
   __global float4* o = out + 2 * t * ATS_SC_CAPACITY;
   int k = 0;
   for (int m = 0; m < l[0]; ++m) {
     const int p = l[2 + m];
     const int pv[4] = {p, f.x, f.y, f.z};
+    if (sc_still_apart(d0[2 + m], pv, 1, moved, 1.02f * r)) continue;
     const ats_pair_geometry g = ats_point_triangle(sc_v(x[p]), sc_v(x[f.x]), sc_v(x[f.y]), sc_v(x[f.z]));
     k += sc_store_friction(g, pv, x, x_prev, v, h, r, mu_s, mu_k, pf, o + 2 * k);
   }
@@ -450,15 +487,18 @@ ATS_TASK void sc_friction_pairs_triangles(int t, __global const float4* x, __glo
 /* The entries of edge e's near list (the edges near it). */
 ATS_TASK void sc_friction_pairs_edges(int e, __global const float4* x, __global const float4* x_prev,
                                       __global const float4* v, float h, __global const int2* edges,
-                                      __global const int* ee, float r, float mu_s, float mu_k,
-                                      __global const float2* pf, __global float4* out) {
+                                      __global const int* ee, __global const float* ee_d,
+                                      __global const float* moved, float r, float mu_s,
+                                      float mu_k, __global const float2* pf, __global float4* out) {
   __global const int* l = ee + e * ATS_SC_STRIDE;
+  __global const float* d0 = ee_d + e * ATS_SC_STRIDE;
   const int2 s = edges[e];
   __global float4* o = out + 2 * e * ATS_SC_CAPACITY;
   int k = 0;
   for (int m = 0; m < l[0]; ++m) {
     const int2 q = edges[l[2 + m]];
     const int pv[4] = {s.x, s.y, q.x, q.y};
+    if (sc_still_apart(d0[2 + m], pv, 2, moved, 1.02f * r)) continue;
     const ats_pair_geometry g = ats_edge_edge(sc_v(x[s.x]), sc_v(x[s.y]), sc_v(x[q.x]), sc_v(x[q.y]));
     k += sc_store_friction(g, pv, x, x_prev, v, h, r, mu_s, mu_k, pf, o + 2 * k);
   }

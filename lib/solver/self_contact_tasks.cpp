@@ -31,6 +31,17 @@ std::size_t motion_blocks(std::size_t n) { return (n + kMotionBlock - 1) / kMoti
 
 std::vector<std::byte> zeros(std::size_t bytes) { return std::vector<std::byte>(bytes); }
 
+// Per vertex how far `positions` is from `start` (x_t), for the near
+// entries' skip (contact/self_contact.cl sc_still_apart).
+sched::TaskId add_moved(plan::SubstepPlan& plan, sched::TaskId last, const SelfContactBuffers& b, plan::BufferId start,
+                        plan::BufferId positions, int n, sched::Task task) {
+  return plan.add_task_after(last, std::move(task),
+                             {"sc_moved_since",
+                              {0, n},
+                              {Arg::of_buffer(positions), Arg::of_buffer(start), Arg::of_buffer(b.moved)},
+                              {WriteSpan::per_element(b.moved, 4)}});
+}
+
 }  // namespace
 
 SelfContactBuffers add_self_contact_buffers(plan::SubstepPlan& plan, const SimLayout& layout,
@@ -54,6 +65,7 @@ SelfContactBuffers add_self_contact_buffers(plan::SubstepPlan& plan, const SimLa
   b.state = plan.add_buffer("sc_state", BufferRole::frame_state, zeros(s.enabled ? kStateInts * 4 : 0));
   b.bound = plan.add_buffer("sc_bound", BufferRole::scratch, zeros(n * 4));
   b.x_out = plan.add_buffer("sc_x_out", BufferRole::scratch, zeros(n * kParticleBytes));
+  b.moved = plan.add_buffer("sc_moved", BufferRole::scratch, zeros(n * 4));
   b.motion = plan.add_buffer("sc_motion", BufferRole::scratch, zeros(motion_blocks(n) * kMotionBytes));
   b.colliders = colliders >= 0 || !s.enabled ? colliders : add_collider_buffer(plan, layout);
   b.vt_d = plan.add_buffer("sc_vt_d", BufferRole::scratch, zeros(n * kListInts * 4));
@@ -154,9 +166,11 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
   // substep.
   const int edges = static_cast<int>(s.edges.size());
   const auto per_list = [&](const std::string& name, const char* function, int count, std::vector<Arg> args,
-                            plan::BufferId out) {
-    last = plan.add_task_after(last, detect(name),
-                               {function, {0, count}, std::move(args), {WriteSpan::per_element(out, kListInts * 4)}});
+                            plan::BufferId out, plan::BufferId distances = -1) {
+    std::vector<WriteSpan> writes{WriteSpan::per_element(out, kListInts * 4)};
+    // The near lists move their entries' distances to the front (sc_near_store).
+    if (distances >= 0) writes.push_back(WriteSpan::per_element(distances, kListInts * 4));
+    last = plan.add_task_after(last, detect(name), {function, {0, count}, std::move(args), std::move(writes)});
   };
   last = pairs;
   per_list("detect/distances_vertices", "sc_vertex_distances_task", n,
@@ -179,17 +193,17 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
   per_list("detect/near_triangles", "sc_near_triangles", tris,
            {Arg::of_buffer(b.tris), Arg::of_buffer(b.tv), Arg::of_buffer(b.tv_d), Arg::of_buffer(b.bound),
             Arg::of_float(r), Arg::of_buffer(b.tv_near)},
-           b.tv_near);
+           b.tv_near, b.tv_d);
   per_list("detect/near_edges", "sc_near_edges", edges,
            {Arg::of_buffer(b.edges), Arg::of_buffer(b.ee), Arg::of_buffer(b.ee_d), Arg::of_buffer(b.bound),
             Arg::of_float(r), Arg::of_buffer(b.ee_near)},
-           b.ee_near);
+           b.ee_near, b.ee_d);
   // last: it counts the near entries of each vertex's triangles and edges
   per_list("detect/near_vertices", "sc_near_vertices", n,
            {Arg::of_buffer(b.incidence), Arg::of_int(n), Arg::of_buffer(b.tris), Arg::of_buffer(b.vt),
             Arg::of_buffer(b.vt_d), Arg::of_buffer(b.bound), Arg::of_float(r), Arg::of_buffer(b.tv_near),
             Arg::of_buffer(b.ee_near), Arg::of_buffer(b.vt_near)},
-           b.vt_near);
+           b.vt_near, b.vt_d);
   return plan.add_task_after(last, plan::make_task("contact/first_guess", plan::TaskKind::collision),
                              {"sc_clamp",
                               {0, n},
@@ -255,7 +269,7 @@ sched::TaskId add_self_contact_projection(plan::SubstepPlan& plan, sched::TaskId
   // contact/self_contact.cl), then per vertex.
   const auto entries = [&](const char* part, const char* function, int count, plan::BufferId topology,
                            std::vector<Arg> lists, plan::BufferId out) {
-    std::vector<Arg> args{Arg::of_buffer(positions), Arg::of_buffer(topology)};
+    std::vector<Arg> args{Arg::of_buffer(positions), Arg::of_buffer(b.moved), Arg::of_buffer(topology)};
     args.insert(args.end(), lists.begin(), lists.end());
     args.push_back(Arg::of_float(s.thickness));
     args.push_back(Arg::of_buffer(out));
@@ -265,12 +279,15 @@ sched::TaskId add_self_contact_projection(plan::SubstepPlan& plan, sched::TaskId
                         iteration, 2),
         {function, {0, count}, std::move(args), {WriteSpan::per_element(out, kEntryBytes * ATS_SC_CAPACITY)}});
   };
-  const sched::TaskId points =
-      entries("points", "sc_pair_lambdas_points", n, b.tris, {Arg::of_buffer(b.vt_near)}, b.vt_l);
+  last = add_moved(plan, last, b, start, positions, n,
+                   plan::make_task(fmt::format("it{}/collision/surface_pairs/moved", iteration + 1),
+                                   plan::TaskKind::collision, iteration, 2));
+  const sched::TaskId points = entries("points", "sc_pair_lambdas_points", n, b.tris,
+                                       {Arg::of_buffer(b.vt_near), Arg::of_buffer(b.vt_d)}, b.vt_l);
   const sched::TaskId triangles = entries("triangles", "sc_pair_lambdas_triangles", static_cast<int>(s.tris.size()),
-                                          b.tris, {Arg::of_buffer(b.tv_near)}, b.tv_l);
+                                          b.tris, {Arg::of_buffer(b.tv_near), Arg::of_buffer(b.tv_d)}, b.tv_l);
   const sched::TaskId edges = entries("edges", "sc_pair_lambdas_edges", static_cast<int>(s.edges.size()), b.edges,
-                                      {Arg::of_buffer(b.ee_near)}, b.ee_l);
+                                      {Arg::of_buffer(b.ee_near), Arg::of_buffer(b.ee_d)}, b.ee_l);
   const sched::TaskId project = plan.add_task_after(
       edges,
       plan::make_task(fmt::format("it{}/collision/surfaces", iteration + 1), plan::TaskKind::collision, iteration, 3),
@@ -297,22 +314,24 @@ sched::TaskId add_self_contact_friction(plan::SubstepPlan& plan, sched::TaskId l
   // projection uses during the iterations (free after them), then per vertex.
   if (b.vt_l < 0) add_self_contact_projection_buffers(plan, layout, b);
   const auto entries = [&](const char* part, const char* function, int count, plan::BufferId topology,
-                           plan::BufferId list, plan::BufferId out) {
+                           plan::BufferId list, plan::BufferId distances, plan::BufferId out) {
     return plan.add_task_after(
         last, plan::make_task(fmt::format("contact/friction_pairs/{}", part), plan::TaskKind::friction, -1, 0),
         {function,
          {0, count},
          {Arg::of_buffer(positions), Arg::of_buffer(start), Arg::of_buffer(velocities),
           Arg::of_float(static_cast<float>(h)), Arg::of_buffer(topology), Arg::of_buffer(list),
-          Arg::of_float(s.thickness), Arg::of_float(s.mu_s), Arg::of_float(s.mu_k), Arg::of_buffer(friction),
-          Arg::of_buffer(out)},
+          Arg::of_buffer(distances), Arg::of_buffer(b.moved), Arg::of_float(s.thickness), Arg::of_float(s.mu_s),
+          Arg::of_float(s.mu_k), Arg::of_buffer(friction), Arg::of_buffer(out)},
          {WriteSpan::per_element(out, kEntryBytes * ATS_SC_CAPACITY)}});
   };
-  const sched::TaskId points = entries("points", "sc_friction_pairs_points", n, b.tris, b.vt_near, b.vt_l);
-  const sched::TaskId triangles =
-      entries("triangles", "sc_friction_pairs_triangles", static_cast<int>(s.tris.size()), b.tris, b.tv_near, b.tv_l);
+  last = add_moved(plan, last, b, start, positions, n,
+                   plan::make_task("contact/friction_pairs/moved", plan::TaskKind::friction, -1, 0));
+  const sched::TaskId points = entries("points", "sc_friction_pairs_points", n, b.tris, b.vt_near, b.vt_d, b.vt_l);
+  const sched::TaskId triangles = entries("triangles", "sc_friction_pairs_triangles", static_cast<int>(s.tris.size()),
+                                          b.tris, b.tv_near, b.tv_d, b.tv_l);
   const sched::TaskId edges =
-      entries("edges", "sc_friction_pairs_edges", static_cast<int>(s.edges.size()), b.edges, b.ee_near, b.ee_l);
+      entries("edges", "sc_friction_pairs_edges", static_cast<int>(s.edges.size()), b.edges, b.ee_near, b.ee_d, b.ee_l);
   last = plan.add_task_after(
       edges, plan::make_task("contact/friction", plan::TaskKind::friction, -1, 1),
       {"sc_friction",

@@ -23,7 +23,9 @@ struct SelfContactBuffers {
       vt_d = -1, tv_d = -1, ee_d = -1,           // the listed pairs' distances at x_t
       vt_near = -1, tv_near = -1, ee_near = -1,  // the entries that can come within the thickness this substep
       colliders = -1,  // the layout's colliders, which every clamp to the bound puts the positions back out of
-      vt_l = -1, tv_l = -1, ee_l = -1;  // XPBD: per near-list entry the pair's normal, multiplier and weights
+      vt_l = -1, tv_l = -1,
+                 ee_l = -1,  // per near-list entry the pair's normal, multiplier and weights (XPBD), or friction
+      moved = -1;            // per vertex how far it is from x_t (the near entries' skip, sc_still_apart)
 };
 
 // `colliders`: the plan's collider buffer (solver/collision_tasks
