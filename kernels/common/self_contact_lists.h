@@ -212,9 +212,8 @@ ATS_FN int sc_near_store(ATS_GLOBAL const int* list, const int* keep, ATS_GLOBAL
  * through its triangles and through its edges, so that a vertex without any
  * skips the gathers (contact/self_contact.cl SC_FOR_EACH_PAIR). */
 ATS_FN void sc_near_vertex(int i, ATS_GLOBAL const int* inc, int n, ATS_GLOBAL const int* tris,
-                           ATS_GLOBAL const int* vt, ATS_GLOBAL float* vt_d, ATS_GLOBAL const float* bound,
-                           float r, ATS_GLOBAL const int* tv_near, ATS_GLOBAL const int* ee_near,
-                           ATS_GLOBAL int* vt_near) {
+                           ATS_GLOBAL const int* vt, ATS_GLOBAL float* vt_d, ATS_GLOBAL const float* bound, float r,
+                           ATS_GLOBAL const int* tv_near, ATS_GLOBAL const int* ee_near, ATS_GLOBAL int* vt_near) {
   ATS_GLOBAL const int* l = vt + i * ATS_SC_STRIDE;
   ATS_GLOBAL float* d = vt_d + i * ATS_SC_STRIDE;
   int keep[ATS_SC_CAPACITY];

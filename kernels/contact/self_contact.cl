@@ -97,8 +97,8 @@ ATS_TASK void sc_edge_distances_task(int e, __global const float4* x, __global c
   sc_edge_distances(e, x, (__global const int*)edges, ee, ee_d);
 }
 ATS_TASK void sc_near_vertices(int i, __global const int* inc, int n, __global const int4* tris, __global const int* vt,
-                               __global float* vt_d, __global const float* bound, float r,
-                               __global const int* tv_near, __global const int* ee_near, __global int* vt_near) {
+                               __global float* vt_d, __global const float* bound, float r, __global const int* tv_near,
+                               __global const int* ee_near, __global int* vt_near) {
   sc_near_vertex(i, inc, n, (__global const int*)tris, vt, vt_d, bound, r, tv_near, ee_near, vt_near);
 }
 ATS_TASK void sc_near_triangles(int t, __global const int4* tris, __global const int* tv, __global float* tv_d,
@@ -446,9 +446,9 @@ static inline void sc_end_friction(int acting, int count, __global float4* out) 
 /* The entries of vertex i's near list (as the point of a vertex-triangle pair). */
 ATS_TASK void sc_friction_pairs_points(int i, __global const float4* x, __global const float4* x_prev,
                                        __global const float4* v, float h, __global const int4* tris,
-                                       __global const int* vt, __global const float* vt_d,
-                                       __global const float* moved, float r, float mu_s,
-                                       float mu_k, __global const float2* pf, __global float4* out) {
+                                       __global const int* vt, __global const float* vt_d, __global const float* moved,
+                                       float r, float mu_s, float mu_k, __global const float2* pf,
+                                       __global float4* out) {
   __global const int* l = vt + i * ATS_SC_STRIDE;
   __global const float* d0 = vt_d + i * ATS_SC_STRIDE;
   __global float4* o = out + 2 * i * ATS_SC_CAPACITY;
@@ -467,8 +467,8 @@ ATS_TASK void sc_friction_pairs_points(int i, __global const float4* x, __global
 ATS_TASK void sc_friction_pairs_triangles(int t, __global const float4* x, __global const float4* x_prev,
                                           __global const float4* v, float h, __global const int4* tris,
                                           __global const int* tv, __global const float* tv_d,
-                                          __global const float* moved, float r, float mu_s,
-                                          float mu_k, __global const float2* pf, __global float4* out) {
+                                          __global const float* moved, float r, float mu_s, float mu_k,
+                                          __global const float2* pf, __global float4* out) {
   __global const int* l = tv + t * ATS_SC_STRIDE;
   __global const float* d0 = tv_d + t * ATS_SC_STRIDE;
   const int4 f = tris[t];
@@ -487,9 +487,9 @@ ATS_TASK void sc_friction_pairs_triangles(int t, __global const float4* x, __glo
 /* The entries of edge e's near list (the edges near it). */
 ATS_TASK void sc_friction_pairs_edges(int e, __global const float4* x, __global const float4* x_prev,
                                       __global const float4* v, float h, __global const int2* edges,
-                                      __global const int* ee, __global const float* ee_d,
-                                      __global const float* moved, float r, float mu_s,
-                                      float mu_k, __global const float2* pf, __global float4* out) {
+                                      __global const int* ee, __global const float* ee_d, __global const float* moved,
+                                      float r, float mu_s, float mu_k, __global const float2* pf,
+                                      __global float4* out) {
   __global const int* l = ee + e * ATS_SC_STRIDE;
   __global const float* d0 = ee_d + e * ATS_SC_STRIDE;
   const int2 s = edges[e];

@@ -116,8 +116,7 @@ static inline void xpbd_stretch_lanes8(int k0, __global float4* x, __global cons
     denom = (1.0f + gamma) * (wa + wb) + alpha;
   }
   const int8 solved = len > 1e-20f && denom > 0.0f;
-  const float8 dl =
-      select((float8)(0.0f), (-(len - vload8(0, rest)) - alpha * lam - gamma * moved) / denom, solved);
+  const float8 dl = select((float8)(0.0f), (-(len - vload8(0, rest)) - alpha * lam - gamma * moved) / denom, solved);
   const float8 inv = select((float8)(0.0f), inv_len, solved);
   const float8 nx = dx * inv, ny = dy * inv, nz = dz * inv;
   vstore8(lam + dl, 0, lambda + k0);
