@@ -64,7 +64,8 @@ TEST_CASE("color_batches: the same bits on one device and cut over two, within 1
   const std::vector<std::pair<std::string, std::string>> runs{
       {"colors", "single"}, {"color_batches", "single"}, {"color_batches", "split"}, {"color_batches", "heft"}};
   for (const auto& [ordering, schedule] : runs) {
-    const std::string out = ordering + "_" + schedule + ".h5";
+    std::string out = ordering;
+    out += "_" + schedule + ".h5";
     app::RunOptions o = test::options(dir, cloth_with("  ordering: " + ordering + "\n"), "xpbd", schedule, out);
     app::run_simulation(o);
     last.push_back(test::frame(dir.file(out), io::read_summary(dir.file(out)).frames - 1));
