@@ -212,14 +212,108 @@ static inline void xpbd_bend_batch8(int k0, __global float4* x, __global const a
   }
 }
 
-/* One batch of bending stencils from element k0: float8 lanes unless a lane
- * is a dihedral stencil, then the lanes one after another. */
+/* Dihedral stencils (common/xpbd_bending.h ats_xpbd_dihedral with the angle
+ * and its gradient of common/energy_dihedral.h: the same operations) of one
+ * batch of 8 as float8 lanes. A dummy lane (first particle n or past it)
+ * computes on particle 0 and writes nothing. */
+static inline void xpbd_dihedral_batch8(int k0, __global float4* x, __global const ats_bend_c* c,
+                                        __global float4* lambda, float dt, int reset, int n) {
+  float px[4][8], py[4][8], pz[4][8], pw[4][8], rest[8], sc[8], comp[8], lx[8], ly[8], lz[8];
+  int v[4][8];
+  ATS_UNROLL for (int l = 0; l < 8; ++l) {
+    const ats_bend_c con = c[k0 + l];
+    const int live = con.v[0] < n;
+    ATS_UNROLL for (int j = 0; j < 4; ++j) {
+      v[j][l] = live ? con.v[j] : -1;
+      const float4 q = x[live ? con.v[j] : 0];
+      px[j][l] = q.x;
+      py[j][l] = q.y;
+      pz[j][l] = q.z;
+      pw[j][l] = q.w;
+    }
+    rest[l] = con.rest_angle;
+    sc[l] = con.scale;
+    comp[l] = con.compliance;
+    const float4 l4 = reset ? (float4)(0.0f) : lambda[k0 + l];
+    lx[l] = l4.x;
+    ly[l] = l4.y;
+    lz[l] = l4.z;
+  }
+  float8 X[4], Y[4], Z[4];
+  ATS_UNROLL for (int j = 0; j < 4; ++j) {
+    X[j] = vload8(0, px[j]);
+    Y[j] = vload8(0, py[j]);
+    Z[j] = vload8(0, pz[j]);
+  }
+  const float8 ex = X[1] - X[0], ey = Y[1] - Y[0], ez = Z[1] - Z[0];
+  const float8 ax = X[2] - X[0], ay = Y[2] - Y[0], az = Z[2] - Z[0];
+  const float8 bx = X[3] - X[0], by = Y[3] - Y[0], bz = Z[3] - Z[0];
+  /* n_a = e x (x2 - x0), n_b = (x3 - x0) x e */
+  const float8 nax = ey * az - ez * ay, nay = ez * ax - ex * az, naz = ex * ay - ey * ax;
+  const float8 nbx = by * ez - bz * ey, nby = bz * ex - bx * ez, nbz = bx * ey - by * ex;
+  const float8 le2 = ex * ex + ey * ey + ez * ez;
+  const float8 na2 = nax * nax + nay * nay + naz * naz;
+  const float8 nb2 = nbx * nbx + nby * nby + nbz * nbz;
+  const int8 ok = le2 > 0.0f && na2 > 0.0f && nb2 > 0.0f;
+  const float8 le = sqrt(le2);
+  const float8 s2 = select((float8)(0.0f), le / na2, ok), s3 = select((float8)(0.0f), le / nb2, ok);
+  const float8 t2 = select((float8)(0.0f), (ax * ex + ay * ey + az * ez) / le2, ok);
+  const float8 t3 = select((float8)(0.0f), (bx * ex + by * ey + bz * ez) / le2, ok);
+  float8 gx[4], gy[4], gz[4];
+  gx[2] = nax * s2;
+  gy[2] = nay * s2;
+  gz[2] = naz * s2;
+  gx[3] = nbx * s3;
+  gy[3] = nby * s3;
+  gz[3] = nbz * s3;
+  gx[0] = gx[2] * (t2 - 1.0f) + gx[3] * (t3 - 1.0f);
+  gy[0] = gy[2] * (t2 - 1.0f) + gy[3] * (t3 - 1.0f);
+  gz[0] = gz[2] * (t2 - 1.0f) + gz[3] * (t3 - 1.0f);
+  gx[1] = (gx[2] * t2 + gx[3] * t3) * -1.0f;
+  gy[1] = (gy[2] * t2 + gy[3] * t3) * -1.0f;
+  gz[1] = (gz[2] * t2 + gz[3] * t3) * -1.0f;
+  const float8 alpha = vload8(0, comp) / (2.0f * vload8(0, sc) * dt * dt);
+  float8 denom = alpha;
+  ATS_UNROLL for (int j = 0; j < 4; ++j) denom += vload8(0, pw[j]) * (gx[j] * gx[j] + gy[j] * gy[j] + gz[j] * gz[j]);
+  /* theta = atan2(e/|e| . (n_b x n_a), n_a . n_b), 0 for a zero edge */
+  const float8 cx = nby * naz - nbz * nay, cy = nbz * nax - nbx * naz, cz = nbx * nay - nby * nax;
+  const float8 theta =
+      select((float8)(0.0f), atan2((cx * ex + cy * ey + cz * ez) / le, nax * nbx + nay * nby + naz * nbz), le > 0.0f);
+  const float8 cval = theta - vload8(0, rest);
+  const float8 dl = select((float8)(0.0f), -(cval + alpha * vload8(0, lx)) / denom, denom > 0.0f);
+  float o[8];
+  vstore8(dl, 0, o);
+  ATS_UNROLL for (int l = 0; l < 8; ++l) lambda[k0 + l] = (float4)(lx[l] + o[l], ly[l] + 0.0f, lz[l] + 0.0f, 0.0f);
+  ATS_UNROLL for (int j = 0; j < 4; ++j) {
+    const float8 f = vload8(0, pw[j]) * dl;
+    vstore8(X[j] + gx[j] * f, 0, px[j]);
+    vstore8(Y[j] + gy[j] * f, 0, py[j]);
+    vstore8(Z[j] + gz[j] * f, 0, pz[j]);
+  }
+  ATS_UNROLL for (int l = 0; l < 8; ++l) {
+    if (v[0][l] >= 0) {
+      ATS_UNROLL for (int j = 0; j < 4; ++j) x[v[j][l]] = (float4)(px[j][l], py[j][l], pz[j][l], pw[j][l]);
+    }
+  }
+}
+
+/* One batch of bending stencils from element k0: float8 lanes when its live
+ * stencils are all isometric or all dihedral, else the lanes one after
+ * another. */
 static inline void xpbd_bend_batch(int k0, __global float4* x, __global const ats_bend_c* c, __global float4* lambda,
                                    float dt, int reset, int n) {
-  int dihedral = 0;
-  for (int l = 0; l < ATS_XPBD_BATCH_WIDTH; ++l) dihedral |= c[k0 + l].model == ATS_BEND_DIHEDRAL;
+  int dihedral = 0, isometric = 0;
+  for (int l = 0; l < ATS_XPBD_BATCH_WIDTH; ++l) {
+    if (c[k0 + l].v[0] >= n) continue;
+    dihedral |= c[k0 + l].model == ATS_BEND_DIHEDRAL;
+    isometric |= c[k0 + l].model != ATS_BEND_DIHEDRAL;
+  }
   if (!dihedral && ATS_XPBD_BATCH_WIDTH == 8) {
     xpbd_bend_batch8(k0, x, c, lambda, dt, reset, n);
+    return;
+  }
+  if (!isometric && ATS_XPBD_BATCH_WIDTH == 8) {
+    xpbd_dihedral_batch8(k0, x, c, lambda, dt, reset, n);
     return;
   }
   for (int l = 0; l < ATS_XPBD_BATCH_WIDTH; ++l) {
