@@ -152,6 +152,31 @@ ATS_TASK void xpbd_stretch_batches(int i, __global float4* x, __global const ats
   }
 }
 
+/* The four particles of each of the 8 stencils from element k0, as lanes
+ * (v: their ids, -1 in a dummy lane, which reads particle 0), and back. */
+static inline void xpbd_gather_stencils8(int k0, __global const float4* x, __global const ats_bend_c* c, int n,
+                                         int v[4][8], float px[4][8], float py[4][8], float pz[4][8], float pw[4][8]) {
+  ATS_UNROLL for (int l = 0; l < 8; ++l) {
+    const int live = c[k0 + l].v[0] < n;
+    ATS_UNROLL for (int j = 0; j < 4; ++j) {
+      v[j][l] = live ? c[k0 + l].v[j] : -1;
+      const float4 q = x[live ? c[k0 + l].v[j] : 0];
+      px[j][l] = q.x;
+      py[j][l] = q.y;
+      pz[j][l] = q.z;
+      pw[j][l] = q.w;
+    }
+  }
+}
+static inline void xpbd_scatter_stencils8(__global float4* x, int v[4][8], float px[4][8], float py[4][8],
+                                          float pz[4][8], float pw[4][8]) {
+  ATS_UNROLL for (int l = 0; l < 8; ++l) {
+    if (v[0][l] >= 0) {
+      ATS_UNROLL for (int j = 0; j < 4; ++j) x[v[j][l]] = (float4)(px[j][l], py[j][l], pz[j][l], pw[j][l]);
+    }
+  }
+}
+
 /* Isometric bending stencils (common/xpbd_bending.h, ats_xpbd_bend: the same
  * operations) of one batch of 8 as float8 lanes; a batch with a dihedral
  * stencil takes the scalar lanes instead. */
@@ -159,18 +184,10 @@ static inline void xpbd_bend_batch8(int k0, __global float4* x, __global const a
                                     float dt, int reset, int n) {
   float px[4][8], py[4][8], pz[4][8], pw[4][8], kk[4][8], sc[8], comp[8], lx[8], ly[8], lz[8];
   int v[4][8];
+  xpbd_gather_stencils8(k0, x, c, n, v, px, py, pz, pw);
   ATS_UNROLL for (int l = 0; l < 8; ++l) {
     const ats_bend_c con = c[k0 + l];
-    const int live = con.v[0] < n;
-    ATS_UNROLL for (int j = 0; j < 4; ++j) {
-      v[j][l] = live ? con.v[j] : -1;
-      const float4 q = x[live ? con.v[j] : 0];
-      px[j][l] = q.x;
-      py[j][l] = q.y;
-      pz[j][l] = q.z;
-      pw[j][l] = q.w;
-      kk[j][l] = con.K[j];
-    }
+    ATS_UNROLL for (int j = 0; j < 4; ++j) kk[j][l] = con.K[j];
     sc[l] = con.scale;
     comp[l] = con.compliance;
     const float4 l4 = reset ? (float4)(0.0f) : lambda[k0 + l];
@@ -205,11 +222,7 @@ static inline void xpbd_bend_batch8(int k0, __global float4* x, __global const a
     vstore8(vload8(0, py[j]) + dly * g, 0, py[j]);
     vstore8(vload8(0, pz[j]) + dlz * g, 0, pz[j]);
   }
-  ATS_UNROLL for (int l = 0; l < 8; ++l) {
-    if (v[0][l] >= 0) {
-      ATS_UNROLL for (int j = 0; j < 4; ++j) x[v[j][l]] = (float4)(px[j][l], py[j][l], pz[j][l], pw[j][l]);
-    }
-  }
+  xpbd_scatter_stencils8(x, v, px, py, pz, pw);
 }
 
 /* Dihedral stencils (common/xpbd_bending.h ats_xpbd_dihedral with the angle
@@ -220,17 +233,9 @@ static inline void xpbd_dihedral_batch8(int k0, __global float4* x, __global con
                                         __global float4* lambda, float dt, int reset, int n) {
   float px[4][8], py[4][8], pz[4][8], pw[4][8], rest[8], sc[8], comp[8], lx[8], ly[8], lz[8];
   int v[4][8];
+  xpbd_gather_stencils8(k0, x, c, n, v, px, py, pz, pw);
   ATS_UNROLL for (int l = 0; l < 8; ++l) {
     const ats_bend_c con = c[k0 + l];
-    const int live = con.v[0] < n;
-    ATS_UNROLL for (int j = 0; j < 4; ++j) {
-      v[j][l] = live ? con.v[j] : -1;
-      const float4 q = x[live ? con.v[j] : 0];
-      px[j][l] = q.x;
-      py[j][l] = q.y;
-      pz[j][l] = q.z;
-      pw[j][l] = q.w;
-    }
     rest[l] = con.rest_angle;
     sc[l] = con.scale;
     comp[l] = con.compliance;
@@ -290,11 +295,7 @@ static inline void xpbd_dihedral_batch8(int k0, __global float4* x, __global con
     vstore8(Y[j] + gy[j] * f, 0, py[j]);
     vstore8(Z[j] + gz[j] * f, 0, pz[j]);
   }
-  ATS_UNROLL for (int l = 0; l < 8; ++l) {
-    if (v[0][l] >= 0) {
-      ATS_UNROLL for (int j = 0; j < 4; ++j) x[v[j][l]] = (float4)(px[j][l], py[j][l], pz[j][l], pw[j][l]);
-    }
-  }
+  xpbd_scatter_stencils8(x, v, px, py, pz, pw);
 }
 
 /* One batch of bending stencils from element k0: float8 lanes when its live

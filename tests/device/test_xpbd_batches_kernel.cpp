@@ -29,6 +29,18 @@ double max_difference(const std::vector<Float4>& a, const std::vector<Float4>& b
   return d;
 }
 
+// A 16 x 16 hanging cloth with `material` keys added, in a disturbed, moving
+// state so that every constraint does work.
+SimLayout moving_cloth(const std::string& material) {
+  std::string yaml = test::hanging_cloth_yaml(16, 1e4, 1e-2);
+  yaml.replace(yaml.find("material: {") + 11, 0, material);
+  SimLayout start = make_sim_layout(model::build_model(scene::parse_scene(yaml, "s.yaml", ".")));
+  for (std::size_t i = 0; i < start.v.size(); ++i) {
+    start.v[i] = {0.3f * std::sin(float(i)), 0.2f * std::cos(0.7f * float(i)), 0.1f, 0.0f};
+  }
+  return start;
+}
+
 }  // namespace
 
 TEST_CASE("the batched sweep on the device equals the host serial loop over the same order to 1e-5") {
@@ -36,16 +48,9 @@ TEST_CASE("the batched sweep on the device equals the host serial loop over the 
   // Undamped springs and isometric stencils take the float8 lanes; damped
   // springs and dihedral stencils the scalar ones (kernels/xpbd/xpbd.cl).
   const std::string material = GENERATE(std::string(), std::string("bend_model: dihedral, damping: 0.01, "));
-  std::string yaml = test::hanging_cloth_yaml(16, 1e4, 1e-2);
-  yaml.replace(yaml.find("material: {") + 11, 0, material);
-  const auto m = model::build_model(scene::parse_scene(yaml, "s.yaml", "."));
   // One iteration: after a single sweep the order shows (8 converge to ~1e-7 of each other).
   const XpbdSettings settings{1.0 / 240.0, 1, XpbdOrdering::batches};
-  SimLayout start = make_sim_layout(m);
-  // A disturbed, moving state so every constraint does work.
-  for (std::size_t i = 0; i < start.v.size(); ++i) {
-    start.v[i] = {0.3f * std::sin(float(i)), 0.2f * std::cos(0.7f * float(i)), 0.1f, 0.0f};
-  }
+  const SimLayout start = moving_cloth(material);
   XpbdBuffers ids;
   const auto plan = make_xpbd_plan(start, settings, &ids);
   const auto devices = device::DeviceSet::open("cpu");
@@ -75,14 +80,8 @@ TEST_CASE("color batches on the device equal the host color loop to 1e-5") {
   // Undamped springs and isometric stencils, then damped springs (their own
   // float8 lanes) and dihedral stencils (the scalar lanes).
   const std::string material = GENERATE(std::string(), std::string("bend_model: dihedral, damping: 0.01, "));
-  std::string yaml = test::hanging_cloth_yaml(16, 1e4, 1e-2);
-  yaml.replace(yaml.find("material: {") + 11, 0, material);
-  const auto m = model::build_model(scene::parse_scene(yaml, "s.yaml", "."));
   const XpbdSettings settings{1.0 / 240.0, 2, XpbdOrdering::color_batches};
-  SimLayout start = make_sim_layout(m);
-  for (std::size_t i = 0; i < start.v.size(); ++i) {
-    start.v[i] = {0.3f * std::sin(float(i)), 0.2f * std::cos(0.7f * float(i)), 0.1f, 0.0f};
-  }
+  const SimLayout start = moving_cloth(material);
   XpbdBuffers ids;
   const auto plan = make_xpbd_plan(start, settings, &ids);
   device::ExecutorOptions options;
