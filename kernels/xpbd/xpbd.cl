@@ -152,21 +152,28 @@ ATS_TASK void xpbd_stretch_batches(int i, __global float4* x, __global const ats
   }
 }
 
-/* The four particles of each of the 8 stencils from element k0, as lanes
- * (v: their ids, -1 in a dummy lane, which reads particle 0), and back. */
-static inline void xpbd_gather_stencils8(int k0, __global const float4* x, __global const ats_bend_c* c, int n,
-                                         int v[4][8], float px[4][8], float py[4][8], float pz[4][8], float pw[4][8]) {
+/* The four particles v (ids, -1 in a dummy lane, which reads particle 0) of
+ * 8 elements as lanes, and back. */
+static inline void xpbd_gather_particles8(__global const float4* x, int v[4][8], float px[4][8], float py[4][8],
+                                          float pz[4][8], float pw[4][8]) {
   ATS_UNROLL for (int l = 0; l < 8; ++l) {
-    const int live = c[k0 + l].v[0] < n;
     ATS_UNROLL for (int j = 0; j < 4; ++j) {
-      v[j][l] = live ? c[k0 + l].v[j] : -1;
-      const float4 q = x[live ? c[k0 + l].v[j] : 0];
+      const float4 q = x[v[j][l] >= 0 ? v[j][l] : 0];
       px[j][l] = q.x;
       py[j][l] = q.y;
       pz[j][l] = q.z;
       pw[j][l] = q.w;
     }
   }
+}
+/* The four particles of each of the 8 stencils from element k0, as lanes. */
+static inline void xpbd_gather_stencils8(int k0, __global const float4* x, __global const ats_bend_c* c, int n,
+                                         int v[4][8], float px[4][8], float py[4][8], float pz[4][8], float pw[4][8]) {
+  ATS_UNROLL for (int l = 0; l < 8; ++l) {
+    const int live = c[k0 + l].v[0] < n;
+    ATS_UNROLL for (int j = 0; j < 4; ++j) v[j][l] = live ? c[k0 + l].v[j] : -1;
+  }
+  xpbd_gather_particles8(x, v, px, py, pz, pw);
 }
 static inline void xpbd_scatter_stencils8(__global float4* x, int v[4][8], float px[4][8], float py[4][8],
                                           float pz[4][8], float pw[4][8]) {
@@ -371,4 +378,121 @@ ATS_TASK void xpbd_tet(int i, __global float4* x, __global const ats_tet_c* c, _
   ats_xpbd_tet(p, w, dm_inv, t.volume, t.mu, t.lambda, lam, dt);
   ATS_UNROLL for (int j = 0; j < ATS_TET_LAMBDA_STRIDE; ++j) lambda[ATS_TET_LAMBDA_STRIDE * i + j] = lam[j];
   ATS_UNROLL for (int j = 0; j < 4; ++j) x[t.v[j]] = (float4)(p[j].x, p[j].y, p[j].z, q[j].w);
+}
+
+/* StVK tets (common/xpbd_tet.h, ats_xpbd_tet: the same operations, the
+ * seven strain constraints one after another) of one batch of 8 as float8
+ * lanes. A dummy lane (first particle n or past it) computes on particle 0
+ * and writes nothing; a constraint with k_c = 0 moves nothing in its lane. */
+static inline void xpbd_tet_lanes8(int k0, __global float4* x, __global const ats_tet_c* c, __global float* lambda,
+                                   float dt, int reset, int n) {
+  float px[4][8], py[4][8], pz[4][8], pw[4][8], dm[9][8], vol[8], mu[8], la[8], lam[ATS_TET_LAMBDA_STRIDE][8];
+  int v[4][8];
+  ATS_UNROLL for (int l = 0; l < 8; ++l) {
+    const ats_tet_c t = c[k0 + l];
+    const int live = t.v[0] < n;
+    ATS_UNROLL for (int j = 0; j < 4; ++j) v[j][l] = live ? t.v[j] : -1;
+    ATS_UNROLL for (int r = 0; r < 9; ++r) dm[r][l] = t.dm_inv[r];
+    vol[l] = t.volume;
+    mu[l] = t.mu;
+    la[l] = t.lambda;
+    ATS_UNROLL for (int j = 0; j < ATS_TET_LAMBDA_STRIDE; ++j) lam[j][l] =
+        reset ? 0.0f : lambda[ATS_TET_LAMBDA_STRIDE * (k0 + l) + j];
+  }
+  xpbd_gather_particles8(x, v, px, py, pz, pw);
+  float8 P[4][3], W[4], D[3][3], B[4][3];
+  ATS_UNROLL for (int a = 0; a < 4; ++a) {
+    P[a][0] = vload8(0, px[a]);
+    P[a][1] = vload8(0, py[a]);
+    P[a][2] = vload8(0, pz[a]);
+    W[a] = vload8(0, pw[a]);
+  }
+  /* shape vectors: b_a = row a-1 of Dm^-1 (a = 1, 2, 3), b_0 = -(b_1 + b_2 + b_3) */
+  ATS_UNROLL for (int r = 0; r < 3; ++r) {
+    ATS_UNROLL for (int s = 0; s < 3; ++s) {
+      D[r][s] = vload8(0, dm[3 * r + s]);
+      B[r + 1][s] = D[r][s];
+    }
+  }
+  ATS_UNROLL for (int s = 0; s < 3; ++s) B[0][s] = ((D[0][s] + D[1][s]) + D[2][s]) * -1.0f;
+  const float8 volume = vload8(0, vol), mu8 = vload8(0, mu);
+  ATS_UNROLL for (int cc = 0; cc < ATS_TET_STRAIN_CONSTRAINTS; ++cc) {
+    const float8 k = cc < 3 ? 2.0f * mu8 * volume : (cc < 6 ? 4.0f * mu8 * volume : vload8(0, la) * volume);
+    const int8 active = k > 0.0f;
+    const float8 alpha = 1.0f / (k * dt * dt);
+    /* F = sum_{a=1..3} (x_a - x_0) b_a^T, then G = F - I */
+    float8 F[3][3], G[3][3];
+    ATS_UNROLL for (int i = 0; i < 3; ++i) {
+      const float8 e0 = P[1][i] - P[0][i], e1 = P[2][i] - P[0][i], e2 = P[3][i] - P[0][i];
+      ATS_UNROLL for (int j = 0; j < 3; ++j) {
+        F[i][j] = D[0][j] * e0 + D[1][j] * e1 + D[2][j] * e2;
+        G[i][j] = F[i][j] - (i == j ? 1.0f : 0.0f);
+      }
+    }
+    /* E_ij = 1/2 (G_ij + G_ji + sum_k G_ki G_kj) */
+    const int ci = ats_tet_strain_i(cc < 6 ? cc : 0), cj = ats_tet_strain_j(cc < 6 ? cc : 0);
+    float8 value;
+    if (cc == 6) {
+      value = (float8)(0.0f);
+      ATS_UNROLL for (int d = 0; d < 3; ++d) value +=
+          ((G[d][d] + G[d][d]) + (G[0][d] * G[0][d] + G[1][d] * G[1][d] + G[2][d] * G[2][d])) * 0.5f;
+    } else {
+      value = ((G[ci][cj] + G[cj][ci]) + (G[0][ci] * G[0][cj] + G[1][ci] * G[1][cj] + G[2][ci] * G[2][cj])) * 0.5f;
+    }
+    /* grad_a C: 1/2 (b_a[j] f_i + b_a[i] f_j) with f_i column i of F; tr E: F b_a */
+    float8 g[4][3];
+    float8 denom = alpha;
+    ATS_UNROLL for (int a = 0; a < 4; ++a) {
+      ATS_UNROLL for (int r = 0; r < 3; ++r) {
+        g[a][r] = cc == 6 ? F[r][0] * B[a][0] + F[r][1] * B[a][1] + F[r][2] * B[a][2]
+                          : (F[r][ci] * B[a][cj] + F[r][cj] * B[a][ci]) * 0.5f;
+      }
+      denom += W[a] * (g[a][0] * g[a][0] + g[a][1] * g[a][1] + g[a][2] * g[a][2]);
+    }
+    const float8 l0 = vload8(0, lam[cc]);
+    const float8 dl = select((float8)(0.0f), (-value - alpha * l0) / denom, active);
+    vstore8(l0 + dl, 0, lam[cc]);
+    ATS_UNROLL for (int a = 0; a < 4; ++a) {
+      const float8 f = W[a] * dl;
+      ATS_UNROLL for (int r = 0; r < 3; ++r) P[a][r] += g[a][r] * f;
+    }
+  }
+  ATS_UNROLL for (int a = 0; a < 4; ++a) {
+    vstore8(P[a][0], 0, px[a]);
+    vstore8(P[a][1], 0, py[a]);
+    vstore8(P[a][2], 0, pz[a]);
+  }
+  ATS_UNROLL for (int l = 0; l < 8; ++l) {
+    if (v[0][l] >= 0) {
+      ATS_UNROLL for (int j = 0; j < ATS_TET_LAMBDA_STRIDE; ++j) lambda[ATS_TET_LAMBDA_STRIDE * (k0 + l) + j] =
+          lam[j][l];
+    }
+  }
+  xpbd_scatter_stencils8(x, v, px, py, pz, pw);
+}
+
+/* One batch of tets from element k0: float8 lanes, or the lanes one after
+ * another for another batch width. */
+static inline void xpbd_tet_batch(int k0, __global float4* x, __global const ats_tet_c* c, __global float* lambda,
+                                  float dt, int reset, int n) {
+  if (ATS_XPBD_BATCH_WIDTH == 8) {
+    xpbd_tet_lanes8(k0, x, c, lambda, dt, reset, n);
+    return;
+  }
+  for (int l = 0; l < ATS_XPBD_BATCH_WIDTH; ++l) {
+    if (c[k0 + l].v[0] < n) xpbd_tet(k0 + l, x, c, lambda, dt, reset);
+  }
+}
+
+/* solver.ordering: color_batches (work-item i = batch i of a tet color block)
+ * and batches (one work-item sweeps the padded set), as for the cloth sets. */
+ATS_TASK void xpbd_tet_lanes(int i, __global float4* x, __global const ats_tet_c* c, __global float* lambda, float dt,
+                             int reset, int n) {
+  xpbd_tet_batch(i * ATS_XPBD_BATCH_WIDTH, x, c, lambda, dt, reset, n);
+}
+
+ATS_TASK void xpbd_tet_batches(int i, __global float4* x, __global const ats_tet_c* c, __global float* lambda, float dt,
+                               int reset, int batches, int n) {
+  (void)i;
+  for (int b = 0; b < batches; ++b) xpbd_tet_batch(b * ATS_XPBD_BATCH_WIDTH, x, c, lambda, dt, reset, n);
 }

@@ -59,6 +59,11 @@ TEST_CASE("a cloth hangs alike under the colors and the batches ordering") {
 }
 
 TEST_CASE("color_batches: the same bits on one device and cut over two, within 1e-4 m of the colors") {
+  // A hanging cloth (springs and bending stencils) and a hanging StVK bar (tets).
+  const std::string body = GENERATE(std::string("cloth"), std::string("bar"));
+  const auto scene_with = [&](const std::string& keys) {
+    return body == "cloth" ? cloth_with(keys) : test::stvk_bar_yaml(2) + "solver:\n" + keys;
+  };
   test::TempDir dir;
   std::vector<std::vector<Eigen::Vector3d>> last;
   const std::vector<std::pair<std::string, std::string>> runs{
@@ -66,7 +71,7 @@ TEST_CASE("color_batches: the same bits on one device and cut over two, within 1
   for (const auto& [ordering, schedule] : runs) {
     std::string out = ordering;
     out += "_" + schedule + ".h5";
-    app::RunOptions o = test::options(dir, cloth_with("  ordering: " + ordering + "\n"), "xpbd", schedule, out);
+    app::RunOptions o = test::options(dir, scene_with("  ordering: " + ordering + "\n"), "xpbd", schedule, out);
     app::run_simulation(o);
     last.push_back(test::frame(dir.file(out), io::read_summary(dir.file(out)).frames - 1));
   }
@@ -75,7 +80,7 @@ TEST_CASE("color_batches: the same bits on one device and cut over two, within 1
     for (std::size_t i = 0; i < last[a].size(); ++i) d = std::max(d, (last[a][i] - last[b][i]).norm());
     return d;
   };
-  INFO("color_batches against colors: " << largest(0, 1) << " m after 10 frames");
+  INFO(body << ": color_batches against colors: " << largest(0, 1) << " m after 10 frames");
   CHECK(largest(1, 2) == 0.0);  // split: every color block's batches cut between the sub-devices
   CHECK(largest(1, 3) == 0.0);  // heft
   // The color order with float8 lanes: only rounding differs from the scalar

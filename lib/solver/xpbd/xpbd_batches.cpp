@@ -13,12 +13,14 @@ namespace {
 
 std::array<int, 2> particles(const ats_distance_c& c) { return {c.a, c.b}; }
 std::array<int, 4> particles(const ats_bend_c& c) { return {c.v[0], c.v[1], c.v[2], c.v[3]}; }
+std::array<int, 4> particles(const ats_tet_c& c) { return {c.v[0], c.v[1], c.v[2], c.v[3]}; }
 
 void set_particles(ats_distance_c& c, const std::array<int, 2>& p) {
   c.a = p[0];
   c.b = p[1];
 }
-void set_particles(ats_bend_c& c, const std::array<int, 4>& p) {
+template <class Stencil>
+void set_particles(Stencil& c, const std::array<int, 4>& p) {
   for (int k = 0; k < 4; ++k) c.v[k] = p[static_cast<std::size_t>(k)];
 }
 
@@ -100,10 +102,16 @@ ColorBatches<ats_bend_c> color_batches(const std::vector<ats_bend_c>& bend, cons
   return cut_blocks(bend, blocks, particle_count);
 }
 
+ColorBatches<ats_tet_c> color_batches(const std::vector<ats_tet_c>& tets, const std::vector<int>& blocks,
+                                      int particle_count) {
+  return cut_blocks(tets, blocks, particle_count);
+}
+
 SimLayout in_batch_order(SimLayout layout) {
   const int n = static_cast<int>(layout.x.size());
   if (!layout.stretch.empty()) as_one_block(layout.stretch, layout.stretch_blocks, n);
   if (!layout.bend.empty()) as_one_block(layout.bend, layout.bend_blocks, n);
+  if (!layout.tets.empty()) as_one_block(layout.tets, layout.tet_blocks, n);
   return layout;
 }
 
@@ -113,6 +121,10 @@ ElementBatches<ats_distance_c> batch_elements(const std::vector<ats_distance_c>&
 
 ElementBatches<ats_bend_c> batch_elements(const std::vector<ats_bend_c>& bend, int particle_count) {
   return batch(bend, particle_count);
+}
+
+ElementBatches<ats_tet_c> batch_elements(const std::vector<ats_tet_c>& tets, int particle_count) {
+  return batch(tets, particle_count);
 }
 
 }  // namespace atssim::solver::xpbd

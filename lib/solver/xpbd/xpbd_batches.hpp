@@ -23,6 +23,7 @@ struct ElementBatches {
 
 ElementBatches<ats_distance_c> batch_elements(const std::vector<ats_distance_c>& stretch, int particle_count);
 ElementBatches<ats_bend_c> batch_elements(const std::vector<ats_bend_c>& bend, int particle_count);
+ElementBatches<ats_tet_c> batch_elements(const std::vector<ats_tet_c>& tets, int particle_count);
 
 // solver.ordering: color_batches. Each color block of a set (`blocks`, its
 // element offsets) cut into consecutive batches of kBatchWidth, the last
@@ -42,8 +43,10 @@ ColorBatches<ats_distance_c> color_batches(const std::vector<ats_distance_c>& st
                                            int particle_count);
 ColorBatches<ats_bend_c> color_batches(const std::vector<ats_bend_c>& bend, const std::vector<int>& blocks,
                                        int particle_count);
+ColorBatches<ats_tet_c> color_batches(const std::vector<ats_tet_c>& tets, const std::vector<int>& blocks,
+                                      int particle_count);
 
-// `layout` with its stretch and bending sets in the batches' sweep order
+// `layout` with its stretch, bending and tet sets in the batches' sweep order
 // (dummies left out), each one color block: the host reference's serial loop
 // over it visits the constraints in the order the batches task sweeps them
 // (for its tests and bench/bench_native --ordering batches; one thread only).

@@ -14,7 +14,7 @@ constexpr std::string_view kOrderings[] = {"colors", "color_batches", "batches"}
 
 constexpr MethodOption kOptions[] = {
     {"ordering", 0.0, 0.0, 2.0, false, false,
-     "colors, color_batches or batches: the order of the stretch and bending constraints, one task per color "
+     "colors, color_batches or batches: the order of the stretch, bending and tet constraints, one task per color "
      "block, one task per color block cut into batches of 8 float lanes, or one sweep of NvCloth's simd batches "
      "per element set (xpbd; batches: schedule single only)",
      kOrderings, false, 2},

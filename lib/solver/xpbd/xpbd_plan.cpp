@@ -92,6 +92,8 @@ plan::SubstepPlan make_xpbd_plan(const SimLayout& layout, const XpbdSettings& se
   const auto stretch_lanes =
       lanes ? color_batches(layout.stretch, layout.stretch_blocks, n) : ColorBatches<ats_distance_c>{};
   const auto bend_lanes = lanes ? color_batches(layout.bend, layout.bend_blocks, n) : ColorBatches<ats_bend_c>{};
+  const auto tet_batches = batched ? batch_elements(layout.tets, n) : ElementBatches<ats_tet_c>{};
+  const auto tet_lanes = lanes ? color_batches(layout.tets, layout.tet_blocks, n) : ColorBatches<ats_tet_c>{};
   b.x = plan.add_buffer("x", BufferRole::positions, plan::bytes_of(layout.x));
   b.v = plan.add_buffer("v", BufferRole::velocities, plan::bytes_of(layout.v));
   b.x_prev = plan.add_buffer("x_prev", BufferRole::start_positions, plan::bytes_of(layout.x));
@@ -109,9 +111,10 @@ plan::SubstepPlan make_xpbd_plan(const SimLayout& layout, const XpbdSettings& se
   }
   if (!layout.tets.empty()) {
     check_tets_are_stvk(layout);
-    b.tet = plan.add_buffer("tet", BufferRole::elements, plan::bytes_of(layout.tets));
+    const auto& tets = batched ? tet_batches.elements : lanes ? tet_lanes.set.elements : layout.tets;
+    b.tet = plan.add_buffer("tet", BufferRole::elements, plan::bytes_of(tets));
     b.tet_lambda = plan.add_buffer("tet_lambda", BufferRole::multipliers,
-                                   std::vector<std::byte>(layout.tets.size() * ATS_TET_LAMBDA_STRIDE * sizeof(float)));
+                                   std::vector<std::byte>(tets.size() * ATS_TET_LAMBDA_STRIDE * sizeof(float)));
   }
 
   // The step of predict and the velocity update; the constraints weigh the
@@ -137,12 +140,12 @@ plan::SubstepPlan make_xpbd_plan(const SimLayout& layout, const XpbdSettings& se
   const auto bend_particles = particles_of(lanes ? bend_lanes.set.elements : layout.bend);
   // A batch of lanes writes its kBatchWidth elements' particles and multipliers.
   const int width = lanes ? kBatchWidth : 1;
-  std::vector<Arg> stretch_extra = spring_damping, bend_extra;
+  std::vector<Arg> stretch_extra = spring_damping, lanes_extra;
   if (lanes) {
     stretch_extra.push_back(Arg::of_int(n));
-    bend_extra.push_back(Arg::of_int(n));
+    lanes_extra.push_back(Arg::of_int(n));
   }
-  const auto tet_particles = particles_of(layout.tets);
+  const auto tet_particles = particles_of(lanes ? tet_lanes.set.elements : layout.tets);
   for (int it = 0; it < settings.iterations; ++it) {
     if (b.stretch >= 0 && batched) {
       last = add_batch_sweep(plan, last, stretch_batches.batches(), kStretch, "xpbd_stretch_batches", b.x, b.stretch,
@@ -158,11 +161,15 @@ plan::SubstepPlan make_xpbd_plan(const SimLayout& layout, const XpbdSettings& se
     } else if (b.bend >= 0) {
       last = add_blocks(plan, last, lanes ? bend_lanes.blocks : layout.bend_blocks, kBend,
                         lanes ? "xpbd_bend_lanes" : "xpbd_bend", b.x, b.bend, b.bend_lambda, dt, it, bend_particles,
-                        4 * width, width * 4 * sizeof(float), bend_extra);
+                        4 * width, width * 4 * sizeof(float), lanes_extra);
     }
-    if (b.tet >= 0) {
-      last = add_blocks(plan, last, layout.tet_blocks, kTet, "xpbd_tet", b.x, b.tet, b.tet_lambda, dt, it,
-                        tet_particles, 4, ATS_TET_LAMBDA_STRIDE * sizeof(float));
+    if (b.tet >= 0 && batched) {
+      last = add_batch_sweep(plan, last, tet_batches.batches(), kTet, "xpbd_tet_batches", b.x, b.tet, b.tet_lambda, dt,
+                             it);
+    } else if (b.tet >= 0) {
+      last = add_blocks(plan, last, lanes ? tet_lanes.blocks : layout.tet_blocks, kTet,
+                        lanes ? "xpbd_tet_lanes" : "xpbd_tet", b.x, b.tet, b.tet_lambda, dt, it, tet_particles,
+                        4 * width, width * ATS_TET_LAMBDA_STRIDE * sizeof(float), lanes_extra);
     }
     last = add_self_contact_projection(plan, last, layout, sc, b.x_prev, b.x, it);
     last = add_ground_task(plan, last, layout, b.x, it);

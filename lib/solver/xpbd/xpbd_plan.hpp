@@ -21,7 +21,7 @@ inline constexpr plan::TaskKind kStretch{{"stretch", true, false, false}};  // d
 inline constexpr plan::TaskKind kBend{{"bend", true, false, false}};        // bending constraints
 inline constexpr plan::TaskKind kTet{{"tet", true, false, false}};          // tetrahedra (StVK strain)
 
-// The order of the stretch and bending constraints (solver.ordering):
+// The order of the stretch, bending and tet constraints (solver.ordering):
 // colors = one task per color block, the blocks one after another;
 // batches = one task per element set sweeping NvCloth's simd batches
 // (solver/xpbd/xpbd_batches), a one-device order (no part to cut);

@@ -8,6 +8,7 @@
 #include <set>
 #include <vector>
 
+#include "common/xpbd_tet.h"
 #include "model/cloth_builder.hpp"
 #include "scene/scene_loader.hpp"
 #include "solver/xpbd/xpbd_batches.hpp"
@@ -27,6 +28,11 @@ SimLayout cloth_layout(int resolution) {
 
 std::vector<int> particles(const ats_distance_c& c) { return {c.a, c.b}; }
 std::vector<int> particles(const ats_bend_c& c) { return {c.v[0], c.v[1], c.v[2], c.v[3]}; }
+std::vector<int> particles(const ats_tet_c& c) { return {c.v[0], c.v[1], c.v[2], c.v[3]}; }
+
+SimLayout bar_layout(int cells) {
+  return make_sim_layout(model::build_model(scene::parse_scene(test::stvk_bar_yaml(cells), "s.yaml", ".")));
+}
 
 // Every element of `set` exactly once, bit for bit; the dummy's particles past
 // the last one; no two real lanes of a batch sharing a particle (with `x`,
@@ -149,4 +155,47 @@ TEST_CASE("the color_batches plan: one task per color block and iteration, a wor
   }
   CHECK(plan.buffers[ids.stretch].initial.size() == stretch.set.elements.size() * sizeof(ats_distance_c));
   CHECK(plan.one_device_reason.empty());
+}
+
+TEST_CASE("batches and color batches of a solid's tets: every tet once, every batch conflict-free") {
+  const SimLayout layout = bar_layout(GENERATE(1, 3));
+  const int n = static_cast<int>(layout.x.size());
+  REQUIRE(layout.tets.size() >= 24);
+  check_batches(layout.tets, batch_elements(layout.tets, n), n);
+  check_color_batches(layout.tets, layout.tet_blocks, color_batches(layout.tets, layout.tet_blocks, n), layout.x);
+}
+
+TEST_CASE("the tet tasks under each ordering: color blocks, blocks of batches, one sweep") {
+  const SimLayout layout = bar_layout(2);
+  const int n = static_cast<int>(layout.x.size());
+  const int iterations = 2;
+  const std::size_t blocks = layout.tet_blocks.size() - 1;
+  for (const XpbdOrdering ordering : {XpbdOrdering::colors, XpbdOrdering::color_batches, XpbdOrdering::batches}) {
+    XpbdBuffers ids;
+    const auto plan = make_xpbd_plan(layout, {1.0 / 240.0, iterations, ordering}, &ids);
+    const auto tasks = plan.tasks_of(solver::xpbd::kTet);
+    const auto lanes = color_batches(layout.tets, layout.tet_blocks, n);
+    const auto sweep = batch_elements(layout.tets, n);
+    if (ordering == XpbdOrdering::batches) {
+      REQUIRE(tasks.size() == std::size_t(iterations));
+      CHECK(plan.launches[tasks[0]].at(0).function == "xpbd_tet_batches");
+      CHECK(plan.buffers[ids.tet].initial.size() == sweep.elements.size() * sizeof(ats_tet_c));
+      continue;
+    }
+    REQUIRE(tasks.size() == blocks * std::size_t(iterations));
+    const bool batched = ordering == XpbdOrdering::color_batches;
+    int items = 0;
+    for (std::size_t k = 0; k < blocks; ++k) {
+      const auto& launch = plan.launches[tasks[k]].at(0);
+      CHECK(launch.function == (batched ? "xpbd_tet_lanes" : "xpbd_tet"));
+      CHECK(launch.range.first == (batched ? lanes.blocks[k] : layout.tet_blocks[k]));
+      items += launch.range.count;
+      // A batch writes its 8 tets' particles (32) and multipliers (8 × 8 floats).
+      CHECK(launch.writes.at(0).arity == (batched ? 4 * kBatchWidth : 4));
+      CHECK(launch.writes.at(1).element_bytes == (batched ? kBatchWidth : 1) * ATS_TET_LAMBDA_STRIDE * sizeof(float));
+    }
+    CHECK(items == (batched ? lanes.set.batches() : static_cast<int>(layout.tets.size())));
+    CHECK(plan.buffers[ids.tet_lambda].initial.size() ==
+          (batched ? lanes.set.elements.size() : layout.tets.size()) * ATS_TET_LAMBDA_STRIDE * sizeof(float));
+  }
 }
