@@ -2,7 +2,7 @@
 // One group of 8 XPBD elements that share no particle as 8 float lanes, for
 // the bench_native loops over batches (bench/plain_xpbd_batches.hpp,
 // bench/plain_xpbd_color_batches.hpp): the operations of kernels/xpbd/
-// xpbd.cl's xpbd_stretch_batch8 and xpbd_bend_batch8, one 8-float vector
+// xpbd.cl's xpbd_stretch_batch8, xpbd_bend_batch8 and xpbd_tet_lanes8, one 8-float vector
 // (GCC vector extensions; one AVX register under -march=native). A group
 // with a damped spring or a dihedral stencil runs its lanes one after
 // another with the scalar math, as the kernels do. A lane whose first
@@ -11,6 +11,7 @@
 
 #include "common/xpbd_bending.h"
 #include "common/xpbd_distance.h"
+#include "common/xpbd_tet.h"
 #include "solver/layout/sim_layout.hpp"
 
 namespace atssim::bench::lanes {
@@ -163,6 +164,76 @@ inline void bend_group8(solver::Float4* x, const ats_bend_c* con, float* lambda,
     if (v[0][l] < 0) continue;
     for (int j = 0; j < 4; ++j) {
       if (pw[j][l] != 0.0f) x[v[j][l]] = {ox[j][l], oy[j][l], oz[j][l], pw[j][l]};
+    }
+  }
+}
+
+// StVK tets con[0..8) with their multipliers lambda[0..8 * ATS_TET_LAMBDA_STRIDE)
+// (common/xpbd_tet.h's seven strain constraints one after another).
+inline void tet_group8(solver::Float4* x, const ats_tet_c* con, float* lambda, int n, float dt, bool reset) {
+  constexpr int kStride = ATS_TET_LAMBDA_STRIDE;
+  alignas(32) float px[4][8], py[4][8], pz[4][8], pw[4][8], dm[9][8], vol[8], mu[8], la[8], lam[kStride][8];
+  int v[4][8];
+  for (int l = 0; l < 8; ++l) {
+    const ats_tet_c& t = con[l];
+    const bool live = t.v[0] < n;
+    for (int j = 0; j < 4; ++j) {
+      v[j][l] = live ? t.v[j] : -1;
+      const solver::Float4 q = x[live ? t.v[j] : 0];
+      px[j][l] = q.x, py[j][l] = q.y, pz[j][l] = q.z, pw[j][l] = q.w;
+    }
+    for (int r = 0; r < 9; ++r) dm[r][l] = t.dm_inv[r];
+    vol[l] = t.volume, mu[l] = t.mu, la[l] = t.lambda;
+    for (int c = 0; c < kStride; ++c) lam[c][l] = reset ? 0.0f : lambda[kStride * l + c];
+  }
+  F8 P[4][3], W[4], D[3][3], B[4][3];
+  for (int a = 0; a < 4; ++a) P[a][0] = load(px[a]), P[a][1] = load(py[a]), P[a][2] = load(pz[a]), W[a] = load(pw[a]);
+  for (int r = 0; r < 3; ++r) {
+    for (int s = 0; s < 3; ++s) D[r][s] = B[r + 1][s] = load(dm[3 * r + s]);
+  }
+  for (int s = 0; s < 3; ++s) B[0][s] = ((D[0][s] + D[1][s]) + D[2][s]) * -1.0f;
+  const F8 volume = load(vol), mu8 = load(mu), zero = splat(0.0f);
+  for (int c = 0; c < ATS_TET_STRAIN_CONSTRAINTS; ++c) {
+    const F8 k = c < 3 ? 2.0f * mu8 * volume : (c < 6 ? 4.0f * mu8 * volume : load(la) * volume);
+    const F8 alpha = 1.0f / (k * dt * dt);
+    F8 F[3][3], G[3][3];
+    for (int i = 0; i < 3; ++i) {
+      const F8 e0 = P[1][i] - P[0][i], e1 = P[2][i] - P[0][i], e2 = P[3][i] - P[0][i];
+      for (int j = 0; j < 3; ++j) {
+        F[i][j] = D[0][j] * e0 + D[1][j] * e1 + D[2][j] * e2;
+        G[i][j] = F[i][j] - (i == j ? 1.0f : 0.0f);
+      }
+    }
+    const int ci = ats_tet_strain_i(c < 6 ? c : 0), cj = ats_tet_strain_j(c < 6 ? c : 0);
+    F8 value = zero;
+    if (c == 6) {
+      for (int d = 0; d < 3; ++d)
+        value += ((G[d][d] + G[d][d]) + (G[0][d] * G[0][d] + G[1][d] * G[1][d] + G[2][d] * G[2][d])) * 0.5f;
+    } else {
+      value = ((G[ci][cj] + G[cj][ci]) + (G[0][ci] * G[0][cj] + G[1][ci] * G[1][cj] + G[2][ci] * G[2][cj])) * 0.5f;
+    }
+    F8 g[4][3], denom = alpha;
+    for (int a = 0; a < 4; ++a) {
+      for (int r = 0; r < 3; ++r) {
+        g[a][r] = c == 6 ? F[r][0] * B[a][0] + F[r][1] * B[a][1] + F[r][2] * B[a][2]
+                         : (F[r][ci] * B[a][cj] + F[r][cj] * B[a][ci]) * 0.5f;
+      }
+      denom += W[a] * (g[a][0] * g[a][0] + g[a][1] * g[a][1] + g[a][2] * g[a][2]);
+    }
+    const F8 l0 = load(lam[c]);
+    const F8 dl = select(k > 0.0f, (-value - alpha * l0) / denom, zero);
+    const F8 l1 = l0 + dl;
+    __builtin_memcpy(lam[c], &l1, sizeof l1);
+    for (int a = 0; a < 4; ++a) {
+      const F8 f = W[a] * dl;
+      for (int r = 0; r < 3; ++r) P[a][r] += g[a][r] * f;
+    }
+  }
+  for (int l = 0; l < 8; ++l) {
+    if (v[0][l] < 0) continue;
+    for (int c = 0; c < kStride; ++c) lambda[kStride * l + c] = lam[c][l];
+    for (int j = 0; j < 4; ++j) {
+      if (pw[j][l] != 0.0f) x[v[j][l]] = {P[j][0][l], P[j][1][l], P[j][2][l], pw[j][l]};
     }
   }
 }
