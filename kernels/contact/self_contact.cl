@@ -277,7 +277,7 @@ static inline void sc_end_lambdas(int active, int count, __global float4* out) {
 /* The entries of vertex i's list (as the point of a vertex-triangle pair). */
 ATS_TASK void sc_pair_lambdas_points(int i, __global const float4* x, __global const float* moved,
                                      __global const int4* tris, __global const int* vt, __global const float* vt_d,
-                                     float r, __global float4* out) {
+                                     float r, __global float4* out, __global int* active) {
   __global const int* l = vt + i * ATS_SC_STRIDE;
   __global const float* d0 = vt_d + i * ATS_SC_STRIDE;
   const ats_vec3 p = sc_v(x[i]);
@@ -290,12 +290,13 @@ ATS_TASK void sc_pair_lambdas_points(int i, __global const float4* x, __global c
     k += sc_store_lambda(ats_point_triangle(p, sc_v(x[f.x]), sc_v(x[f.y]), sc_v(x[f.z])), pv, x, r, o + 2 * k);
   }
   sc_end_lambdas(k, l[0], o);
+  active[i] = k;
 }
 
 /* The entries of triangle t's list (the points near it). */
 ATS_TASK void sc_pair_lambdas_triangles(int t, __global const float4* x, __global const float* moved,
                                         __global const int4* tris, __global const int* tv, __global const float* tv_d,
-                                        float r, __global float4* out) {
+                                        float r, __global float4* out, __global int* active) {
   __global const int* l = tv + t * ATS_SC_STRIDE;
   __global const float* d0 = tv_d + t * ATS_SC_STRIDE;
   const int4 f = tris[t];
@@ -309,12 +310,13 @@ ATS_TASK void sc_pair_lambdas_triangles(int t, __global const float4* x, __globa
     k += sc_store_lambda(ats_point_triangle(sc_v(x[v]), a, b, c), pv, x, r, o + 2 * k);
   }
   sc_end_lambdas(k, l[0], o);
+  active[t] = k;
 }
 
 /* The entries of edge e's list (the edges near it). */
 ATS_TASK void sc_pair_lambdas_edges(int e, __global const float4* x, __global const float* moved,
                                     __global const int2* edges, __global const int* ee, __global const float* ee_d,
-                                    float r, __global float4* out) {
+                                    float r, __global float4* out, __global int* active) {
   __global const int* l = ee + e * ATS_SC_STRIDE;
   __global const float* d0 = ee_d + e * ATS_SC_STRIDE;
   const int2 s = edges[e];
@@ -328,6 +330,7 @@ ATS_TASK void sc_pair_lambdas_edges(int e, __global const float4* x, __global co
     k += sc_store_lambda(ats_edge_edge(a, b, sc_v(x[h.x]), sc_v(x[h.y])), pv, x, r, o + 2 * k);
   }
   sc_end_lambdas(k, l[0], o);
+  active[e] = k;
 }
 
 /* The corrections of a list's active entries (up to its end mark) to the
@@ -344,25 +347,30 @@ static inline int sc_add_corrections(__global const float4* e, int count, int sl
   return m;
 }
 
+/* vt_k, tv_k, ee_k: per list the count of its active entries (the
+ * sc_pair_lambdas_* of this iteration), read densely so that a list with
+ * none is never opened. */
 ATS_TASK void sc_project(int i, __global float4* x, __global const int4* tris, __global const int2* edges,
-                         __global const int* inc, int n, __global const int* vt, __global const int* tv,
-                         __global const int* ee, __global const float4* vt_l, __global const float4* tv_l,
-                         __global const float4* ee_l) {
+                         __global const int* inc, int n, __global const int* vt, __global const float4* vt_l,
+                         __global const float4* tv_l, __global const float4* ee_l, __global const int* vt_k,
+                         __global const int* tv_k, __global const int* ee_k) {
   const float4 p = x[i];
   if (p.w == 0.0f || !sc_is_surface(inc, i) || !(vt[i * ATS_SC_STRIDE + 1] > 0)) return;
   ats_vec3 sum = ats_v3(0, 0, 0);
   int active = 0;
-  active += sc_add_corrections(vt_l + 2 * i * ATS_SC_CAPACITY, vt[i * ATS_SC_STRIDE], 0, p.w, &sum);
+  if (vt_k[i] > 0) active += sc_add_corrections(vt_l + 2 * i * ATS_SC_CAPACITY, vt_k[i], 0, p.w, &sum);
   for (int k = inc[i]; k < inc[i + 1]; ++k) {
     const int t = inc[k];
+    if (tv_k[t] == 0) continue;
     const int4 f = tris[t];
     const int slot = f.x == i ? 1 : (f.y == i ? 2 : 3);
-    active += sc_add_corrections(tv_l + 2 * t * ATS_SC_CAPACITY, tv[t * ATS_SC_STRIDE], slot, p.w, &sum);
+    active += sc_add_corrections(tv_l + 2 * t * ATS_SC_CAPACITY, tv_k[t], slot, p.w, &sum);
   }
   for (int k = inc[n + 1 + i]; k < inc[n + 2 + i]; ++k) {
     const int e = inc[k];
+    if (ee_k[e] == 0) continue;
     const int slot = edges[e].x == i ? 0 : 1;
-    active += sc_add_corrections(ee_l + 2 * e * ATS_SC_CAPACITY, ee[e * ATS_SC_STRIDE], slot, p.w, &sum);
+    active += sc_add_corrections(ee_l + 2 * e * ATS_SC_CAPACITY, ee_k[e], slot, p.w, &sum);
   }
   if (active == 0) return;
   const float s = 1.0f / (float)active;

@@ -250,6 +250,9 @@ void add_self_contact_projection_buffers(plan::SubstepPlan& plan, const SimLayou
   b.vt_l = plan.add_buffer("sc_vt_lambda", BufferRole::scratch, zeros(n * kEntryBytes * ATS_SC_CAPACITY));
   b.tv_l = plan.add_buffer("sc_tv_lambda", BufferRole::scratch, zeros(tris * kEntryBytes * ATS_SC_CAPACITY));
   b.ee_l = plan.add_buffer("sc_ee_lambda", BufferRole::scratch, zeros(edges * kEntryBytes * ATS_SC_CAPACITY));
+  b.vt_k = plan.add_buffer("sc_vt_active", BufferRole::scratch, zeros(n * sizeof(std::int32_t)));
+  b.tv_k = plan.add_buffer("sc_tv_active", BufferRole::scratch, zeros(tris * sizeof(std::int32_t)));
+  b.ee_k = plan.add_buffer("sc_ee_active", BufferRole::scratch, zeros(edges * sizeof(std::int32_t)));
 }
 
 sched::TaskId add_self_contact_projection(plan::SubstepPlan& plan, sched::TaskId last, const SimLayout& layout,
@@ -266,36 +269,40 @@ sched::TaskId add_self_contact_projection(plan::SubstepPlan& plan, sched::TaskId
   last = add_self_contact_clamp(plan, last, layout, b, start, positions, iteration);
   // Per near-list entry the pair's multiplier (each pair evaluated once per
   // list that holds it, not by each of its four vertices:
-  // contact/self_contact.cl), then per vertex.
+  // contact/self_contact.cl) and per list how many act, then per vertex.
   const auto entries = [&](const char* part, const char* function, int count, plan::BufferId topology,
-                           std::vector<Arg> lists, plan::BufferId out) {
+                           std::vector<Arg> lists, plan::BufferId out, plan::BufferId active) {
     std::vector<Arg> args{Arg::of_buffer(positions), Arg::of_buffer(b.moved), Arg::of_buffer(topology)};
     args.insert(args.end(), lists.begin(), lists.end());
     args.push_back(Arg::of_float(s.thickness));
     args.push_back(Arg::of_buffer(out));
-    return plan.add_task_after(
-        last,
-        plan::make_task(fmt::format("it{}/collision/surface_pairs/{}", iteration + 1, part), plan::TaskKind::collision,
-                        iteration, 2),
-        {function, {0, count}, std::move(args), {WriteSpan::per_element(out, kEntryBytes * ATS_SC_CAPACITY)}});
+    args.push_back(Arg::of_buffer(active));
+    return plan.add_task_after(last,
+                               plan::make_task(fmt::format("it{}/collision/surface_pairs/{}", iteration + 1, part),
+                                               plan::TaskKind::collision, iteration, 2),
+                               {function,
+                                {0, count},
+                                std::move(args),
+                                {WriteSpan::per_element(out, kEntryBytes * ATS_SC_CAPACITY),
+                                 WriteSpan::per_element(active, sizeof(std::int32_t))}});
   };
   last = add_moved(plan, last, b, start, positions, n,
                    plan::make_task(fmt::format("it{}/collision/surface_pairs/moved", iteration + 1),
                                    plan::TaskKind::collision, iteration, 2));
   const sched::TaskId points = entries("points", "sc_pair_lambdas_points", n, b.tris,
-                                       {Arg::of_buffer(b.vt_near), Arg::of_buffer(b.vt_d)}, b.vt_l);
+                                       {Arg::of_buffer(b.vt_near), Arg::of_buffer(b.vt_d)}, b.vt_l, b.vt_k);
   const sched::TaskId triangles = entries("triangles", "sc_pair_lambdas_triangles", static_cast<int>(s.tris.size()),
-                                          b.tris, {Arg::of_buffer(b.tv_near), Arg::of_buffer(b.tv_d)}, b.tv_l);
+                                          b.tris, {Arg::of_buffer(b.tv_near), Arg::of_buffer(b.tv_d)}, b.tv_l, b.tv_k);
   const sched::TaskId edges = entries("edges", "sc_pair_lambdas_edges", static_cast<int>(s.edges.size()), b.edges,
-                                      {Arg::of_buffer(b.ee_near), Arg::of_buffer(b.ee_d)}, b.ee_l);
+                                      {Arg::of_buffer(b.ee_near), Arg::of_buffer(b.ee_d)}, b.ee_l, b.ee_k);
   const sched::TaskId project = plan.add_task_after(
       edges,
       plan::make_task(fmt::format("it{}/collision/surfaces", iteration + 1), plan::TaskKind::collision, iteration, 3),
       {"sc_project",
        {0, n},
        {Arg::of_buffer(positions), Arg::of_buffer(b.tris), Arg::of_buffer(b.edges), Arg::of_buffer(b.incidence),
-        Arg::of_int(n), Arg::of_buffer(b.vt_near), Arg::of_buffer(b.tv_near), Arg::of_buffer(b.ee_near),
-        Arg::of_buffer(b.vt_l), Arg::of_buffer(b.tv_l), Arg::of_buffer(b.ee_l)},
+        Arg::of_int(n), Arg::of_buffer(b.vt_near), Arg::of_buffer(b.vt_l), Arg::of_buffer(b.tv_l),
+        Arg::of_buffer(b.ee_l), Arg::of_buffer(b.vt_k), Arg::of_buffer(b.tv_k), Arg::of_buffer(b.ee_k)},
        {particle_write(positions)}});
   plan.graph.add_edge(points, project);
   plan.graph.add_edge(triangles, project);
