@@ -4,7 +4,9 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
-#include <cstring>
+#include <array>
+#include <bit>
+#include <cstddef>
 #include <set>
 #include <vector>
 
@@ -34,6 +36,13 @@ SimLayout bar_layout(int cells) {
   return make_sim_layout(model::build_model(scene::parse_scene(test::stvk_bar_yaml(cells), "s.yaml", ".")));
 }
 
+// Whether two elements are the same bit for bit.
+template <class T>
+bool same_bytes(const T& a, const T& b) {
+  using Bytes = std::array<std::byte, sizeof(T)>;
+  return std::bit_cast<Bytes>(a) == std::bit_cast<Bytes>(b);
+}
+
 // Every element of `set` exactly once, bit for bit; the dummy's particles past
 // the last one; no two real lanes of a batch sharing a particle (with `x`,
 // a movable one: lanes that share a pinned particle write it unchanged).
@@ -48,14 +57,14 @@ void check_batches(const std::vector<Element>& set, const ElementBatches<Element
     std::set<int> seen;
     int used = 0;
     for (int l = 0; l < kBatchWidth; ++l) {
-      const std::size_t k = static_cast<std::size_t>(batch * kBatchWidth + l);
+      const std::size_t k = static_cast<std::size_t>(batch) * kBatchWidth + static_cast<std::size_t>(l);
       const int s = b.source[k];
       if (s < 0) {
         CHECK(particles(b.elements[k])[0] >= n);
         continue;
       }
       ++times[static_cast<std::size_t>(s)];
-      CHECK(std::memcmp(&b.elements[k], &set[static_cast<std::size_t>(s)], sizeof(Element)) == 0);
+      CHECK(same_bytes(b.elements[k], set[static_cast<std::size_t>(s)]));
       for (int p : particles(b.elements[k])) {
         if (x != nullptr && (*x)[static_cast<std::size_t>(p)].w == 0.0f) continue;
         seen.insert(p);
