@@ -455,8 +455,8 @@ static inline void sc_end_friction(int acting, int count, __global float4* out) 
 ATS_TASK void sc_friction_pairs_points(int i, __global const float4* x, __global const float4* x_prev,
                                        __global const float4* v, float h, __global const int4* tris,
                                        __global const int* vt, __global const float* vt_d, __global const float* moved,
-                                       float r, float mu_s, float mu_k, __global const float2* pf,
-                                       __global float4* out) {
+                                       float r, float mu_s, float mu_k, __global const float2* pf, __global float4* out,
+                                       __global int* active) {
   __global const int* l = vt + i * ATS_SC_STRIDE;
   __global const float* d0 = vt_d + i * ATS_SC_STRIDE;
   __global float4* o = out + 2 * i * ATS_SC_CAPACITY;
@@ -469,6 +469,7 @@ ATS_TASK void sc_friction_pairs_points(int i, __global const float4* x, __global
     k += sc_store_friction(g, pv, x, x_prev, v, h, r, mu_s, mu_k, pf, o + 2 * k);
   }
   sc_end_friction(k, l[0], o);
+  active[i] = k;
 }
 
 /* The entries of triangle t's near list (the points near it). */
@@ -476,7 +477,7 @@ ATS_TASK void sc_friction_pairs_triangles(int t, __global const float4* x, __glo
                                           __global const float4* v, float h, __global const int4* tris,
                                           __global const int* tv, __global const float* tv_d,
                                           __global const float* moved, float r, float mu_s, float mu_k,
-                                          __global const float2* pf, __global float4* out) {
+                                          __global const float2* pf, __global float4* out, __global int* active) {
   __global const int* l = tv + t * ATS_SC_STRIDE;
   __global const float* d0 = tv_d + t * ATS_SC_STRIDE;
   const int4 f = tris[t];
@@ -490,14 +491,15 @@ ATS_TASK void sc_friction_pairs_triangles(int t, __global const float4* x, __glo
     k += sc_store_friction(g, pv, x, x_prev, v, h, r, mu_s, mu_k, pf, o + 2 * k);
   }
   sc_end_friction(k, l[0], o);
+  active[t] = k;
 }
 
 /* The entries of edge e's near list (the edges near it). */
 ATS_TASK void sc_friction_pairs_edges(int e, __global const float4* x, __global const float4* x_prev,
                                       __global const float4* v, float h, __global const int2* edges,
                                       __global const int* ee, __global const float* ee_d, __global const float* moved,
-                                      float r, float mu_s, float mu_k, __global const float2* pf,
-                                      __global float4* out) {
+                                      float r, float mu_s, float mu_k, __global const float2* pf, __global float4* out,
+                                      __global int* active) {
   __global const int* l = ee + e * ATS_SC_STRIDE;
   __global const float* d0 = ee_d + e * ATS_SC_STRIDE;
   const int2 s = edges[e];
@@ -511,6 +513,7 @@ ATS_TASK void sc_friction_pairs_edges(int e, __global const float4* x, __global 
     k += sc_store_friction(g, pv, x, x_prev, v, h, r, mu_s, mu_k, pf, o + 2 * k);
   }
   sc_end_friction(k, l[0], o);
+  active[e] = k;
 }
 
 /* A list's acting entries (up to its end mark) for the vertex in `slot`,
@@ -529,26 +532,30 @@ static inline void sc_add_friction(__global const float4* e, int count, int slot
   }
 }
 
+/* vt_k, tv_k, ee_k: per list the count of its acting entries (the
+ * sc_friction_pairs_* before it), as in sc_project. */
 ATS_TASK void sc_friction(int i, __global const float4* x, __global float4* x_out, __global const int4* tris,
                           __global const int2* edges, __global const int* inc, int n, __global const int* vt,
-                          __global const int* tv, __global const int* ee, __global const float4* vt_f,
-                          __global const float4* tv_f, __global const float4* ee_f) {
+                          __global const float4* vt_f, __global const float4* tv_f, __global const float4* ee_f,
+                          __global const int* vt_k, __global const int* tv_k, __global const int* ee_k) {
   const float4 p = x[i];
   x_out[i] = p;
   if (p.w == 0.0f || !sc_is_surface(inc, i) || !(vt[i * ATS_SC_STRIDE + 1] > 0)) return;
   ats_vec3 sum = ats_v3(0, 0, 0);
   float weight = 0.0f;
-  sc_add_friction(vt_f + 2 * i * ATS_SC_CAPACITY, vt[i * ATS_SC_STRIDE], 0, &sum, &weight);
+  if (vt_k[i] > 0) sc_add_friction(vt_f + 2 * i * ATS_SC_CAPACITY, vt_k[i], 0, &sum, &weight);
   for (int k = inc[i]; k < inc[i + 1]; ++k) {
     const int t = inc[k];
+    if (tv_k[t] == 0) continue;
     const int4 f = tris[t];
     const int slot = f.x == i ? 1 : (f.y == i ? 2 : 3);
-    sc_add_friction(tv_f + 2 * t * ATS_SC_CAPACITY, tv[t * ATS_SC_STRIDE], slot, &sum, &weight);
+    sc_add_friction(tv_f + 2 * t * ATS_SC_CAPACITY, tv_k[t], slot, &sum, &weight);
   }
   for (int k = inc[n + 1 + i]; k < inc[n + 2 + i]; ++k) {
     const int e = inc[k];
+    if (ee_k[e] == 0) continue;
     const int slot = edges[e].x == i ? 0 : 1;
-    sc_add_friction(ee_f + 2 * e * ATS_SC_CAPACITY, ee[e * ATS_SC_STRIDE], slot, &sum, &weight);
+    sc_add_friction(ee_f + 2 * e * ATS_SC_CAPACITY, ee_k[e], slot, &sum, &weight);
   }
   if (!(weight > 0.0f)) return;
   const float s = 1.0f / weight;

@@ -317,11 +317,12 @@ sched::TaskId add_self_contact_friction(plan::SubstepPlan& plan, sched::TaskId l
                                     [](const std::array<float, 2>& f) { return f[0] > 0.0f || f[1] > 0.0f; });
   if (!s.enabled || !(s.mu_s > 0.0f || s.mu_k > 0.0f || material)) return last;
   const int n = static_cast<int>(layout.x.size());
-  // Per near-list entry the pair's friction, into the entry buffers XPBD's
-  // projection uses during the iterations (free after them), then per vertex.
+  // Per near-list entry the pair's friction and per list how many act, into
+  // the buffers XPBD's projection uses during the iterations (free after
+  // them), then per vertex.
   if (b.vt_l < 0) add_self_contact_projection_buffers(plan, layout, b);
   const auto entries = [&](const char* part, const char* function, int count, plan::BufferId topology,
-                           plan::BufferId list, plan::BufferId distances, plan::BufferId out) {
+                           plan::BufferId list, plan::BufferId distances, plan::BufferId out, plan::BufferId active) {
     return plan.add_task_after(
         last, plan::make_task(fmt::format("contact/friction_pairs/{}", part), plan::TaskKind::friction, -1, 0),
         {function,
@@ -329,23 +330,26 @@ sched::TaskId add_self_contact_friction(plan::SubstepPlan& plan, sched::TaskId l
          {Arg::of_buffer(positions), Arg::of_buffer(start), Arg::of_buffer(velocities),
           Arg::of_float(static_cast<float>(h)), Arg::of_buffer(topology), Arg::of_buffer(list),
           Arg::of_buffer(distances), Arg::of_buffer(b.moved), Arg::of_float(s.thickness), Arg::of_float(s.mu_s),
-          Arg::of_float(s.mu_k), Arg::of_buffer(friction), Arg::of_buffer(out)},
-         {WriteSpan::per_element(out, kEntryBytes * ATS_SC_CAPACITY)}});
+          Arg::of_float(s.mu_k), Arg::of_buffer(friction), Arg::of_buffer(out), Arg::of_buffer(active)},
+         {WriteSpan::per_element(out, kEntryBytes * ATS_SC_CAPACITY),
+          WriteSpan::per_element(active, sizeof(std::int32_t))}});
   };
   last = add_moved(plan, last, b, start, positions, n,
                    plan::make_task("contact/friction_pairs/moved", plan::TaskKind::friction, -1, 0));
-  const sched::TaskId points = entries("points", "sc_friction_pairs_points", n, b.tris, b.vt_near, b.vt_d, b.vt_l);
+  const sched::TaskId points =
+      entries("points", "sc_friction_pairs_points", n, b.tris, b.vt_near, b.vt_d, b.vt_l, b.vt_k);
   const sched::TaskId triangles = entries("triangles", "sc_friction_pairs_triangles", static_cast<int>(s.tris.size()),
-                                          b.tris, b.tv_near, b.tv_d, b.tv_l);
-  const sched::TaskId edges =
-      entries("edges", "sc_friction_pairs_edges", static_cast<int>(s.edges.size()), b.edges, b.ee_near, b.ee_d, b.ee_l);
+                                          b.tris, b.tv_near, b.tv_d, b.tv_l, b.tv_k);
+  const sched::TaskId edges = entries("edges", "sc_friction_pairs_edges", static_cast<int>(s.edges.size()), b.edges,
+                                      b.ee_near, b.ee_d, b.ee_l, b.ee_k);
   last = plan.add_task_after(
       edges, plan::make_task("contact/friction", plan::TaskKind::friction, -1, 1),
       {"sc_friction",
        {0, n},
        {Arg::of_buffer(positions), Arg::of_buffer(b.x_out), Arg::of_buffer(b.tris), Arg::of_buffer(b.edges),
-        Arg::of_buffer(b.incidence), Arg::of_int(n), Arg::of_buffer(b.vt_near), Arg::of_buffer(b.tv_near),
-        Arg::of_buffer(b.ee_near), Arg::of_buffer(b.vt_l), Arg::of_buffer(b.tv_l), Arg::of_buffer(b.ee_l)},
+        Arg::of_buffer(b.incidence), Arg::of_int(n), Arg::of_buffer(b.vt_near), Arg::of_buffer(b.vt_l),
+        Arg::of_buffer(b.tv_l), Arg::of_buffer(b.ee_l), Arg::of_buffer(b.vt_k), Arg::of_buffer(b.tv_k),
+        Arg::of_buffer(b.ee_k)},
        {particle_write(b.x_out)}});
   plan.graph.add_edge(points, last);
   plan.graph.add_edge(triangles, last);

@@ -25,7 +25,7 @@ struct SelfContactBuffers {
       colliders = -1,  // the layout's colliders, which every clamp to the bound puts the positions back out of
       vt_l = -1, tv_l = -1,
                  ee_l = -1,  // per near-list entry the pair's normal, multiplier and weights (XPBD), or friction
-      vt_k = -1, tv_k = -1, ee_k = -1,  // XPBD's projection: per list the count of its active entries
+      vt_k = -1, tv_k = -1, ee_k = -1,  // per list the count of its active entries (the projection, then friction)
       moved = -1;                       // per vertex how far it is from x_t (the near entries' skip, sc_still_apart)
 };
 
