@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <limits>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -65,6 +66,16 @@ H5Handle open_flushed_record(hid_t file) {
   H5Handle space = h5_check(H5Screate_simple(1, one, nullptr), H5Sclose, "flushed-frames space");
   return h5_check(H5Dcreate2(file, "frames/flushed", H5T_STD_I64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
                   H5Dclose, "creating /frames/flushed");
+}
+
+// The frames /frames/flushed counts; a file written before it existed
+// counts every row.
+long long flushed_record(hid_t file) {
+  if (H5Lexists(file, "frames/flushed", H5P_DEFAULT) <= 0) return std::numeric_limits<long long>::max();
+  H5Handle set = h5_check(H5Dopen2(file, "frames/flushed", H5P_DEFAULT), H5Dclose, "opening /frames/flushed");
+  long long n[1] = {0};
+  h5_check(H5Dread(set, H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, n), "reading /frames/flushed");
+  return n[0];
 }
 
 }  // namespace
@@ -167,7 +178,12 @@ void ResultWriter::reopen(const RunInfo& info, Checkpoint& resume) {
   }
   open_series(false);
   auto slots = CheckpointSlots::open(file_);
-  const long long available = static_cast<long long>(std::min(rows_of(positions_), rows_of(time_)));
+  // A kill inside a frame's flush can leave that frame's rows extended but
+  // not yet written while its checkpoint is already whole (HDF5 writes the
+  // parts of one flush in no set order): only the frames /frames/flushed
+  // counts are known to be on disk in full.
+  const long long available =
+      std::min(static_cast<long long>(std::min(rows_of(positions_), rows_of(time_))), flushed_record(file_));
   std::optional<Checkpoint> point = slots ? slots->take_newest(available) : std::nullopt;
   if (!point) {
     throw input_error(
