@@ -210,12 +210,10 @@ ATS_FN int sc_near_store(ATS_GLOBAL const int* list, const int* keep, ATS_GLOBAL
 /* Vertex i's near list, after its triangles' and edges' (sc_near_triangle,
  * sc_near_edge): [1] holds how many near entries vertex i is in, as a point,
  * through its triangles and through its edges, so that a vertex without any
- * skips the gathers (contact/self_contact.cl SC_FOR_EACH_PAIR). tv_n, ee_n:
- * the triangles' and edges' near counts, one int each (what those return).
- * Returns the vertex's own near count. */
-ATS_FN int sc_near_vertex(int i, ATS_GLOBAL const int* inc, int n, ATS_GLOBAL const int* tris, ATS_GLOBAL const int* vt,
-                          ATS_GLOBAL float* vt_d, ATS_GLOBAL const float* bound, float r, ATS_GLOBAL const int* tv_n,
-                          ATS_GLOBAL const int* ee_n, ATS_GLOBAL int* vt_near) {
+ * skips the gathers (contact/self_contact.cl SC_FOR_EACH_PAIR). */
+ATS_FN void sc_near_vertex(int i, ATS_GLOBAL const int* inc, int n, ATS_GLOBAL const int* tris,
+                           ATS_GLOBAL const int* vt, ATS_GLOBAL float* vt_d, ATS_GLOBAL const float* bound, float r,
+                           ATS_GLOBAL const int* tv_near, ATS_GLOBAL const int* ee_near, ATS_GLOBAL int* vt_near) {
   ATS_GLOBAL const int* l = vt + i * ATS_SC_STRIDE;
   ATS_GLOBAL float* d = vt_d + i * ATS_SC_STRIDE;
   int keep[ATS_SC_CAPACITY];
@@ -223,29 +221,25 @@ ATS_FN int sc_near_vertex(int i, ATS_GLOBAL const int* inc, int n, ATS_GLOBAL co
     ATS_GLOBAL const int* f = tris + 4 * l[2 + m];
     keep[m] = d[2 + m] - bound[i] - sc_side_bound(bound, f[0], f[1], f[2]) < r;
   }
-  const int own = sc_near_store(l, keep, vt_near + i * ATS_SC_STRIDE, d);
-  int total = own;
-  for (int k = inc[i]; k < inc[i + 1]; ++k) total += tv_n[inc[k]];
-  for (int k = inc[n + 1 + i]; k < inc[n + 2 + i]; ++k) total += ee_n[inc[k]];
+  int total = sc_near_store(l, keep, vt_near + i * ATS_SC_STRIDE, d);
+  for (int k = inc[i]; k < inc[i + 1]; ++k) total += tv_near[inc[k] * ATS_SC_STRIDE];
+  for (int k = inc[n + 1 + i]; k < inc[n + 2 + i]; ++k) total += ee_near[inc[k] * ATS_SC_STRIDE];
   vt_near[i * ATS_SC_STRIDE + 1] = total;
-  return own;
 }
 
-/* The near list of triangle t; returns its count. */
-ATS_FN int sc_near_triangle(int t, ATS_GLOBAL const int* tris, ATS_GLOBAL const int* tv, ATS_GLOBAL float* tv_d,
-                            ATS_GLOBAL const float* bound, float r, ATS_GLOBAL int* tv_near) {
+ATS_FN void sc_near_triangle(int t, ATS_GLOBAL const int* tris, ATS_GLOBAL const int* tv, ATS_GLOBAL float* tv_d,
+                             ATS_GLOBAL const float* bound, float r, ATS_GLOBAL int* tv_near) {
   ATS_GLOBAL const int* l = tv + t * ATS_SC_STRIDE;
   ATS_GLOBAL float* d = tv_d + t * ATS_SC_STRIDE;
   ATS_GLOBAL const int* f = tris + 4 * t;
   int keep[ATS_SC_CAPACITY];
   const float reach = sc_side_bound(bound, f[0], f[1], f[2]);
   for (int m = 0; m < l[0]; ++m) keep[m] = d[2 + m] - reach - bound[l[2 + m]] < r;
-  return sc_near_store(l, keep, tv_near + t * ATS_SC_STRIDE, d);
+  sc_near_store(l, keep, tv_near + t * ATS_SC_STRIDE, d);
 }
 
-/* The near list of edge e; returns its count. */
-ATS_FN int sc_near_edge(int e, ATS_GLOBAL const int* edges, ATS_GLOBAL const int* ee, ATS_GLOBAL float* ee_d,
-                        ATS_GLOBAL const float* bound, float r, ATS_GLOBAL int* ee_near) {
+ATS_FN void sc_near_edge(int e, ATS_GLOBAL const int* edges, ATS_GLOBAL const int* ee, ATS_GLOBAL float* ee_d,
+                         ATS_GLOBAL const float* bound, float r, ATS_GLOBAL int* ee_near) {
   ATS_GLOBAL const int* l = ee + e * ATS_SC_STRIDE;
   ATS_GLOBAL float* d = ee_d + e * ATS_SC_STRIDE;
   int keep[ATS_SC_CAPACITY];
@@ -254,7 +248,7 @@ ATS_FN int sc_near_edge(int e, ATS_GLOBAL const int* edges, ATS_GLOBAL const int
     const int o = l[2 + m];
     keep[m] = d[2 + m] - reach - sc_side_bound(bound, edges[2 * o], edges[2 * o + 1], -1) < r;
   }
-  return sc_near_store(l, keep, ee_near + e * ATS_SC_STRIDE, d);
+  sc_near_store(l, keep, ee_near + e * ATS_SC_STRIDE, d);
 }
 
 #endif

@@ -96,21 +96,18 @@ ATS_TASK void sc_edge_distances_task(int e, __global const float4* x, __global c
                                      __global const int* ee, __global float* ee_d) {
   sc_edge_distances(e, x, (__global const int*)edges, ee, ee_d);
 }
-/* Each near list's count also goes into one dense int per list (vt_n, tv_n,
- * ee_n), which the iterations' and friction's per-entry tasks read first, so
- * that a list with no near entry (most of them) is never opened. */
 ATS_TASK void sc_near_vertices(int i, __global const int* inc, int n, __global const int4* tris, __global const int* vt,
-                               __global float* vt_d, __global const float* bound, float r, __global const int* tv_n,
-                               __global const int* ee_n, __global int* vt_near, __global int* vt_n) {
-  vt_n[i] = sc_near_vertex(i, inc, n, (__global const int*)tris, vt, vt_d, bound, r, tv_n, ee_n, vt_near);
+                               __global float* vt_d, __global const float* bound, float r, __global const int* tv_near,
+                               __global const int* ee_near, __global int* vt_near) {
+  sc_near_vertex(i, inc, n, (__global const int*)tris, vt, vt_d, bound, r, tv_near, ee_near, vt_near);
 }
 ATS_TASK void sc_near_triangles(int t, __global const int4* tris, __global const int* tv, __global float* tv_d,
-                                __global const float* bound, float r, __global int* tv_near, __global int* tv_n) {
-  tv_n[t] = sc_near_triangle(t, (__global const int*)tris, tv, tv_d, bound, r, tv_near);
+                                __global const float* bound, float r, __global int* tv_near) {
+  sc_near_triangle(t, (__global const int*)tris, tv, tv_d, bound, r, tv_near);
 }
 ATS_TASK void sc_near_edges(int e, __global const int2* edges, __global const int* ee, __global float* ee_d,
-                            __global const float* bound, float r, __global int* ee_near, __global int* ee_n) {
-  ee_n[e] = sc_near_edge(e, (__global const int*)edges, ee, ee_d, bound, r, ee_near);
+                            __global const float* bound, float r, __global int* ee_near) {
+  sc_near_edge(e, (__global const int*)edges, ee, ee_d, bound, r, ee_near);
 }
 
 /* p held within distance b of q (VBD's truncation of a vertex's step). */
@@ -280,11 +277,7 @@ static inline void sc_end_lambdas(int active, int count, __global float4* out) {
 /* The entries of vertex i's list (as the point of a vertex-triangle pair). */
 ATS_TASK void sc_pair_lambdas_points(int i, __global const float4* x, __global const float* moved,
                                      __global const int4* tris, __global const int* vt, __global const float* vt_d,
-                                     float r, __global float4* out, __global const int* near_n, __global int* active) {
-  if (near_n[i] == 0) {
-    active[i] = 0;
-    return;
-  }
+                                     float r, __global float4* out, __global int* active) {
   __global const int* l = vt + i * ATS_SC_STRIDE;
   __global const float* d0 = vt_d + i * ATS_SC_STRIDE;
   const ats_vec3 p = sc_v(x[i]);
@@ -303,12 +296,7 @@ ATS_TASK void sc_pair_lambdas_points(int i, __global const float4* x, __global c
 /* The entries of triangle t's list (the points near it). */
 ATS_TASK void sc_pair_lambdas_triangles(int t, __global const float4* x, __global const float* moved,
                                         __global const int4* tris, __global const int* tv, __global const float* tv_d,
-                                        float r, __global float4* out, __global const int* near_n,
-                                        __global int* active) {
-  if (near_n[t] == 0) {
-    active[t] = 0;
-    return;
-  }
+                                        float r, __global float4* out, __global int* active) {
   __global const int* l = tv + t * ATS_SC_STRIDE;
   __global const float* d0 = tv_d + t * ATS_SC_STRIDE;
   const int4 f = tris[t];
@@ -328,11 +316,7 @@ ATS_TASK void sc_pair_lambdas_triangles(int t, __global const float4* x, __globa
 /* The entries of edge e's list (the edges near it). */
 ATS_TASK void sc_pair_lambdas_edges(int e, __global const float4* x, __global const float* moved,
                                     __global const int2* edges, __global const int* ee, __global const float* ee_d,
-                                    float r, __global float4* out, __global const int* near_n, __global int* active) {
-  if (near_n[e] == 0) {
-    active[e] = 0;
-    return;
-  }
+                                    float r, __global float4* out, __global int* active) {
   __global const int* l = ee + e * ATS_SC_STRIDE;
   __global const float* d0 = ee_d + e * ATS_SC_STRIDE;
   const int2 s = edges[e];
@@ -472,11 +456,7 @@ ATS_TASK void sc_friction_pairs_points(int i, __global const float4* x, __global
                                        __global const float4* v, float h, __global const int4* tris,
                                        __global const int* vt, __global const float* vt_d, __global const float* moved,
                                        float r, float mu_s, float mu_k, __global const float2* pf, __global float4* out,
-                                       __global const int* near_n, __global int* active) {
-  if (near_n[i] == 0) {
-    active[i] = 0;
-    return;
-  }
+                                       __global int* active) {
   __global const int* l = vt + i * ATS_SC_STRIDE;
   __global const float* d0 = vt_d + i * ATS_SC_STRIDE;
   __global float4* o = out + 2 * i * ATS_SC_CAPACITY;
@@ -497,12 +477,7 @@ ATS_TASK void sc_friction_pairs_triangles(int t, __global const float4* x, __glo
                                           __global const float4* v, float h, __global const int4* tris,
                                           __global const int* tv, __global const float* tv_d,
                                           __global const float* moved, float r, float mu_s, float mu_k,
-                                          __global const float2* pf, __global float4* out, __global const int* near_n,
-                                          __global int* active) {
-  if (near_n[t] == 0) {
-    active[t] = 0;
-    return;
-  }
+                                          __global const float2* pf, __global float4* out, __global int* active) {
   __global const int* l = tv + t * ATS_SC_STRIDE;
   __global const float* d0 = tv_d + t * ATS_SC_STRIDE;
   const int4 f = tris[t];
@@ -524,11 +499,7 @@ ATS_TASK void sc_friction_pairs_edges(int e, __global const float4* x, __global 
                                       __global const float4* v, float h, __global const int2* edges,
                                       __global const int* ee, __global const float* ee_d, __global const float* moved,
                                       float r, float mu_s, float mu_k, __global const float2* pf, __global float4* out,
-                                      __global const int* near_n, __global int* active) {
-  if (near_n[e] == 0) {
-    active[e] = 0;
-    return;
-  }
+                                      __global int* active) {
   __global const int* l = ee + e * ATS_SC_STRIDE;
   __global const float* d0 = ee_d + e * ATS_SC_STRIDE;
   const int2 s = edges[e];

@@ -74,9 +74,6 @@ SelfContactBuffers add_self_contact_buffers(plan::SubstepPlan& plan, const SimLa
   b.vt_near = plan.add_buffer("sc_vt_near", BufferRole::scratch, zeros(n * kListInts * 4));
   b.tv_near = plan.add_buffer("sc_tv_near", BufferRole::scratch, zeros(s.tris.size() * kListInts * 4));
   b.ee_near = plan.add_buffer("sc_ee_near", BufferRole::scratch, zeros(s.edges.size() * kListInts * 4));
-  b.vt_n = plan.add_buffer("sc_vt_near_count", BufferRole::scratch, zeros(n * sizeof(std::int32_t)));
-  b.tv_n = plan.add_buffer("sc_tv_near_count", BufferRole::scratch, zeros(s.tris.size() * sizeof(std::int32_t)));
-  b.ee_n = plan.add_buffer("sc_ee_near_count", BufferRole::scratch, zeros(s.edges.size() * sizeof(std::int32_t)));
   return b;
 }
 
@@ -169,12 +166,10 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
   // substep.
   const int edges = static_cast<int>(s.edges.size());
   const auto per_list = [&](const std::string& name, const char* function, int count, std::vector<Arg> args,
-                            plan::BufferId out, plan::BufferId distances = -1, plan::BufferId counts = -1) {
+                            plan::BufferId out, plan::BufferId distances = -1) {
     std::vector<WriteSpan> writes{WriteSpan::per_element(out, kListInts * 4)};
     // The near lists move their entries' distances to the front (sc_near_store).
     if (distances >= 0) writes.push_back(WriteSpan::per_element(distances, kListInts * 4));
-    // ... and write their counts densely (self_contact.cl sc_near_*).
-    if (counts >= 0) writes.push_back(WriteSpan::per_element(counts, sizeof(std::int32_t)));
     last = plan.add_task_after(last, detect(name), {function, {0, count}, std::move(args), std::move(writes)});
   };
   last = pairs;
@@ -197,18 +192,18 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
   const float r = s.thickness;
   per_list("detect/near_triangles", "sc_near_triangles", tris,
            {Arg::of_buffer(b.tris), Arg::of_buffer(b.tv), Arg::of_buffer(b.tv_d), Arg::of_buffer(b.bound),
-            Arg::of_float(r), Arg::of_buffer(b.tv_near), Arg::of_buffer(b.tv_n)},
-           b.tv_near, b.tv_d, b.tv_n);
+            Arg::of_float(r), Arg::of_buffer(b.tv_near)},
+           b.tv_near, b.tv_d);
   per_list("detect/near_edges", "sc_near_edges", edges,
            {Arg::of_buffer(b.edges), Arg::of_buffer(b.ee), Arg::of_buffer(b.ee_d), Arg::of_buffer(b.bound),
-            Arg::of_float(r), Arg::of_buffer(b.ee_near), Arg::of_buffer(b.ee_n)},
-           b.ee_near, b.ee_d, b.ee_n);
+            Arg::of_float(r), Arg::of_buffer(b.ee_near)},
+           b.ee_near, b.ee_d);
   // last: it counts the near entries of each vertex's triangles and edges
   per_list("detect/near_vertices", "sc_near_vertices", n,
            {Arg::of_buffer(b.incidence), Arg::of_int(n), Arg::of_buffer(b.tris), Arg::of_buffer(b.vt),
-            Arg::of_buffer(b.vt_d), Arg::of_buffer(b.bound), Arg::of_float(r), Arg::of_buffer(b.tv_n),
-            Arg::of_buffer(b.ee_n), Arg::of_buffer(b.vt_near), Arg::of_buffer(b.vt_n)},
-           b.vt_near, b.vt_d, b.vt_n);
+            Arg::of_buffer(b.vt_d), Arg::of_buffer(b.bound), Arg::of_float(r), Arg::of_buffer(b.tv_near),
+            Arg::of_buffer(b.ee_near), Arg::of_buffer(b.vt_near)},
+           b.vt_near, b.vt_d);
   return plan.add_task_after(last, plan::make_task("contact/first_guess", plan::TaskKind::collision),
                              {"sc_clamp",
                               {0, n},
@@ -276,13 +271,11 @@ sched::TaskId add_self_contact_projection(plan::SubstepPlan& plan, sched::TaskId
   // list that holds it, not by each of its four vertices:
   // contact/self_contact.cl) and per list how many act, then per vertex.
   const auto entries = [&](const char* part, const char* function, int count, plan::BufferId topology,
-                           std::vector<Arg> lists, plan::BufferId out, plan::BufferId near_count,
-                           plan::BufferId active) {
+                           std::vector<Arg> lists, plan::BufferId out, plan::BufferId active) {
     std::vector<Arg> args{Arg::of_buffer(positions), Arg::of_buffer(b.moved), Arg::of_buffer(topology)};
     args.insert(args.end(), lists.begin(), lists.end());
     args.push_back(Arg::of_float(s.thickness));
     args.push_back(Arg::of_buffer(out));
-    args.push_back(Arg::of_buffer(near_count));
     args.push_back(Arg::of_buffer(active));
     return plan.add_task_after(last,
                                plan::make_task(fmt::format("it{}/collision/surface_pairs/{}", iteration + 1, part),
@@ -297,12 +290,11 @@ sched::TaskId add_self_contact_projection(plan::SubstepPlan& plan, sched::TaskId
                    plan::make_task(fmt::format("it{}/collision/surface_pairs/moved", iteration + 1),
                                    plan::TaskKind::collision, iteration, 2));
   const sched::TaskId points = entries("points", "sc_pair_lambdas_points", n, b.tris,
-                                       {Arg::of_buffer(b.vt_near), Arg::of_buffer(b.vt_d)}, b.vt_l, b.vt_n, b.vt_k);
-  const sched::TaskId triangles =
-      entries("triangles", "sc_pair_lambdas_triangles", static_cast<int>(s.tris.size()), b.tris,
-              {Arg::of_buffer(b.tv_near), Arg::of_buffer(b.tv_d)}, b.tv_l, b.tv_n, b.tv_k);
+                                       {Arg::of_buffer(b.vt_near), Arg::of_buffer(b.vt_d)}, b.vt_l, b.vt_k);
+  const sched::TaskId triangles = entries("triangles", "sc_pair_lambdas_triangles", static_cast<int>(s.tris.size()),
+                                          b.tris, {Arg::of_buffer(b.tv_near), Arg::of_buffer(b.tv_d)}, b.tv_l, b.tv_k);
   const sched::TaskId edges = entries("edges", "sc_pair_lambdas_edges", static_cast<int>(s.edges.size()), b.edges,
-                                      {Arg::of_buffer(b.ee_near), Arg::of_buffer(b.ee_d)}, b.ee_l, b.ee_n, b.ee_k);
+                                      {Arg::of_buffer(b.ee_near), Arg::of_buffer(b.ee_d)}, b.ee_l, b.ee_k);
   const sched::TaskId project = plan.add_task_after(
       edges,
       plan::make_task(fmt::format("it{}/collision/surfaces", iteration + 1), plan::TaskKind::collision, iteration, 3),
@@ -330,8 +322,7 @@ sched::TaskId add_self_contact_friction(plan::SubstepPlan& plan, sched::TaskId l
   // them), then per vertex.
   if (b.vt_l < 0) add_self_contact_projection_buffers(plan, layout, b);
   const auto entries = [&](const char* part, const char* function, int count, plan::BufferId topology,
-                           plan::BufferId list, plan::BufferId distances, plan::BufferId out, plan::BufferId near_count,
-                           plan::BufferId active) {
+                           plan::BufferId list, plan::BufferId distances, plan::BufferId out, plan::BufferId active) {
     return plan.add_task_after(
         last, plan::make_task(fmt::format("contact/friction_pairs/{}", part), plan::TaskKind::friction, -1, 0),
         {function,
@@ -339,19 +330,18 @@ sched::TaskId add_self_contact_friction(plan::SubstepPlan& plan, sched::TaskId l
          {Arg::of_buffer(positions), Arg::of_buffer(start), Arg::of_buffer(velocities),
           Arg::of_float(static_cast<float>(h)), Arg::of_buffer(topology), Arg::of_buffer(list),
           Arg::of_buffer(distances), Arg::of_buffer(b.moved), Arg::of_float(s.thickness), Arg::of_float(s.mu_s),
-          Arg::of_float(s.mu_k), Arg::of_buffer(friction), Arg::of_buffer(out), Arg::of_buffer(near_count),
-          Arg::of_buffer(active)},
+          Arg::of_float(s.mu_k), Arg::of_buffer(friction), Arg::of_buffer(out), Arg::of_buffer(active)},
          {WriteSpan::per_element(out, kEntryBytes * ATS_SC_CAPACITY),
           WriteSpan::per_element(active, sizeof(std::int32_t))}});
   };
   last = add_moved(plan, last, b, start, positions, n,
                    plan::make_task("contact/friction_pairs/moved", plan::TaskKind::friction, -1, 0));
   const sched::TaskId points =
-      entries("points", "sc_friction_pairs_points", n, b.tris, b.vt_near, b.vt_d, b.vt_l, b.vt_n, b.vt_k);
+      entries("points", "sc_friction_pairs_points", n, b.tris, b.vt_near, b.vt_d, b.vt_l, b.vt_k);
   const sched::TaskId triangles = entries("triangles", "sc_friction_pairs_triangles", static_cast<int>(s.tris.size()),
-                                          b.tris, b.tv_near, b.tv_d, b.tv_l, b.tv_n, b.tv_k);
+                                          b.tris, b.tv_near, b.tv_d, b.tv_l, b.tv_k);
   const sched::TaskId edges = entries("edges", "sc_friction_pairs_edges", static_cast<int>(s.edges.size()), b.edges,
-                                      b.ee_near, b.ee_d, b.ee_l, b.ee_n, b.ee_k);
+                                      b.ee_near, b.ee_d, b.ee_l, b.ee_k);
   last = plan.add_task_after(
       edges, plan::make_task("contact/friction", plan::TaskKind::friction, -1, 1),
       {"sc_friction",

@@ -22,7 +22,6 @@ struct SelfContactBuffers {
       x_det = -1, state = -1,  // where the lists were made; whether they serve (common/self_contact_lists.h)
       vt_d = -1, tv_d = -1, ee_d = -1,           // the listed pairs' distances at x_t
       vt_near = -1, tv_near = -1, ee_near = -1,  // the entries that can come within the thickness this substep
-      vt_n = -1, tv_n = -1, ee_n = -1,           // per near list its count, one int each (read densely)
       colliders = -1,  // the layout's colliders, which every clamp to the bound puts the positions back out of
       vt_l = -1, tv_l = -1,
                  ee_l = -1,  // per near-list entry the pair's normal, multiplier and weights (XPBD), or friction
