@@ -125,7 +125,7 @@ def run_atssim_frames(method: str, size: int, executor: str, devices: str, sched
     command = [BIN, "run", SCENE, "-o", out, "--frames", str(frames + 2), "--devices", devices, "--schedule", schedule,
                "--executor", executor, "--memory", memory, "--set", f"solver.method={method}", "--set",
                f"objects.0.grid.resolution=[{size},{size}]", "--quiet"]
-    if ordering != "colors":  # XPBD only (solver.ordering is an XPBD option)
+    if method == "xpbd":  # solver.ordering is an XPBD option; colors too, the default being color_batches
         command += ["--set", f"solver.ordering={ordering}"]
     subprocess.run(command, check=True)
     with h5py.File(out, "r") as f:

@@ -197,7 +197,8 @@ TEST_CASE("without a task clock the fused executor times launches, and its costs
 }
 
 TEST_CASE("an executor refuses a launch of a task function its program does not declare", "[fused][fast]") {
-  const auto scene = scene::parse_scene(test::hanging_cloth_yaml(6), "s.yaml", ".");
+  // The colors ordering: launch [1][0] is a stretch block's xpbd_stretch (7 arguments).
+  const auto scene = scene::parse_scene(test::hanging_cloth_yaml(6) + "solver: {ordering: colors}\n", "s.yaml", ".");
   plan::SubstepPlan plan = app::substep_plan_for(scene);
   const auto devices = device::DeviceSet::open("cpu");
   SECTION("an unknown name") {
