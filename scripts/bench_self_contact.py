@@ -12,6 +12,7 @@ rebuilds them at a frame's start and when the motion since outgrows them),
 so its breakdown by task shows a kept substep; a frame's mean is in on - off.
 
 usage: scripts/bench_self_contact.py [--sizes 128,256] [--frames 4] [--skip 2] [--methods vbd,xpbd]
+                                     [--query-radius K]   (contact.query_radius = K thicknesses; unset: 3)
 Build first (cmake --build --preset release). Prints one Markdown table.
 """
 import argparse
@@ -35,7 +36,7 @@ objects:
      material: {{density: 0.2, stretch_stiffness: 1000, bend_stiffness: 0.0001}}}}
 colliders:
   - {{type: sphere, center: [0, 0, 0], radius: 0.5, thickness: 0.004}}
-contact: {{self: {self}, thickness: {thickness}}}
+contact: {{self: {self}, thickness: {thickness}{query}}}
 """
 
 CONTACT_KINDS = {"detection"}
@@ -45,6 +46,11 @@ def thickness(n):
     """A fifth of the edge (2 m / (n - 1)): the same relative thickness at
     every size, so the pairs per vertex stay alike (at 128 x 128: 3.1 mm)."""
     return round(0.2 * 2.0 / (n - 1), 6)
+def query(n, args):
+    """contact.query_radius as --query-radius thicknesses, or nothing (the default, 3)."""
+    return "" if args.query_radius is None else f", query_radius: {args.query_radius * thickness(n):.6f}"
+
+
 CONTACT_NAMES = ("collision/bound", "collision/surface", "contact/first_guess")
 
 
@@ -53,7 +59,7 @@ def run(tmp, n, method, self_on, args):
     out = os.path.join(tmp, f"o{n}{method}{int(self_on)}.h5")
     with open(scene, "w") as f:
         f.write(SCENE.format(substeps=args.substeps, iterations=args.iterations, frames=args.frames, n=n,
-                             self="true" if self_on else "false", thickness=thickness(n)))
+                             self="true" if self_on else "false", thickness=thickness(n), query=query(n, args)))
     subprocess.run([BIN, "run", scene, "-o", out, "--devices", args.devices, "--set", f"solver.method={method}",
                     "--quiet"], check=True)
     with h5py.File(out, "r") as f:
@@ -84,7 +90,7 @@ def native_ms(tmp, n, method, args):
     scene = os.path.join(tmp, f"native{n}.yaml")
     with open(scene, "w") as f:
         f.write(SCENE.format(substeps=args.substeps, iterations=args.iterations, frames=args.frames, n=n,
-                             self="false", thickness=thickness(n)).replace("colliders:", "unused_colliders:").split("unused_colliders:")[0])
+                             self="false", thickness=thickness(n), query="").replace("colliders:", "unused_colliders:").split("unused_colliders:")[0])
     out = subprocess.run([NATIVE, "--scene", scene, "--method", method, "--resolution", str(n), "--threads", "2",
                           "--frames", str(args.frames), "--warmup", "1"], check=True, capture_output=True, text=True)
     return json.loads(out.stdout)["median_ms"]
@@ -99,6 +105,8 @@ def main() -> int:
     ap.add_argument("--iterations", type=int, default=4)
     ap.add_argument("--methods", default="vbd,xpbd")
     ap.add_argument("--devices", default="cpu")
+    ap.add_argument("--query-radius", type=float, default=None,
+                    help="contact.query_radius in thicknesses (unset: the scene default, 3)")
     args = ap.parse_args()
     if not os.path.exists(BIN):
         print(f"{BIN} is missing: build first", file=sys.stderr)
