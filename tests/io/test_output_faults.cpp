@@ -134,19 +134,28 @@ TEST_CASE("a checkpoint slot whose bytes were torn is skipped for the other slot
   H5Fclose(file);
 }
 
+namespace {
+
+// A run of `frames` frames, each with its checkpoint (state bytes_of(f) and
+// bytes_of(100 + f)), that failed before its end.
+void write_stopped_run(const std::string& path, const model::Model& m, int frames) {
+  const std::size_t n = m.particles.size();
+  io::ResultWriter w(path, run_info(), m.objects);
+  for (int f = 0; f < frames; ++f) {
+    w.set_checkpoint(f, bytes_of(n * 16, f), bytes_of(n * 16, 100 + f));
+    w.append_frame(f * 0.1, frame_of(n, f), 1.0);
+  }
+  w.fail("interrupted");
+}
+
+}  // namespace
+
 TEST_CASE("a stopped run resumes from its last checkpoint into the same file") {
   test::TempDir dir;
   const auto m = small_model();
   const std::size_t n = m.particles.size();
   const std::string path = dir.file("run.h5");
-  {
-    io::ResultWriter w(path, run_info(), m.objects);
-    for (int f = 0; f < 4; ++f) {
-      w.set_checkpoint(f, bytes_of(n * 16, f), bytes_of(n * 16, 100 + f));
-      w.append_frame(f * 0.1, frame_of(n, f), 1.0);
-    }
-    w.fail("interrupted");
-  }
+  write_stopped_run(path, m, 4);
   io::Checkpoint c;
   {
     // Frames may change on resume; the rest of the resolved scene may not.
@@ -180,14 +189,7 @@ TEST_CASE("a run killed inside a frame's flush resumes from the last frame /fram
   const auto m = small_model();
   const std::size_t n = m.particles.size();
   const std::string path = dir.file("run.h5");
-  {
-    io::ResultWriter w(path, run_info(), m.objects);
-    for (int f = 0; f < 4; ++f) {
-      w.set_checkpoint(f, bytes_of(n * 16, f), bytes_of(n * 16, 100 + f));
-      w.append_frame(f * 0.1, frame_of(n, f), 1.0);
-    }
-    w.fail("killed");
-  }
+  write_stopped_run(path, m, 4);
   {
     const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
     REQUIRE(file >= 0);
