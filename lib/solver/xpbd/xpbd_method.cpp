@@ -12,17 +12,25 @@ constexpr plan::TaskKind kKinds[] = {kStretch, kBend, kTet};
 constexpr scene::SolidModel kSolids[] = {scene::SolidModel::stvk, scene::SolidModel::springs};
 constexpr std::string_view kOrderings[] = {"colors", "color_batches", "batches"};  // XpbdOrdering's values in order
 
+// Unset, solver.ordering is color_batches from this many particles on and
+// colors below: on the whole CPU device and on two sub-devices the lanes
+// were 10-15 % slower than colors at 40x40 and 64x64 and 7-17 % faster at
+// 128x128 (docs/benchmarks.md, "Colors or color_batches by size").
+constexpr std::size_t kLanesFromParticles = 128 * 128;
+
 constexpr MethodOption kOptions[] = {
     {"ordering", 0.0, 0.0, 2.0, false, false,
      "colors, color_batches or batches: the order of the stretch, bending and tet constraints, one task per color "
      "block, one task per color block cut into batches of 8 float lanes, or one sweep of NvCloth's simd batches "
-     "per element set (xpbd; batches: schedule single only)",
-     kOrderings, false, 2},
+     "per element set (xpbd; unset: color_batches from 16384 particles, colors below; batches: schedule single "
+     "only)",
+     kOrderings, true, 2},
 };
 
 plan::SubstepPlan build(const SimLayout& layout, const MethodSettings& s) {
-  return make_xpbd_plan(
-      layout, {s.substep_dt, s.iterations, static_cast<XpbdOrdering>(static_cast<int>(s.option("ordering")))});
+  const double unset = layout.x.size() >= kLanesFromParticles ? 1.0 : 0.0;
+  return make_xpbd_plan(layout, {s.substep_dt, s.iterations,
+                                 static_cast<XpbdOrdering>(static_cast<int>(s.option_or("ordering", unset)))});
 }
 
 }  // namespace
