@@ -34,18 +34,22 @@ std::string pinned_cloth(double density, double stiffness) {
       density, stiffness);
 }
 
-// The methods that pick an option from the scene (MethodOption::
-// depends_on_scene: a safer value on stiff scenes): SOSD's stencil step,
-// JPGD's Chebyshev rho.
+// A number the method picks from the scene (MethodOption::depends_on_scene:
+// a safer value on stiff scenes): SOSD's stencil step, JPGD's Chebyshev rho.
+// A named option picked from the scene (XPBD's ordering, by size) is a
+// choice of speed, not of safety.
+bool picked_for_safety(const solver::MethodOption& o) { return o.depends_on_scene && o.choices.empty(); }
+
+// The methods that pick such an option.
 bool picks_from_scene(const solver::MethodDescription& m) {
-  return std::any_of(m.options.begin(), m.options.end(), [](const auto& o) { return o.depends_on_scene; });
+  return std::any_of(m.options.begin(), m.options.end(), picked_for_safety);
 }
 
 // Those options set by the scene to their usual (aggressive) values.
 std::vector<std::string> usual_values(const std::string& method) {
   std::vector<std::string> out;
   for (const solver::MethodOption& o : solver::method(method).options) {
-    if (o.depends_on_scene) out.push_back(fmt::format("solver.{}={}", o.key, o.default_text()));
+    if (picked_for_safety(o)) out.push_back(fmt::format("solver.{}={}", o.key, o.default_text()));
   }
   return out;
 }
