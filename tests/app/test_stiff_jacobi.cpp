@@ -58,7 +58,8 @@ double centroid_y(const std::string& file, std::size_t frame) {
   const std::vector<float> xyz = io::read_frame_positions(file, frame);
   double sum = 0.0;
   for (std::size_t i = 1; i < xyz.size(); i += 3) sum += xyz[i];
-  return sum / static_cast<double>(xyz.size() / 3);
+  const std::size_t points = xyz.size() / 3;
+  return sum / static_cast<double>(points);
 }
 
 }  // namespace
