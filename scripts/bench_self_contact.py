@@ -10,6 +10,11 @@ took; then the log-log slope of the contact time over the sizes. The last
 substep is a frame's last, which often keeps the pair lists (detection
 rebuilds them at a frame's start and when the motion since outgrows them),
 so its breakdown by task shows a kept substep; a frame's mean is in on - off.
+Frame time is /timing/frame_ms (the substeps on the device); the host's own
+work on each frame (/timing/host_ms: with self-contact mostly the per-frame
+surface record, /contact/surface_*) comes after it and before the next
+frame, so the last column, (frame + host) on over off, is what a frame of
+wall time costs.
 
 usage: scripts/bench_self_contact.py [--sizes 128,256] [--frames 4] [--skip 2] [--methods vbd,xpbd]
                                      [--query-radius K]   (contact.query_radius = K thicknesses; unset: 3)
@@ -64,6 +69,7 @@ def run(tmp, n, method, self_on, args):
                     "--quiet"], check=True)
     with h5py.File(out, "r") as f:
         frame_ms = float(np.median(f["timing/frame_ms"][args.skip:]))
+        host_ms = float(np.median(f["timing/host_ms"][args.skip:]))
         names = [s.decode() if isinstance(s, bytes) else s for s in f["schedule/tasks/name"][:]]
         kinds = [s.decode() if isinstance(s, bytes) else s for s in f["schedule/tasks/kind"][:]]
         s = f["schedule"]
@@ -80,7 +86,7 @@ def run(tmp, n, method, self_on, args):
                 base = names[t].split("[")[0]
                 by_name[base] = by_name.get(base, 0.0) + (b - a)
         substep = float(np.nanmax(finish) - np.nanmin(start))
-    return frame_ms, contact, substep, by_name
+    return frame_ms, host_ms, contact, substep, by_name
 
 
 def native_ms(tmp, n, method, args):
@@ -114,22 +120,24 @@ def main() -> int:
     os.environ.setdefault("POCL_CACHE_DIR", os.path.expanduser("~/.cache/atssim/pocl"))
     sizes = [int(s) for s in args.sizes.split(",")]
     print("| method | vertices | frame ms, self off | frame ms, self on | on/off | contact ms/frame (on - off) | "
-          "contact tasks' share of the last substep |")
-    print("|---|---|---|---|---|---|---|")
+          "contact tasks' share of the last substep | host ms, self off | host ms, self on | "
+          "on/off, frame + host |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     breakdown = []
     with tempfile.TemporaryDirectory() as tmp:
         for method in args.methods.split(","):
             points = []
             for n in sizes:
-                off, _, _, _ = run(tmp, n, method, False, args)
-                on, contact, substep, by_name = run(tmp, n, method, True, args)
+                off, host_off, _, _, _ = run(tmp, n, method, False, args)
+                on, host_on, contact, substep, by_name = run(tmp, n, method, True, args)
                 breakdown.append((method, n * n, by_name))
                 points.append((n * n, on - off))
                 print(f"| {method} | {n * n} | {off:.1f} | {on:.1f} | {on / off:.2f} | {on - off:.2f} | "
-                      f"{100 * contact / substep:.0f} % |", flush=True)
+                      f"{100 * contact / substep:.0f} % | {host_off:.1f} | {host_on:.1f} | "
+                      f"{(on + host_on) / (off + host_off):.2f} |", flush=True)
                 if method in ("xpbd", "vbd") and os.path.exists(NATIVE):
                     print(f"| native {method} (host reference, 2 threads, no contact) | {n * n} | "
-                          f"{native_ms(tmp, n, method, args):.1f} | – | – | – | – |", flush=True)
+                          f"{native_ms(tmp, n, method, args):.1f} | – | – | – | – | – | – | – |", flush=True)
             if len(points) >= 2 and all(c > 0 for _, c in points):
                 (v0, c0), (v1, c1) = points[0], points[-1]
                 print(f"| {method} | log-log slope of the contact time, {v0} → {v1} vertices: "

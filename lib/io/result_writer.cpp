@@ -86,6 +86,7 @@ const ResultWriter::SeriesSpec ResultWriter::kSeries[] = {
     {"frames/positions", true, 3, SeriesKind::f32, &ResultWriter::positions_},
     {"timing/frame_ms", false, 0, SeriesKind::f64, &ResultWriter::frame_ms_},
     {"timing/schedule_ms", false, 0, SeriesKind::f64, &ResultWriter::schedule_ms_},
+    {"timing/host_ms", false, 0, SeriesKind::f64, &ResultWriter::host_ms_},
     {"schedule/frame", false, 0, SeriesKind::i32, &ResultWriter::sched_frame_},
     {"schedule/task", false, 0, SeriesKind::i32, &ResultWriter::sched_task_},
     {"schedule/device", false, 0, SeriesKind::i32, &ResultWriter::sched_device_},
@@ -193,7 +194,8 @@ void ResultWriter::reopen(const RunInfo& info, Checkpoint& resume) {
   }
   checkpoint_ = std::move(*slots);
   frames_ = static_cast<int>(point->frames_written);
-  for (hid_t set : {positions_.get(), time_.get(), frame_ms_.get(), schedule_ms_.get(), contact_active_.get(),
+  for (hid_t set : {positions_.get(), time_.get(), frame_ms_.get(), schedule_ms_.get(), host_ms_.get(),
+                    contact_active_.get(),
                     contact_min_distance_.get(), contact_max_penetration_.get(), surface_pairs_.get(),
                     surface_max_penetration_.get(), surface_crossings_.get()})
     truncate_rows(set, frames_);
@@ -361,7 +363,7 @@ void ResultWriter::set_checkpoint(long long frame, std::span<const std::byte> po
 }
 
 void ResultWriter::append_frame(double time, std::span<const float> xyz, double frame_ms, double schedule_ms,
-                                const ContactFrame& contact) {
+                                const ContactFrame& contact, double host_ms) {
   if (xyz.size() != particles_ * 3) {
     throw std::logic_error(fmt::format("output: frame has {} values, expected {}", xyz.size(), particles_ * 3));
   }
@@ -379,6 +381,7 @@ void ResultWriter::append_frame(double time, std::span<const float> xyz, double 
     append_scalar(time_, time);
     append_scalar(frame_ms_, frame_ms);
     append_scalar(schedule_ms_, schedule_ms);
+    append_scalar(host_ms_, host_ms);
     const std::int32_t active[1] = {contact.active};
     append_series_rows<std::int32_t>(contact_active_, active, H5T_NATIVE_INT32, static_cast<hsize_t>(frames_));
     append_scalar(contact_min_distance_, contact.min_distance);

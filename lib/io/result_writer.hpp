@@ -79,8 +79,9 @@ class ResultWriter {
   // frame. Before writing it checks that the output is still there and that
   // the disk has room for the frame; a failed write leaves the file as the
   // last flush made it.
+  // frame_ms, schedule_ms, host_ms: /timing (docs/output-format.md).
   void append_frame(double time, std::span<const float> xyz, double frame_ms, double schedule_ms = 0.0,
-                    const ContactFrame& contact = {});
+                    const ContactFrame& contact = {}, double host_ms = 0.0);
   // The executor's state at the end of simulated frame `frame`, stored with
   // the next append_frame (for --resume).
   void set_checkpoint(long long frame, std::span<const std::byte> positions, std::span<const std::byte> velocities);
@@ -143,7 +144,7 @@ class ResultWriter {
   int frames_ = 0;
   std::vector<double> times_;
   bool closed_ = false;
-  H5Handle file_, positions_, time_, frame_ms_, schedule_ms_;
+  H5Handle file_, positions_, time_, frame_ms_, schedule_ms_, host_ms_;
   H5Handle flushed_;  // /frames/flushed: frames written and flushed in full (live readers read those)
   // /schedule series: one row per recorded task, per wait, per frame.
   H5Handle sched_frame_, sched_task_, sched_device_, sched_pstart_, sched_pfinish_, sched_mstart_, sched_mfinish_;

@@ -49,6 +49,14 @@ with temp_dir() as d:
     check(s["particles"] == 576 and s["frames"] == {"requested": 6, "simulated": 6, "written": 7}, "counts")
     with h5py.File(h5, "r") as f:
         ms = f["timing/frame_ms"][1:]
+        # /timing: a row per written frame, 0 for the initial state; the
+        # three parts of a frame's time are disjoint stretches of the run,
+        # so together they fit in its wall time.
+        timing = [f[f"timing/{k}"][:] for k in ("frame_ms", "schedule_ms", "host_ms")]
+        check(all(len(t) == 7 and t[0] == 0 for t in timing), "a /timing row per frame, 0 first")
+        check(all(np.all(np.isfinite(t)) and np.all(t >= 0) for t in timing), "finite, not negative")
+        check(np.all(timing[2][1:] > 0), f"the host's work on each frame is recorded: {timing[2]}")
+        check(sum(t.sum() for t in timing) <= 1000 * s["wall_s"], f"/timing sums to more than the run's wall time")
         predicted = f["schedule/makespan/predicted_ms"][:]
         measured = f["schedule/makespan/measured_ms"][:]
         executor = f["schedule"].attrs["executor"]
