@@ -86,11 +86,17 @@ SurfaceContactCheck::SurfaceContactCheck(std::vector<std::array<int, 3>> triangl
     : tris_(std::move(triangles)), thickness_(thickness) {
   std::set<std::pair<int, int>> seen;
   std::set<int> vertices;
-  for (const auto& t : tris_) {
+  own_vertices_.assign(tris_.size(), {-1, -1, -1});
+  own_edges_.assign(tris_.size(), {-1, -1, -1});
+  for (std::size_t t = 0; t < tris_.size(); ++t) {
+    int owned_vertices = 0, owned_edges = 0;
     for (int k = 0; k < 3; ++k) {
-      const int a = t[k], b = t[(k + 1) % 3];
-      if (seen.emplace(std::min(a, b), std::max(a, b)).second) edges_.push_back({std::min(a, b), std::max(a, b)});
-      vertices.insert(a);
+      const int a = tris_[t][k], b = tris_[t][(k + 1) % 3];
+      if (seen.emplace(std::min(a, b), std::max(a, b)).second) {
+        own_edges_[t][owned_edges++] = static_cast<int>(edges_.size());
+        edges_.push_back({std::min(a, b), std::max(a, b)});
+      }
+      if (vertices.insert(a).second) own_vertices_[t][owned_vertices++] = a;
     }
   }
   vertices_.assign(vertices.begin(), vertices.end());
@@ -107,52 +113,71 @@ SurfaceContacts SurfaceContactCheck::measure(std::span<const float> xyz) const {
   std::vector<Vector3d> x(n);
   for (std::size_t i = 0; i < n; ++i) x[i] = Vector3d(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
   const double r = thickness_;
+  const auto finite = [](const Box& b) { return b.min().allFinite() && b.max().allFinite(); };
 
+  // Triangle j's box in the grid holds the triangle and the edges it owns:
+  // with a corner that is not finite, only its finite owned edges (a pair
+  // with the triangle itself is then never closer than r nor a crossing).
   std::vector<Box> tri_boxes(tris_.size()), edge_boxes(edges_.size());
-  for (std::size_t t = 0; t < tris_.size(); ++t) tri_boxes[t] = box_of(tris_[t], x, r);
   for (std::size_t e = 0; e < edges_.size(); ++e) edge_boxes[e] = box_of(edges_[e], x, 0.0);
   std::vector<Vector3d> normal(tris_.size());
   for (std::size_t t = 0; t < tris_.size(); ++t) {
     const auto& f = tris_[t];
     normal[t] = (x[f[1]] - x[f[0]]).cross(x[f[2]] - x[f[0]]);
+    tri_boxes[t] = box_of(f, x, 0.0);
+    if (finite(tri_boxes[t])) continue;
+    tri_boxes[t] = Box();  // empty: never reported
+    for (int e : own_edges_[t])
+      if (e >= 0 && finite(edge_boxes[e])) tri_boxes[t].extend(edge_boxes[e]);
   }
-  const BoxGrid triangles(std::move(tri_boxes));  // widened by r: a vertex within r lies in the box
-  const BoxGrid edges(std::move(edge_boxes));
+  const BoxGrid triangles(tri_boxes);
 
-  const Tally per_vertex = reduce(static_cast<int>(vertices_.size()), [&](int i, Tally& t) {
-    const int v = vertices_[i];
-    triangles.query(Box(x[v]), [&](int j) {
-      const auto& f = tris_[j];
-      if (v == f[0] || v == f[1] || v == f[2]) return;
-      const double d = f64::ats_point_triangle(v3(x[v]), v3(x[f[0]]), v3(x[f[1]]), v3(x[f[2]])).d;
-      if (d < r) {
-        ++t.vertex_triangle;
-        t.closest = std::min(t.closest, d);
+  // Per triangle u, its owned vertices against every triangle, its owned
+  // edges against every edge (each pair once: from the lower edge id) and
+  // against every triangle for a crossing.
+  const Tally all = reduce(static_cast<int>(tris_.size()), [&](int u, Tally& t) {
+    const auto& own_v = own_vertices_[u];
+    const auto& own_e = own_edges_[u];
+    Box query;  // the finite owned primitives, widened by r
+    for (int v : own_v)
+      if (v >= 0 && x[v].allFinite()) query.extend(x[v]);
+    for (int e : own_e)
+      if (e >= 0 && finite(edge_boxes[e])) query.extend(edge_boxes[e]);
+    if (query.isEmpty()) return;
+    query.min().array() -= r;
+    query.max().array() += r;
+    triangles.query(query, [&](int o) {
+      const auto& f = tris_[o];
+      const Box& ob = tri_boxes[o];
+      for (int v : own_v) {
+        if (v < 0 || v == f[0] || v == f[1] || v == f[2] || (ob.exteriorDistance(x[v]) > r)) continue;
+        const double d = f64::ats_point_triangle(v3(x[v]), v3(x[f[0]]), v3(x[f[1]]), v3(x[f[2]])).d;
+        if (d < r) {
+          ++t.vertex_triangle;
+          t.closest = std::min(t.closest, d);
+        }
+      }
+      for (int e : own_e) {
+        if (e < 0) continue;
+        const auto& a = edges_[e];
+        Box wide = edge_boxes[e];
+        wide.min().array() -= r;
+        wide.max().array() += r;
+        if (!wide.intersects(ob)) continue;
+        for (int h : own_edges_[o]) {
+          if (h <= e) continue;  // each pair once
+          const auto& b = edges_[h];
+          if (b[0] == a[0] || b[0] == a[1] || b[1] == a[0] || b[1] == a[1] || !wide.intersects(edge_boxes[h])) continue;
+          const double d = f64::ats_edge_edge(v3(x[a[0]]), v3(x[a[1]]), v3(x[b[0]]), v3(x[b[1]])).d;
+          if (d < r) {
+            ++t.edge_edge;
+            t.closest = std::min(t.closest, d);
+          }
+        }
+        if (!shares_vertex(a, f) && crosses(x[a[0]], x[a[1]], x[f[0]], x[f[1]], x[f[2]], normal[o])) ++t.crossings;
       }
     });
   });
-  const Tally per_edge = reduce(static_cast<int>(edges_.size()), [&](int e, Tally& t) {
-    const auto& a = edges_[e];
-    const Box plain = box_of(a, x, 0.0);
-    Box wide = plain;
-    wide.min().array() -= r;
-    wide.max().array() += r;
-    edges.query(wide, [&](int f) {
-      if (f <= e) return;  // each pair once
-      const auto& b = edges_[f];
-      if (b[0] == a[0] || b[0] == a[1] || b[1] == a[0] || b[1] == a[1]) return;
-      const double d = f64::ats_edge_edge(v3(x[a[0]]), v3(x[a[1]]), v3(x[b[0]]), v3(x[b[1]])).d;
-      if (d < r) {
-        ++t.edge_edge;
-        t.closest = std::min(t.closest, d);
-      }
-    });
-    triangles.query(plain, [&](int j) {
-      const auto& f = tris_[j];
-      if (!shares_vertex(a, f) && crosses(x[a[0]], x[a[1]], x[f[0]], x[f[1]], x[f[2]], normal[j])) ++t.crossings;
-    });
-  });
-  const Tally all = joined(per_vertex, per_edge);
   out.vertex_triangle = all.vertex_triangle;
   out.edge_edge = all.edge_edge;
   out.crossings = all.crossings;

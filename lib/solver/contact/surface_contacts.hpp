@@ -8,7 +8,9 @@
 // than the contact thickness, through the kernels' narrow phase
 // (common/self_contact.h), and every surface edge against every surface
 // triangle it does not touch, for a crossing. Broad phase: solver/contact/
-// box_grid (a uniform hashed grid rebuilt per call).
+// box_grid (a uniform hashed grid rebuilt per call) over the triangles, one
+// query per triangle for the vertices and edges it owns (each is owned by
+// the first triangle that names it), so that a pair is found in one walk.
 #include <array>
 #include <span>
 #include <vector>
@@ -42,6 +44,9 @@ class SurfaceContactCheck {
   std::vector<std::array<int, 3>> tris_;
   std::vector<std::array<int, 2>> edges_;
   std::vector<int> vertices_;  // the particles on the surface, ascending
+  // Per triangle, the vertices (particle ids) and edges (ids into edges_)
+  // it owns; -1: none.
+  std::vector<std::array<int, 3>> own_vertices_, own_edges_;
   double thickness_ = 0.0;
 };
 
