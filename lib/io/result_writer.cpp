@@ -195,9 +195,8 @@ void ResultWriter::reopen(const RunInfo& info, Checkpoint& resume) {
   checkpoint_ = std::move(*slots);
   frames_ = static_cast<int>(point->frames_written);
   for (hid_t set : {positions_.get(), time_.get(), frame_ms_.get(), schedule_ms_.get(), host_ms_.get(),
-                    contact_active_.get(),
-                    contact_min_distance_.get(), contact_max_penetration_.get(), surface_pairs_.get(),
-                    surface_max_penetration_.get(), surface_crossings_.get()})
+                    contact_active_.get(), contact_min_distance_.get(), contact_max_penetration_.get(),
+                    surface_pairs_.get(), surface_max_penetration_.get(), surface_crossings_.get()})
     truncate_rows(set, frames_);
   read_contact_rows();
   if (H5Lexists(file_, "decisions", H5P_DEFAULT) > 0) decisions_ = DecisionSeries::open(file_, point->frame);
