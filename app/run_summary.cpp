@@ -161,6 +161,7 @@ std::string run_summary_json(const RunResult& r, const RunSummaryInput& in) {
   j += fmt::format("  \"frames\": {{\"requested\": {}, \"simulated\": {}, \"written\": {}}},\n", r.frames_requested,
                    r.frames_simulated, r.frames_written);
   j += fmt::format("  \"ms_per_frame\": {},\n", statistics(r.frame_ms));
+  j += fmt::format("  \"host_ms_per_frame\": {},\n", statistics(r.host_ms));
   j += fmt::format("  \"makespan_ms\": {{\"predicted_median\": {}, \"measured_median\": {}}},\n",
                    json_number(percentile(r.predicted_makespan_ms, 0.5)),
                    json_number(percentile(r.measured_makespan_ms, 0.5)));

@@ -50,6 +50,7 @@ struct RunResult {
   std::string memory;  // "shared" or "separate" (whether the devices had more than one memory)
   std::vector<io::DeviceRecord> devices;
   std::vector<double> frame_ms;  // wall time of every simulated frame
+  std::vector<double> host_ms;   // the host's own work on every written frame (/timing/host_ms)
   // Per recorded frame: the substep makespan the scheduler predicted and the
   // one measured (ms).
   std::vector<double> predicted_makespan_ms, measured_makespan_ms;

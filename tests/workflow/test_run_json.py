@@ -63,6 +63,9 @@ with temp_dir() as d:
         check(s["executor"] == (executor.decode() if isinstance(executor, bytes) else executor), "executor")
     check(abs(s["ms_per_frame"]["median"] - nearest_rank(ms, 0.5)) < 1e-3 * nearest_rank(ms, 0.5), "median ms")
     check(abs(s["ms_per_frame"]["p95"] - nearest_rank(ms, 0.95)) < 1e-3 * nearest_rank(ms, 0.95), "p95 ms")
+    host = timing[2][1:]
+    check(abs(s["host_ms_per_frame"]["median"] - nearest_rank(host, 0.5)) <= 1e-3 * nearest_rank(host, 0.5),
+          "median host ms")
     error = np.abs(measured - predicted) / measured
     check(s["prediction_error"]["frames"] == len(error), "prediction error over every recorded frame")
     check(abs(s["prediction_error"]["median"] - nearest_rank(error, 0.5)) < 1e-4, "prediction error median")
