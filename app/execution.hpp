@@ -51,7 +51,9 @@ struct ExecutionOptions {
   bool task_merging = true;
   // Async: costs of the base plan's tasks per device to place them with,
   // instead of a profile, and the links between the devices instead of a
-  // measured hop (tests use both to make the placement deterministic).
+  // measured hop; heft: the same for the first schedule, of the tasks of
+  // cut_for_mode(plan, heft, devices) (later frames refit from measured
+  // times). Tests use both to make the placement deterministic.
   std::optional<sched::CostTable> placement_costs;
   std::optional<sched::DeviceLinks> placement_links;
 };
