@@ -180,16 +180,20 @@ Execution prepare_execution(const device::DeviceSet& devices, plan::SubstepPlan 
   e.split_fractions = fractions;
   if (fractions.size() > 1) base = plan::split_plan(base, fractions);
   e.executor = std::make_unique<device::PlanExecutor>(devices, std::move(base), executor_options(options));
-  const bool placed = options.mode == ScheduleMode::heft && options.placement_costs;
+  const bool heft = options.mode == ScheduleMode::heft;
+  const bool placed = heft && options.placement_costs;
   if (placed && (options.placement_costs->tasks != e.plan().graph.size() || options.placement_costs->devices != n)) {
     throw std::logic_error(fmt::format("placement costs for {} tasks on {} devices; the heft plan has {} on {}",
                                        options.placement_costs->tasks, options.placement_costs->devices,
                                        e.plan().graph.size(), n));
   }
   sched::CostTable profiled = placed ? *options.placement_costs : profile(*e.executor, options.profile_repetitions);
-  sched::DeviceLinks links = options.mode == ScheduleMode::heft && options.placement_links ? *options.placement_links
-                             : n > 1                                                       ? measure_links(*e.executor)
-                                     : sched::DeviceLinks::unified_memory(1, 0.0);
+  sched::DeviceLinks links = sched::DeviceLinks::unified_memory(1, 0.0);
+  if (heft && options.placement_links) {
+    links = *options.placement_links;
+  } else if (n > 1) {
+    links = measure_links(*e.executor);
+  }
   e.costs = sched::CostModel(std::move(profiled), std::move(links), options.reschedule_drift);
 
   e.assignment.assign(e.plan().graph.size(), 0);

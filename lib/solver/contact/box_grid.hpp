@@ -31,6 +31,7 @@ class BoxGrid {
   void query(const Box& q, Hit&& hit) const;
 
   int size() const { return static_cast<int>(boxes_.size()); }
+  const Box& box(int j) const { return boxes_[j]; }
   double cell() const { return cell_; }
 
  private:

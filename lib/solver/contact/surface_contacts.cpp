@@ -130,7 +130,7 @@ SurfaceContacts SurfaceContactCheck::measure(std::span<const float> xyz) const {
     for (int e : own_edges_[t])
       if (e >= 0 && finite(edge_boxes[e])) tri_boxes[t].extend(edge_boxes[e]);
   }
-  const BoxGrid triangles(tri_boxes);
+  const BoxGrid triangles(std::move(tri_boxes));
 
   // Per triangle u, its owned vertices against every triangle, its owned
   // edges against every edge (each pair once: from the lower edge id) and
@@ -138,17 +138,24 @@ SurfaceContacts SurfaceContactCheck::measure(std::span<const float> xyz) const {
   const Tally all = reduce(static_cast<int>(tris_.size()), [&](int u, Tally& t) {
     const auto& own_v = own_vertices_[u];
     const auto& own_e = own_edges_[u];
-    Box query;  // the finite owned primitives, widened by r
+    Box query;                // the finite owned primitives, widened by r
+    std::array<Box, 3> wide;  // each owned edge's box widened by r
     for (int v : own_v)
       if (v >= 0 && x[v].allFinite()) query.extend(x[v]);
-    for (int e : own_e)
-      if (e >= 0 && finite(edge_boxes[e])) query.extend(edge_boxes[e]);
+    for (int k = 0; k < 3; ++k) {
+      const int e = own_e[k];
+      if (e < 0) continue;
+      if (finite(edge_boxes[e])) query.extend(edge_boxes[e]);
+      wide[k] = edge_boxes[e];
+      wide[k].min().array() -= r;
+      wide[k].max().array() += r;
+    }
     if (query.isEmpty()) return;
     query.min().array() -= r;
     query.max().array() += r;
     triangles.query(query, [&](int o) {
       const auto& f = tris_[o];
-      const Box& ob = tri_boxes[o];
+      const Box& ob = triangles.box(o);
       for (int v : own_v) {
         if (v < 0 || v == f[0] || v == f[1] || v == f[2] || (ob.exteriorDistance(x[v]) > r)) continue;
         const double d = f64::ats_point_triangle(v3(x[v]), v3(x[f[0]]), v3(x[f[1]]), v3(x[f[2]])).d;
@@ -157,17 +164,15 @@ SurfaceContacts SurfaceContactCheck::measure(std::span<const float> xyz) const {
           t.closest = std::min(t.closest, d);
         }
       }
-      for (int e : own_e) {
-        if (e < 0) continue;
+      for (int k = 0; k < 3; ++k) {
+        const int e = own_e[k];
+        if (e < 0 || !wide[k].intersects(ob)) continue;
         const auto& a = edges_[e];
-        Box wide = edge_boxes[e];
-        wide.min().array() -= r;
-        wide.max().array() += r;
-        if (!wide.intersects(ob)) continue;
         for (int h : own_edges_[o]) {
           if (h <= e) continue;  // each pair once
           const auto& b = edges_[h];
-          if (b[0] == a[0] || b[0] == a[1] || b[1] == a[0] || b[1] == a[1] || !wide.intersects(edge_boxes[h])) continue;
+          if (b[0] == a[0] || b[0] == a[1] || b[1] == a[0] || b[1] == a[1] || !wide[k].intersects(edge_boxes[h]))
+            continue;
           const double d = f64::ats_edge_edge(v3(x[a[0]]), v3(x[a[1]]), v3(x[b[0]]), v3(x[b[1]])).d;
           if (d < r) {
             ++t.edge_edge;
