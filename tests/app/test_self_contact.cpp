@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -148,18 +149,91 @@ TEST_CASE("the falling sheet folds onto itself (VBD, JPGD)", "[contact][self][fo
   check_folds(GENERATE("vbd", "jpgd"));
 }
 
-// An expected failure, counted by the suite. Measured at commit time: XPBD
-// 0.046 m, SOSD 0.035 m (VBD and JPGD fold, above). XPBD: the sheet buckles
-// into tight folds, but at the hinges pairs of parallel diagonals of
-// neighbouring quads (0.031 m apart at rest, 3.1 thicknesses) are held at
-// d = r by its zero-compliance projection, which stiffens each hinge so the
-// folded-over layer stays above the one below. Excluding such near-incident
-// pairs from the lists was tried and let surfaces cross (the sheet test
-// below: 37 crossings under VBD, 36 SOSD), so it was not kept. SOSD: its
-// sheet buckles into a wave that does not close; not isolated.
-TEST_CASE("the falling sheet folds onto itself (XPBD, SOSD: known failure, hinges held open)",
+// An expected failure, counted by the suite. Which way a sheet dropped on
+// its edge buckles is chaotic: over substeps {8, 12, 16, 24, 32} x
+// iterations {6, 10, 20} (scripts/fold_rate.py) it ended folded (closest
+// far pair < 2 thicknesses at frame 60) in 15 of 15 runs under VBD, 14 of 15
+// JPGD, 12 of 15 SOSD and 6 of 15 XPBD; this scene's 8 x 6 is one of the
+// runs where XPBD (0.046 m) and SOSD (0.035 m) end as a row of tents a
+// grid spacing wide instead. Not "hinges held open", as this comment once
+// said: the same XPBD folds its layers to 0.0100 m at 8 x 20, 12 x 6 and
+// 24 x 6, and every method closes the fold below (the napkin) to the
+// thickness. Why XPBD lands in tents more often than VBD is not isolated.
+TEST_CASE("the falling sheet folds onto itself (XPBD, SOSD: known failure, chaotic at 8 x 6)",
           "[contact][self][fold][!shouldfail]") {
   check_folds(GENERATE("xpbd", "sosd"));
+}
+
+namespace {
+
+// A napkin folded by gravity: a 0.4 x 0.4 m sheet creased along its middle,
+// one half flat on a floor with friction, the other rising from the crease
+// at 60 degrees and leaning over it (an OBJ of 11 x 11 vertices, mesh
+// spacing 0.04 m, so the crease has a dihedral rest angle; bending
+// 1e-5 N m is far below gravity's torque on the half, 0.02 N m/m). The
+// half falls onto the flat one: the fold must close to the thickness and
+// the layers must not cross or come within less than it.
+std::string napkin_obj() {
+  const int n = 5;                                                                   // cells per half, each way
+  const double half = 0.2, width = 0.4, lift = 0.0101, lean = std::numbers::pi / 3;  // 60 degrees
+  std::string obj;
+  for (int j = 0; j <= 2 * n; ++j) {
+    const double s = -half + j * half / n;  // along the unfolded sheet; s < 0 is the rising half
+    for (int i = 0; i <= 2 * n; ++i) {
+      const double x = -width / 2 + i * width / (2 * n);
+      const double y = s >= 0 ? lift : lift - s * std::sin(lean);
+      const double z = s >= 0 ? s : -s * std::cos(lean);
+      obj += fmt::format("v {:.6f} {:.6f} {:.6f}\n", x, y, z);
+    }
+  }
+  const int cols = 2 * n + 1;
+  for (int j = 0; j < 2 * n; ++j) {
+    for (int i = 0; i < 2 * n; ++i) {
+      const int a = j * cols + i + 1, b = a + 1, c = a + cols + 1, d = a + cols;  // OBJ counts from 1
+      if ((i + j) % 2 == 0) {
+        obj += fmt::format("f {} {} {}\nf {} {} {}\n", a, b, c, a, c, d);
+      } else {
+        obj += fmt::format("f {} {} {}\nf {} {} {}\n", a, b, d, b, c, d);
+      }
+    }
+  }
+  return obj;
+}
+
+const char* kNapkin =
+    "simulation: {fps: 60, substeps: 8, iterations: 6, frames: 60}\n"
+    "objects:\n"
+    "  - {name: sheet, mesh: napkin.obj, material: {density: 0.2, stretch_stiffness: 1000, bend_stiffness: 0.00001}}\n"
+    "colliders:\n"
+    "  - {type: plane, point: [0, 0, 0], normal: [0, 1, 0], thickness: 0.005, friction: 0.8}\n"
+    "contact: {self: true, thickness: 0.01}\n";
+
+}  // namespace
+
+// Measured at commit time: every method ends with the closest far pair at
+// 0.0100 m, the closest non-incident pair at 0.00998-0.0100 m and no
+// crossing (brute force in double, tests/support/surface_checks.hpp).
+TEST_CASE("a creased sheet folds flat onto itself, layers a thickness apart (every method)", "[contact][self][fold]") {
+  test::TempDir dir;
+  dir.write("napkin.obj", napkin_obj());
+  const std::string root = dir.path().string();
+  const Surface s = test::surface_of(model::build_model(scene::parse_scene(kNapkin, root + "/scene.yaml", root)));
+  REQUIRE(s.tris.size() == 200);
+  const std::vector<std::string> methods = test::methods_taking([](const std::string&) { return kNapkin; }, {}, root);
+  REQUIRE(methods.size() >= 4);  // xpbd, vbd, sosd and jpgd at least
+  for (const std::string& method : methods) {
+    INFO(method);
+    app::run_simulation(options(dir, kNapkin, method, "single", method + ".h5"));
+    const std::string out = dir.file(method + ".h5");
+    const std::vector<Vector3d> x0 = frame(out, 0), x = frame(out, 60);
+    INFO("closest far pair " << closest_far_pair(s, x0, x) << " m");
+    CHECK(folded_onto_itself(s, x0, x));
+    SurfaceCheck c;
+    check_frame(s, x, 60, c);
+    INFO("closest non-incident vertex-triangle distance " << c.closest << " m");
+    CHECK(c.crossings == 0);
+    CHECK(c.closest >= 0.99 * kThickness);
+  }
 }
 
 TEST_CASE("the surface checker of these tests finds a crossing and a close pair it is shown", "[contact][self]") {
