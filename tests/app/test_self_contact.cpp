@@ -213,7 +213,8 @@ const char* kNapkin =
 // Measured at commit time: every method ends with the closest far pair at
 // 0.0100 m, the closest non-incident pair at 0.00998-0.0100 m and no
 // crossing (brute force in double, tests/support/surface_checks.hpp).
-TEST_CASE("a creased sheet folds flat onto itself, layers a thickness apart (every method)", "[contact][self][fold]") {
+TEST_CASE("a creased sheet folds flat onto itself, layers a thickness apart (every method, single and heft)",
+          "[contact][self][fold]") {
   test::TempDir dir;
   dir.write("napkin.obj", napkin_obj());
   const std::string root = dir.path().string();
@@ -222,17 +223,20 @@ TEST_CASE("a creased sheet folds flat onto itself, layers a thickness apart (eve
   const std::vector<std::string> methods = test::methods_taking([](const std::string&) { return kNapkin; }, {}, root);
   REQUIRE(methods.size() >= 4);  // xpbd, vbd, sosd and jpgd at least
   for (const std::string& method : methods) {
-    INFO(method);
-    app::run_simulation(options(dir, kNapkin, method, "single", method + ".h5"));
-    const std::string out = dir.file(method + ".h5");
-    const std::vector<Vector3d> x0 = frame(out, 0), x = frame(out, 60);
-    INFO("closest far pair " << closest_far_pair(s, x0, x) << " m");
-    CHECK(folded_onto_itself(s, x0, x));
-    SurfaceCheck c;
-    check_frame(s, x, 60, c);
-    INFO("closest non-incident vertex-triangle distance " << c.closest << " m");
-    CHECK(c.crossings == 0);
-    CHECK(c.closest >= 0.99 * kThickness);
+    for (const std::string schedule : {"single", "heft"}) {
+      INFO(method << "/" << schedule);
+      const std::string name = method + "-" + schedule + ".h5";
+      app::run_simulation(options(dir, kNapkin, method, schedule, name));
+      const std::string out = dir.file(name);
+      const std::vector<Vector3d> x0 = frame(out, 0), x = frame(out, 60);
+      INFO("closest far pair " << closest_far_pair(s, x0, x) << " m");
+      CHECK(folded_onto_itself(s, x0, x));
+      SurfaceCheck c;
+      check_frame(s, x, 60, c);
+      INFO("closest non-incident vertex-triangle distance " << c.closest << " m");
+      CHECK(c.crossings == 0);
+      CHECK(c.closest >= 0.99 * kThickness);
+    }
   }
 }
 
