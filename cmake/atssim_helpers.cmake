@@ -33,10 +33,11 @@ function(atssim_include_root target scope root prefix dir)
   target_include_directories(${target} ${scope} ${path})
 endfunction()
 
-# atssim_add_test(NAME SOURCES... DEPS...) — one Catch2 executable per stage,
-# registered with ctest test by test.
+# atssim_add_test(NAME SOURCES... DEPS... [LABELS...] [RESOURCE_LOCK lock]) —
+# one Catch2 executable per stage, registered with ctest test by test. Tests
+# that hold the same RESOURCE_LOCK never run at the same time under ctest -j.
 function(atssim_add_test name)
-  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS;LABELS" ${ARGN})
+  cmake_parse_arguments(ARG "" "RESOURCE_LOCK" "SOURCES;DEPS;LABELS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   set_property(GLOBAL APPEND PROPERTY ATSSIM_TEST_TARGETS ${name})
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} Catch2::Catch2WithMain)
@@ -44,6 +45,9 @@ function(atssim_add_test name)
   set(props ENVIRONMENT "POCL_CACHE_DIR=${ATSSIM_TEST_POCL_CACHE}")
   if(ARG_LABELS)
     list(APPEND props LABELS "${ARG_LABELS}")
+  endif()
+  if(ARG_RESOURCE_LOCK)
+    list(APPEND props RESOURCE_LOCK ${ARG_RESOURCE_LOCK})
   endif()
   catch_discover_tests(${name}
     EXTRA_ARGS ${ATSSIM_CATCH_ARGS}
