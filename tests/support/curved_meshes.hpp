@@ -1,7 +1,7 @@
 #pragma once
 // Curved triangle meshes for tests, written as OBJ text: a closed sphere
-// shell (subdivided icosahedron) and an open spherical cap (a grid lifted
-// onto a sphere).
+// shell (subdivided icosahedron), an open spherical cap (a grid lifted
+// onto a sphere) and a sheet creased along a line.
 #include <array>
 #include <cmath>
 #include <map>
@@ -80,6 +80,39 @@ inline ObjMesh spherical_cap(double radius, double half, int n) {
       const int a = k * n + i, b = a + 1, c = a + n, d = c + 1;
       m.f.push_back({a, c, b});
       m.f.push_back({b, c, d});
+    }
+  }
+  return m;
+}
+
+// A square sheet of side 2 `half`, n × n vertices (n odd), creased along
+// its middle row: the half s ≥ 0 flat at y = `lift` over z = s, the half
+// s < 0 rising from the crease at `lean` radians over the flat half (the
+// sheet folded open like a book). Rows run along the unfolded sheet, s from
+// -half to half; the quads' diagonals alternate.
+inline ObjMesh creased_sheet(double half, int n, double lean, double lift) {
+  ObjMesh m;
+  for (int j = 0; j < n; ++j) {
+    const double s = half * (2.0 * j / (n - 1) - 1.0);
+    for (int i = 0; i < n; ++i) {
+      const double x = half * (2.0 * i / (n - 1) - 1.0);
+      if (s >= 0) {
+        m.v.push_back({x, lift, s});
+      } else {
+        m.v.push_back({x, lift - s * std::sin(lean), -s * std::cos(lean)});
+      }
+    }
+  }
+  for (int j = 0; j + 1 < n; ++j) {
+    for (int i = 0; i + 1 < n; ++i) {
+      const int a = j * n + i, b = a + 1, c = a + n + 1, d = a + n;
+      if ((i + j) % 2 == 0) {
+        m.f.push_back({a, b, c});
+        m.f.push_back({a, c, d});
+      } else {
+        m.f.push_back({a, b, d});
+        m.f.push_back({b, c, d});
+      }
     }
   }
   return m;
