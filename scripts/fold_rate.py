@@ -7,7 +7,7 @@ self-contact thickness 0.01 m. Which way it buckles is chaotic, so one run
 says little; this runs it over a grid of substeps x iterations and counts
 the runs that end folded: some vertex within 2 thicknesses of a triangle it
 started 0.1 m or more away from, at the last frame (the test's criterion,
-brute force in double here).
+brute force in double here, with bench_paper_scenes.py's point_triangle).
 
 usage: scripts/fold_rate.py [--atssim build/release/atssim] [--methods xpbd,sosd,vbd,jpgd]
                             [--substeps 8,12,16,24,32] [--iterations 6,10,20]
@@ -21,6 +21,9 @@ import tempfile
 import h5py
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from bench_paper_scenes import point_triangle  # noqa: E402  (Ericson's regions, vectorised)
+
 SCENE = """simulation: {fps: 60, substeps: 8, iterations: 6, frames: 60}
 objects:
   - {name: sheet, grid: {size: [0.4, 0.4], resolution: [10, 10]}, transform: {rotate: [84, 0, 0], translate: [0, 0.22, 0]},
@@ -32,40 +35,16 @@ contact: {self: true, thickness: 0.01}
 THICKNESS = 0.01
 
 
-def point_triangle(p, a, b, c):
-    """Distance from p to triangle abc (Ericson, Real-Time Collision Detection 5.1.5)."""
-    ab, ac, ap = b - a, c - a, p - a
-    d1, d2 = ab @ ap, ac @ ap
-    if d1 <= 0 and d2 <= 0:
-        return np.linalg.norm(p - a)
-    bp = p - b
-    d3, d4 = ab @ bp, ac @ bp
-    if d3 >= 0 and d4 <= d3:
-        return np.linalg.norm(p - b)
-    vc = d1 * d4 - d3 * d2
-    if vc <= 0 and d1 >= 0 and d3 <= 0:
-        return np.linalg.norm(p - (a + d1 / (d1 - d3) * ab))
-    cp = p - c
-    d5, d6 = ab @ cp, ac @ cp
-    if d6 >= 0 and d5 <= d6:
-        return np.linalg.norm(p - c)
-    vb = d5 * d2 - d1 * d6
-    if vb <= 0 and d2 >= 0 and d6 <= 0:
-        return np.linalg.norm(p - (a + d2 / (d2 - d6) * ac))
-    va = d3 * d6 - d5 * d4
-    if va <= 0 and d4 - d3 >= 0 and d5 - d6 >= 0:
-        return np.linalg.norm(p - (b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b)))
-    denom = 1 / (va + vb + vc)
-    return np.linalg.norm(p - (a + ab * vb * denom + ac * vc * denom))
-
-
 def closest_far_pair(path):
     with h5py.File(path, "r") as f:
         x = f["frames/positions"][:].astype(np.float64)
-        tris = f["mesh/sheet/triangles"][:]
+        tris = f["mesh/sheet/triangles"][:].astype(np.int64)
     x0, xn = x[0], x[-1]
-    return min(point_triangle(xn[v], *xn[t]) for t in tris for v in range(len(x0))
-               if point_triangle(x0[v], *x0[t]) >= 0.1)
+    v = np.repeat(np.arange(len(x0)), len(tris))  # every vertex against every triangle
+    t = np.tile(np.arange(len(tris)), len(x0))
+    far = point_triangle(x0[v], *(x0[tris[t, k]] for k in range(3))) >= 0.1
+    v, t = v[far], t[far]
+    return float(point_triangle(xn[v], *(xn[tris[t, k]] for k in range(3))).min())
 
 
 def main():
