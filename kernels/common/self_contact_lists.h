@@ -105,32 +105,30 @@ ATS_FN void sc_decide(ATS_GLOBAL const float* block_max, int blocks, float r, fl
   }
 }
 
-/* The nearest any primitive vertex i does not have listed can be: the
- * smallest horizon of its lists (as a point, through its triangles, through
- * its edges) less twice the displacement D since the lists were made. */
-ATS_FN float sc_unlisted_distance(int i, ATS_GLOBAL const int* inc, int n, ATS_GLOBAL const int* vt,
-                                  ATS_GLOBAL const int* tv, ATS_GLOBAL const int* ee, float moved) {
-  float d = sc_bits_float(vt[i * ATS_SC_STRIDE + 1]);
-  for (int k = inc[i]; k < inc[i + 1]; ++k) d = fmin(d, sc_bits_float(tv[inc[k] * ATS_SC_STRIDE + 1]));
-  for (int k = inc[n + 1 + i]; k < inc[n + 2 + i]; ++k) d = fmin(d, sc_bits_float(ee[inc[k] * ATS_SC_STRIDE + 1]));
-  return d - 2.0f * moved;
-}
-
 /* The distances of a list's entries at x, once per substep: out[2 + m]
  * entry m's, out[0] the smallest (1e30 for an empty list). The bound and the
  * near lists read them, so each listed pair's geometry is evaluated once
- * here rather than by each of its vertices. Same layout as the lists. */
-ATS_FN void sc_store_distances(ATS_GLOBAL const int* list, const float* d, ATS_GLOBAL float* out) {
+ * here rather than by each of its vertices. Same layout as the lists. And
+ * the list's reach, the nearest its primitive can be to any other, listed
+ * (the smallest distance) or not (its horizon, which every primitive it
+ * does not hold was at least at, less twice the displacement D since the
+ * lists were made, state[3] of sc_decide), into reach[id]: one
+ * float per list, so that the bound's gather over a vertex's lists reads
+ * packed floats rather than a strided list each (sc_vertex_bound). */
+ATS_FN void sc_store_distances(ATS_GLOBAL const int* list, const float* d, ATS_GLOBAL float* out, float moved,
+                               ATS_GLOBAL float* reach) {
   float least = 1e30f;
   for (int m = 0; m < list[0]; ++m) {
     out[2 + m] = d[m];
     least = fmin(least, d[m]);
   }
   out[0] = least;
+  *reach = fmin(least, sc_bits_float(list[1]) - 2.0f * moved);
 }
 
 ATS_FN void sc_vertex_distances(int i, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* tris,
-                                ATS_GLOBAL const int* vt, ATS_GLOBAL float* vt_d) {
+                                ATS_GLOBAL const int* vt, ATS_GLOBAL float* vt_d, float moved,
+                                ATS_GLOBAL float* reach) {
   ATS_GLOBAL const int* l = vt + i * ATS_SC_STRIDE;
   float d[ATS_SC_CAPACITY];
   const ats_vec3 p = sc_v(x[i]);
@@ -138,21 +136,22 @@ ATS_FN void sc_vertex_distances(int i, ATS_GLOBAL const ats_float4* x, ATS_GLOBA
     ATS_GLOBAL const int* f = tris + 4 * l[2 + m];
     d[m] = ats_point_triangle(p, sc_v(x[f[0]]), sc_v(x[f[1]]), sc_v(x[f[2]])).d;
   }
-  sc_store_distances(l, d, vt_d + i * ATS_SC_STRIDE);
+  sc_store_distances(l, d, vt_d + i * ATS_SC_STRIDE, moved, reach + i);
 }
 
 ATS_FN void sc_triangle_distances(int t, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* tris,
-                                  ATS_GLOBAL const int* tv, ATS_GLOBAL float* tv_d) {
+                                  ATS_GLOBAL const int* tv, ATS_GLOBAL float* tv_d, float moved,
+                                  ATS_GLOBAL float* reach) {
   ATS_GLOBAL const int* l = tv + t * ATS_SC_STRIDE;
   ATS_GLOBAL const int* f = tris + 4 * t;
   float d[ATS_SC_CAPACITY];
   const ats_vec3 a = sc_v(x[f[0]]), b = sc_v(x[f[1]]), c = sc_v(x[f[2]]);
   for (int m = 0; m < l[0]; ++m) d[m] = ats_point_triangle(sc_v(x[l[2 + m]]), a, b, c).d;
-  sc_store_distances(l, d, tv_d + t * ATS_SC_STRIDE);
+  sc_store_distances(l, d, tv_d + t * ATS_SC_STRIDE, moved, reach + t);
 }
 
 ATS_FN void sc_edge_distances(int e, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* edges,
-                              ATS_GLOBAL const int* ee, ATS_GLOBAL float* ee_d) {
+                              ATS_GLOBAL const int* ee, ATS_GLOBAL float* ee_d, float moved, ATS_GLOBAL float* reach) {
   ATS_GLOBAL const int* l = ee + e * ATS_SC_STRIDE;
   float d[ATS_SC_CAPACITY];
   const ats_vec3 a = sc_v(x[edges[2 * e]]), b = sc_v(x[edges[2 * e + 1]]);
@@ -160,20 +159,20 @@ ATS_FN void sc_edge_distances(int e, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL 
     const int o = l[2 + m];
     d[m] = ats_edge_edge(a, b, sc_v(x[edges[2 * o]]), sc_v(x[edges[2 * o + 1]])).d;
   }
-  sc_store_distances(l, d, ee_d + e * ATS_SC_STRIDE);
+  sc_store_distances(l, d, ee_d + e * ATS_SC_STRIDE, moved, reach + e);
 }
 
 /* VBD's conservative displacement bound of vertex i (§3.7): gamma times the
- * distance to the nearest primitive it could meet, on x_t: its listed pairs'
- * distances now (as a point, through its triangles, through its edges), and
- * what its lists' horizons leave for the rest (sc_unlisted_distance). */
-ATS_FN float sc_vertex_bound(int i, ATS_GLOBAL const int* inc, int n, ATS_GLOBAL const int* vt,
-                             ATS_GLOBAL const int* tv, ATS_GLOBAL const int* ee, ATS_GLOBAL const float* vt_d,
-                             ATS_GLOBAL const float* tv_d, ATS_GLOBAL const float* ee_d, float moved, float gamma) {
+ * distance to the nearest primitive it could meet, on x_t: the reach of its
+ * lists (sc_store_distances), as a point, through its triangles and through
+ * its edges. The same as the smallest of the listed pairs' distances and of the
+ * smallest horizon less 2 D, since fl(h - 2 D) grows with h. */
+ATS_FN float sc_vertex_bound(int i, ATS_GLOBAL const int* inc, int n, ATS_GLOBAL const float* vt_reach,
+                             ATS_GLOBAL const float* tv_reach, ATS_GLOBAL const float* ee_reach, float gamma) {
   if (!sc_is_surface(inc, i)) return 1e30f;
-  float d = fmin(sc_unlisted_distance(i, inc, n, vt, tv, ee, moved), vt_d[i * ATS_SC_STRIDE]);
-  for (int k = inc[i]; k < inc[i + 1]; ++k) d = fmin(d, tv_d[inc[k] * ATS_SC_STRIDE]);
-  for (int k = inc[n + 1 + i]; k < inc[n + 2 + i]; ++k) d = fmin(d, ee_d[inc[k] * ATS_SC_STRIDE]);
+  float d = vt_reach[i];
+  for (int k = inc[i]; k < inc[i + 1]; ++k) d = fmin(d, tv_reach[inc[k]]);
+  for (int k = inc[n + 1 + i]; k < inc[n + 2 + i]; ++k) d = fmin(d, ee_reach[inc[k]]);
   return gamma * fmax(d, 0.0f);
 }
 
@@ -208,12 +207,13 @@ ATS_FN int sc_near_store(ATS_GLOBAL const int* list, const int* keep, ATS_GLOBAL
 }
 
 /* Vertex i's near list, after its triangles' and edges' (sc_near_triangle,
- * sc_near_edge): [1] holds how many near entries vertex i is in, as a point,
- * through its triangles and through its edges, so that a vertex without any
- * skips the gathers (contact/self_contact.cl SC_FOR_EACH_PAIR). */
+ * sc_near_edge, which leave their counts packed in tv_count, ee_count): [1]
+ * holds how many near entries vertex i is in, as a point, through its
+ * triangles and through its edges, so that a vertex without any skips the
+ * gathers (contact/self_contact.cl SC_FOR_EACH_PAIR). */
 ATS_FN void sc_near_vertex(int i, ATS_GLOBAL const int* inc, int n, ATS_GLOBAL const int* tris,
                            ATS_GLOBAL const int* vt, ATS_GLOBAL float* vt_d, ATS_GLOBAL const float* bound, float r,
-                           ATS_GLOBAL const int* tv_near, ATS_GLOBAL const int* ee_near, ATS_GLOBAL int* vt_near) {
+                           ATS_GLOBAL const int* tv_count, ATS_GLOBAL const int* ee_count, ATS_GLOBAL int* vt_near) {
   ATS_GLOBAL const int* l = vt + i * ATS_SC_STRIDE;
   ATS_GLOBAL float* d = vt_d + i * ATS_SC_STRIDE;
   int keep[ATS_SC_CAPACITY];
@@ -222,24 +222,25 @@ ATS_FN void sc_near_vertex(int i, ATS_GLOBAL const int* inc, int n, ATS_GLOBAL c
     keep[m] = d[2 + m] - bound[i] - sc_side_bound(bound, f[0], f[1], f[2]) < r;
   }
   int total = sc_near_store(l, keep, vt_near + i * ATS_SC_STRIDE, d);
-  for (int k = inc[i]; k < inc[i + 1]; ++k) total += tv_near[inc[k] * ATS_SC_STRIDE];
-  for (int k = inc[n + 1 + i]; k < inc[n + 2 + i]; ++k) total += ee_near[inc[k] * ATS_SC_STRIDE];
+  for (int k = inc[i]; k < inc[i + 1]; ++k) total += tv_count[inc[k]];
+  for (int k = inc[n + 1 + i]; k < inc[n + 2 + i]; ++k) total += ee_count[inc[k]];
   vt_near[i * ATS_SC_STRIDE + 1] = total;
 }
 
 ATS_FN void sc_near_triangle(int t, ATS_GLOBAL const int* tris, ATS_GLOBAL const int* tv, ATS_GLOBAL float* tv_d,
-                             ATS_GLOBAL const float* bound, float r, ATS_GLOBAL int* tv_near) {
+                             ATS_GLOBAL const float* bound, float r, ATS_GLOBAL int* tv_near,
+                             ATS_GLOBAL int* tv_count) {
   ATS_GLOBAL const int* l = tv + t * ATS_SC_STRIDE;
   ATS_GLOBAL float* d = tv_d + t * ATS_SC_STRIDE;
   ATS_GLOBAL const int* f = tris + 4 * t;
   int keep[ATS_SC_CAPACITY];
   const float reach = sc_side_bound(bound, f[0], f[1], f[2]);
   for (int m = 0; m < l[0]; ++m) keep[m] = d[2 + m] - reach - bound[l[2 + m]] < r;
-  sc_near_store(l, keep, tv_near + t * ATS_SC_STRIDE, d);
+  tv_count[t] = sc_near_store(l, keep, tv_near + t * ATS_SC_STRIDE, d);
 }
 
 ATS_FN void sc_near_edge(int e, ATS_GLOBAL const int* edges, ATS_GLOBAL const int* ee, ATS_GLOBAL float* ee_d,
-                         ATS_GLOBAL const float* bound, float r, ATS_GLOBAL int* ee_near) {
+                         ATS_GLOBAL const float* bound, float r, ATS_GLOBAL int* ee_near, ATS_GLOBAL int* ee_count) {
   ATS_GLOBAL const int* l = ee + e * ATS_SC_STRIDE;
   ATS_GLOBAL float* d = ee_d + e * ATS_SC_STRIDE;
   int keep[ATS_SC_CAPACITY];
@@ -248,7 +249,7 @@ ATS_FN void sc_near_edge(int e, ATS_GLOBAL const int* edges, ATS_GLOBAL const in
     const int o = l[2 + m];
     keep[m] = d[2 + m] - reach - sc_side_bound(bound, edges[2 * o], edges[2 * o + 1], -1) < r;
   }
-  sc_near_store(l, keep, ee_near + e * ATS_SC_STRIDE, d);
+  ee_count[e] = sc_near_store(l, keep, ee_near + e * ATS_SC_STRIDE, d);
 }
 
 #endif

@@ -84,30 +84,34 @@ ATS_TASK void sc_query_groups(int g, __global const float4* x, __global const in
 /* Once per substep, after the lists (common/self_contact_lists.h): every
  * listed pair's distance at x_t, per vertex, triangle and edge list; then
  * the bound (below) and the near lists the iterations and friction read. */
+/* state[3]: the displacement D since the lists were made (sc_decide). */
 ATS_TASK void sc_vertex_distances_task(int i, __global const float4* x, __global const int4* tris,
-                                       __global const int* vt, __global float* vt_d) {
-  sc_vertex_distances(i, x, (__global const int*)tris, vt, vt_d);
+                                       __global const int* vt, __global const int* state, __global float* vt_d,
+                                       __global float* vt_reach) {
+  sc_vertex_distances(i, x, (__global const int*)tris, vt, vt_d, as_float(state[3]), vt_reach);
 }
 ATS_TASK void sc_triangle_distances_task(int t, __global const float4* x, __global const int4* tris,
-                                         __global const int* tv, __global float* tv_d) {
-  sc_triangle_distances(t, x, (__global const int*)tris, tv, tv_d);
+                                         __global const int* tv, __global const int* state, __global float* tv_d,
+                                         __global float* tv_reach) {
+  sc_triangle_distances(t, x, (__global const int*)tris, tv, tv_d, as_float(state[3]), tv_reach);
 }
 ATS_TASK void sc_edge_distances_task(int e, __global const float4* x, __global const int2* edges,
-                                     __global const int* ee, __global float* ee_d) {
-  sc_edge_distances(e, x, (__global const int*)edges, ee, ee_d);
+                                     __global const int* ee, __global const int* state, __global float* ee_d,
+                                     __global float* ee_reach) {
+  sc_edge_distances(e, x, (__global const int*)edges, ee, ee_d, as_float(state[3]), ee_reach);
 }
 ATS_TASK void sc_near_vertices(int i, __global const int* inc, int n, __global const int4* tris, __global const int* vt,
-                               __global float* vt_d, __global const float* bound, float r, __global const int* tv_near,
-                               __global const int* ee_near, __global int* vt_near) {
-  sc_near_vertex(i, inc, n, (__global const int*)tris, vt, vt_d, bound, r, tv_near, ee_near, vt_near);
+                               __global float* vt_d, __global const float* bound, float r, __global const int* tv_count,
+                               __global const int* ee_count, __global int* vt_near) {
+  sc_near_vertex(i, inc, n, (__global const int*)tris, vt, vt_d, bound, r, tv_count, ee_count, vt_near);
 }
 ATS_TASK void sc_near_triangles(int t, __global const int4* tris, __global const int* tv, __global float* tv_d,
-                                __global const float* bound, float r, __global int* tv_near) {
-  sc_near_triangle(t, (__global const int*)tris, tv, tv_d, bound, r, tv_near);
+                                __global const float* bound, float r, __global int* tv_near, __global int* tv_count) {
+  sc_near_triangle(t, (__global const int*)tris, tv, tv_d, bound, r, tv_near, tv_count);
 }
 ATS_TASK void sc_near_edges(int e, __global const int2* edges, __global const int* ee, __global float* ee_d,
-                            __global const float* bound, float r, __global int* ee_near) {
-  sc_near_edge(e, (__global const int*)edges, ee, ee_d, bound, r, ee_near);
+                            __global const float* bound, float r, __global int* ee_near, __global int* ee_count) {
+  sc_near_edge(e, (__global const int*)edges, ee, ee_d, bound, r, ee_near, ee_count);
 }
 
 /* p held within distance b of q (VBD's truncation of a vertex's step). */
@@ -210,10 +214,10 @@ ATS_TASK void sc_clamp(int i, __global float4* x, __global const float4* x_start
 
 /* VBD's conservative displacement bound of vertex i (§3.7), from the
  * distances above (common/self_contact_lists.h sc_vertex_bound). */
-ATS_TASK void sc_bound(int i, __global const int* inc, int n, __global const int* vt, __global const int* tv,
-                       __global const int* ee, __global const float* vt_d, __global const float* tv_d,
-                       __global const float* ee_d, __global const int* state, float gamma, __global float* bound) {
-  bound[i] = sc_vertex_bound(i, inc, n, vt, tv, ee, vt_d, tv_d, ee_d, as_float(state[3]), gamma);
+ATS_TASK void sc_bound(int i, __global const int* inc, int n, __global const float* vt_reach,
+                       __global const float* tv_reach, __global const float* ee_reach, float gamma,
+                       __global float* bound) {
+  bound[i] = sc_vertex_bound(i, inc, n, vt_reach, tv_reach, ee_reach, gamma);
 }
 
 /* XPBD (Macklin et al. 2016) inequality constraint C = d - r >= 0 of every

@@ -71,6 +71,11 @@ SelfContactBuffers add_self_contact_buffers(plan::SubstepPlan& plan, const SimLa
   b.vt_d = plan.add_buffer("sc_vt_d", BufferRole::scratch, zeros(n * kListInts * 4));
   b.tv_d = plan.add_buffer("sc_tv_d", BufferRole::scratch, zeros(s.tris.size() * kListInts * 4));
   b.ee_d = plan.add_buffer("sc_ee_d", BufferRole::scratch, zeros(s.edges.size() * kListInts * 4));
+  b.vt_reach = plan.add_buffer("sc_vt_reach", BufferRole::scratch, zeros(n * 4));
+  b.tv_reach = plan.add_buffer("sc_tv_reach", BufferRole::scratch, zeros(s.tris.size() * 4));
+  b.ee_reach = plan.add_buffer("sc_ee_reach", BufferRole::scratch, zeros(s.edges.size() * 4));
+  b.tv_count = plan.add_buffer("sc_tv_count", BufferRole::scratch, zeros(s.tris.size() * 4));
+  b.ee_count = plan.add_buffer("sc_ee_count", BufferRole::scratch, zeros(s.edges.size() * 4));
   b.vt_near = plan.add_buffer("sc_vt_near", BufferRole::scratch, zeros(n * kListInts * 4));
   b.tv_near = plan.add_buffer("sc_tv_near", BufferRole::scratch, zeros(s.tris.size() * kListInts * 4));
   b.ee_near = plan.add_buffer("sc_ee_near", BufferRole::scratch, zeros(s.edges.size() * kListInts * 4));
@@ -165,45 +170,53 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
   // within the query radius, a few of which come within the thickness in one
   // substep.
   const int edges = static_cast<int>(s.edges.size());
+  // Each writes its lists (`out`), and a packed float or int per list
+  // (`packed`, unless -1).
   const auto per_list = [&](const std::string& name, const char* function, int count, std::vector<Arg> args,
-                            plan::BufferId out, plan::BufferId distances = -1) {
+                            plan::BufferId out, plan::BufferId packed, plan::BufferId distances = -1) {
     std::vector<WriteSpan> writes{WriteSpan::per_element(out, kListInts * 4)};
+    if (packed >= 0) writes.push_back(WriteSpan::per_element(packed, 4));
     // The near lists move their entries' distances to the front (sc_near_store).
     if (distances >= 0) writes.push_back(WriteSpan::per_element(distances, kListInts * 4));
     last = plan.add_task_after(last, detect(name), {function, {0, count}, std::move(args), std::move(writes)});
   };
   last = pairs;
   per_list("detect/distances_vertices", "sc_vertex_distances_task", n,
-           {Arg::of_buffer(start), Arg::of_buffer(b.tris), Arg::of_buffer(b.vt), Arg::of_buffer(b.vt_d)}, b.vt_d);
+           {Arg::of_buffer(start), Arg::of_buffer(b.tris), Arg::of_buffer(b.vt), Arg::of_buffer(b.state),
+            Arg::of_buffer(b.vt_d), Arg::of_buffer(b.vt_reach)},
+           b.vt_d, b.vt_reach);
   per_list("detect/distances_triangles", "sc_triangle_distances_task", tris,
-           {Arg::of_buffer(start), Arg::of_buffer(b.tris), Arg::of_buffer(b.tv), Arg::of_buffer(b.tv_d)}, b.tv_d);
+           {Arg::of_buffer(start), Arg::of_buffer(b.tris), Arg::of_buffer(b.tv), Arg::of_buffer(b.state),
+            Arg::of_buffer(b.tv_d), Arg::of_buffer(b.tv_reach)},
+           b.tv_d, b.tv_reach);
   per_list("detect/distances_edges", "sc_edge_distances_task", edges,
-           {Arg::of_buffer(start), Arg::of_buffer(b.edges), Arg::of_buffer(b.ee), Arg::of_buffer(b.ee_d)}, b.ee_d);
+           {Arg::of_buffer(start), Arg::of_buffer(b.edges), Arg::of_buffer(b.ee), Arg::of_buffer(b.state),
+            Arg::of_buffer(b.ee_d), Arg::of_buffer(b.ee_reach)},
+           b.ee_d, b.ee_reach);
   const sched::TaskId bound = plan.add_task_after(
       last, detect("detect/bound"),
       {"sc_bound",
        {0, n},
-       {Arg::of_buffer(b.incidence), Arg::of_int(n), Arg::of_buffer(b.vt), Arg::of_buffer(b.tv), Arg::of_buffer(b.ee),
-        Arg::of_buffer(b.vt_d), Arg::of_buffer(b.tv_d), Arg::of_buffer(b.ee_d), Arg::of_buffer(b.state),
-        Arg::of_float(s.gamma), Arg::of_buffer(b.bound)},
+       {Arg::of_buffer(b.incidence), Arg::of_int(n), Arg::of_buffer(b.vt_reach), Arg::of_buffer(b.tv_reach),
+        Arg::of_buffer(b.ee_reach), Arg::of_float(s.gamma), Arg::of_buffer(b.bound)},
        {WriteSpan::per_element(b.bound, 4)}});
   plan.graph.add_edge(snap, bound);
   last = bound;
   const float r = s.thickness;
   per_list("detect/near_triangles", "sc_near_triangles", tris,
            {Arg::of_buffer(b.tris), Arg::of_buffer(b.tv), Arg::of_buffer(b.tv_d), Arg::of_buffer(b.bound),
-            Arg::of_float(r), Arg::of_buffer(b.tv_near)},
-           b.tv_near, b.tv_d);
+            Arg::of_float(r), Arg::of_buffer(b.tv_near), Arg::of_buffer(b.tv_count)},
+           b.tv_near, b.tv_count, b.tv_d);
   per_list("detect/near_edges", "sc_near_edges", edges,
            {Arg::of_buffer(b.edges), Arg::of_buffer(b.ee), Arg::of_buffer(b.ee_d), Arg::of_buffer(b.bound),
-            Arg::of_float(r), Arg::of_buffer(b.ee_near)},
-           b.ee_near, b.ee_d);
+            Arg::of_float(r), Arg::of_buffer(b.ee_near), Arg::of_buffer(b.ee_count)},
+           b.ee_near, b.ee_count, b.ee_d);
   // last: it counts the near entries of each vertex's triangles and edges
   per_list("detect/near_vertices", "sc_near_vertices", n,
            {Arg::of_buffer(b.incidence), Arg::of_int(n), Arg::of_buffer(b.tris), Arg::of_buffer(b.vt),
-            Arg::of_buffer(b.vt_d), Arg::of_buffer(b.bound), Arg::of_float(r), Arg::of_buffer(b.tv_near),
-            Arg::of_buffer(b.ee_near), Arg::of_buffer(b.vt_near)},
-           b.vt_near, b.vt_d);
+            Arg::of_buffer(b.vt_d), Arg::of_buffer(b.bound), Arg::of_float(r), Arg::of_buffer(b.tv_count),
+            Arg::of_buffer(b.ee_count), Arg::of_buffer(b.vt_near)},
+           b.vt_near, -1, b.vt_d);
   return plan.add_task_after(last, plan::make_task("contact/first_guess", plan::TaskKind::collision),
                              {"sc_clamp",
                               {0, n},
