@@ -210,10 +210,13 @@ ATS_FN int sc_near_store(ATS_GLOBAL const int* list, const int* keep, ATS_GLOBAL
  * sc_near_edge, which leave their counts packed in tv_count, ee_count): [1]
  * holds how many near entries vertex i is in, as a point, through its
  * triangles and through its edges, so that a vertex without any skips the
- * gathers (contact/self_contact.cl SC_FOR_EACH_PAIR). */
+ * gathers (contact/self_contact.cl SC_FOR_EACH_PAIR); vt_count[i] and
+ * vt_total[i] hold its own count and that total packed, for the passes
+ * that skip the lists without near entries (XPBD's projection). */
 ATS_FN void sc_near_vertex(int i, ATS_GLOBAL const int* inc, int n, ATS_GLOBAL const int* tris,
                            ATS_GLOBAL const int* vt, ATS_GLOBAL float* vt_d, ATS_GLOBAL const float* bound, float r,
-                           ATS_GLOBAL const int* tv_count, ATS_GLOBAL const int* ee_count, ATS_GLOBAL int* vt_near) {
+                           ATS_GLOBAL const int* tv_count, ATS_GLOBAL const int* ee_count, ATS_GLOBAL int* vt_near,
+                           ATS_GLOBAL int* vt_count, ATS_GLOBAL int* vt_total) {
   ATS_GLOBAL const int* l = vt + i * ATS_SC_STRIDE;
   ATS_GLOBAL float* d = vt_d + i * ATS_SC_STRIDE;
   int keep[ATS_SC_CAPACITY];
@@ -221,10 +224,13 @@ ATS_FN void sc_near_vertex(int i, ATS_GLOBAL const int* inc, int n, ATS_GLOBAL c
     ATS_GLOBAL const int* f = tris + 4 * l[2 + m];
     keep[m] = d[2 + m] - bound[i] - sc_side_bound(bound, f[0], f[1], f[2]) < r;
   }
-  int total = sc_near_store(l, keep, vt_near + i * ATS_SC_STRIDE, d);
+  const int own = sc_near_store(l, keep, vt_near + i * ATS_SC_STRIDE, d);
+  int total = own;
   for (int k = inc[i]; k < inc[i + 1]; ++k) total += tv_count[inc[k]];
   for (int k = inc[n + 1 + i]; k < inc[n + 2 + i]; ++k) total += ee_count[inc[k]];
   vt_near[i * ATS_SC_STRIDE + 1] = total;
+  vt_count[i] = own;
+  vt_total[i] = total;
 }
 
 ATS_FN void sc_near_triangle(int t, ATS_GLOBAL const int* tris, ATS_GLOBAL const int* tv, ATS_GLOBAL float* tv_d,

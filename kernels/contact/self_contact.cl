@@ -102,8 +102,10 @@ ATS_TASK void sc_edge_distances_task(int e, __global const float4* x, __global c
 }
 ATS_TASK void sc_near_vertices(int i, __global const int* inc, int n, __global const int4* tris, __global const int* vt,
                                __global float* vt_d, __global const float* bound, float r, __global const int* tv_count,
-                               __global const int* ee_count, __global int* vt_near) {
-  sc_near_vertex(i, inc, n, (__global const int*)tris, vt, vt_d, bound, r, tv_count, ee_count, vt_near);
+                               __global const int* ee_count, __global int* vt_near, __global int* vt_count,
+                               __global int* vt_total) {
+  sc_near_vertex(i, inc, n, (__global const int*)tris, vt, vt_d, bound, r, tv_count, ee_count, vt_near, vt_count,
+                 vt_total);
 }
 ATS_TASK void sc_near_triangles(int t, __global const int4* tris, __global const int* tv, __global float* tv_d,
                                 __global const float* bound, float r, __global int* tv_near, __global int* tv_count) {
@@ -160,6 +162,16 @@ static inline float4 sc_bounded(float4 p, float4 q, float b) {
 ATS_TASK void sc_clamp(int i, __global float4* x, __global const float4* x_start, __global const float* bound,
                        __global const ats_collider_c* colliders, int collider_count) {
   x[i] = sc_out_of_colliders(sc_bounded(x[i], x_start[i], bound[i]), colliders, collider_count, 1);
+}
+
+/* sc_clamp, then how far the vertex is from x_t (sc_moved_since) in the
+ * same pass: XPBD's projection, which reads both. */
+ATS_TASK void sc_clamp_moved(int i, __global float4* x, __global const float4* x_start, __global const float* bound,
+                             __global const ats_collider_c* colliders, int collider_count, __global float* moved) {
+  const float4 a = sc_out_of_colliders(sc_bounded(x[i], x_start[i], bound[i]), colliders, collider_count, 1);
+  const float4 b = x_start[i];
+  x[i] = a;
+  moved[i] = length((float4)(a.x - b.x, a.y - b.y, a.z - b.z, 0.0f));
 }
 
 /* A pair's other vertices are read through SC_AT(j): x[j] here; VBD's solve
@@ -279,9 +291,15 @@ static inline void sc_end_lambdas(int active, int count, __global float4* out) {
 }
 
 /* The entries of vertex i's list (as the point of a vertex-triangle pair). */
+/* count: the lists' near counts, packed (common/self_contact_lists.h
+ * sc_near_vertex): most lists have none, and their pass reads no list. */
 ATS_TASK void sc_pair_lambdas_points(int i, __global const float4* x, __global const float* moved,
                                      __global const int4* tris, __global const int* vt, __global const float* vt_d,
-                                     float r, __global float4* out, __global int* active) {
+                                     __global const int* count, float r, __global float4* out, __global int* active) {
+  if (count[i] == 0) {
+    active[i] = 0;
+    return;
+  }
   __global const int* l = vt + i * ATS_SC_STRIDE;
   __global const float* d0 = vt_d + i * ATS_SC_STRIDE;
   const ats_vec3 p = sc_v(x[i]);
@@ -300,7 +318,12 @@ ATS_TASK void sc_pair_lambdas_points(int i, __global const float4* x, __global c
 /* The entries of triangle t's list (the points near it). */
 ATS_TASK void sc_pair_lambdas_triangles(int t, __global const float4* x, __global const float* moved,
                                         __global const int4* tris, __global const int* tv, __global const float* tv_d,
-                                        float r, __global float4* out, __global int* active) {
+                                        __global const int* count, float r, __global float4* out,
+                                        __global int* active) {
+  if (count[t] == 0) {
+    active[t] = 0;
+    return;
+  }
   __global const int* l = tv + t * ATS_SC_STRIDE;
   __global const float* d0 = tv_d + t * ATS_SC_STRIDE;
   const int4 f = tris[t];
@@ -320,7 +343,11 @@ ATS_TASK void sc_pair_lambdas_triangles(int t, __global const float4* x, __globa
 /* The entries of edge e's list (the edges near it). */
 ATS_TASK void sc_pair_lambdas_edges(int e, __global const float4* x, __global const float* moved,
                                     __global const int2* edges, __global const int* ee, __global const float* ee_d,
-                                    float r, __global float4* out, __global int* active) {
+                                    __global const int* count, float r, __global float4* out, __global int* active) {
+  if (count[e] == 0) {
+    active[e] = 0;
+    return;
+  }
   __global const int* l = ee + e * ATS_SC_STRIDE;
   __global const float* d0 = ee_d + e * ATS_SC_STRIDE;
   const int2 s = edges[e];
@@ -355,11 +382,12 @@ static inline int sc_add_corrections(__global const float4* e, int count, int sl
  * sc_pair_lambdas_* of this iteration), read densely so that a list with
  * none is never opened. */
 ATS_TASK void sc_project(int i, __global float4* x, __global const int4* tris, __global const int2* edges,
-                         __global const int* inc, int n, __global const int* vt, __global const float4* vt_l,
+                         __global const int* inc, int n, __global const int* vt_total, __global const float4* vt_l,
                          __global const float4* tv_l, __global const float4* ee_l, __global const int* vt_k,
                          __global const int* tv_k, __global const int* ee_k) {
+  if (!(vt_total[i] > 0)) return;
   const float4 p = x[i];
-  if (p.w == 0.0f || !sc_is_surface(inc, i) || !(vt[i * ATS_SC_STRIDE + 1] > 0)) return;
+  if (p.w == 0.0f || !sc_is_surface(inc, i)) return;
   ats_vec3 sum = ats_v3(0, 0, 0);
   int active = 0;
   if (vt_k[i] > 0) active += sc_add_corrections(vt_l + 2 * i * ATS_SC_CAPACITY, vt_k[i], 0, p.w, &sum);

@@ -76,6 +76,8 @@ SelfContactBuffers add_self_contact_buffers(plan::SubstepPlan& plan, const SimLa
   b.ee_reach = plan.add_buffer("sc_ee_reach", BufferRole::scratch, zeros(s.edges.size() * 4));
   b.tv_count = plan.add_buffer("sc_tv_count", BufferRole::scratch, zeros(s.tris.size() * 4));
   b.ee_count = plan.add_buffer("sc_ee_count", BufferRole::scratch, zeros(s.edges.size() * 4));
+  b.vt_count = plan.add_buffer("sc_vt_count", BufferRole::scratch, zeros(n * 4));
+  b.vt_total = plan.add_buffer("sc_vt_total", BufferRole::scratch, zeros(n * 4));
   b.vt_near = plan.add_buffer("sc_vt_near", BufferRole::scratch, zeros(n * kListInts * 4));
   b.tv_near = plan.add_buffer("sc_tv_near", BufferRole::scratch, zeros(s.tris.size() * kListInts * 4));
   b.ee_near = plan.add_buffer("sc_ee_near", BufferRole::scratch, zeros(s.edges.size() * kListInts * 4));
@@ -170,12 +172,13 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
   // within the query radius, a few of which come within the thickness in one
   // substep.
   const int edges = static_cast<int>(s.edges.size());
-  // Each writes its lists (`out`), and a packed float or int per list
-  // (`packed`, unless -1).
+  // Each writes its lists (`out`), and a packed float or int per list in
+  // each of `packed`.
   const auto per_list = [&](const std::string& name, const char* function, int count, std::vector<Arg> args,
-                            plan::BufferId out, plan::BufferId packed, plan::BufferId distances = -1) {
+                            plan::BufferId out, const std::vector<plan::BufferId>& packed,
+                            plan::BufferId distances = -1) {
     std::vector<WriteSpan> writes{WriteSpan::per_element(out, kListInts * 4)};
-    if (packed >= 0) writes.push_back(WriteSpan::per_element(packed, 4));
+    for (const plan::BufferId p : packed) writes.push_back(WriteSpan::per_element(p, 4));
     // The near lists move their entries' distances to the front (sc_near_store).
     if (distances >= 0) writes.push_back(WriteSpan::per_element(distances, kListInts * 4));
     last = plan.add_task_after(last, detect(name), {function, {0, count}, std::move(args), std::move(writes)});
@@ -184,15 +187,15 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
   per_list("detect/distances_vertices", "sc_vertex_distances_task", n,
            {Arg::of_buffer(start), Arg::of_buffer(b.tris), Arg::of_buffer(b.vt), Arg::of_buffer(b.state),
             Arg::of_buffer(b.vt_d), Arg::of_buffer(b.vt_reach)},
-           b.vt_d, b.vt_reach);
+           b.vt_d, {b.vt_reach});
   per_list("detect/distances_triangles", "sc_triangle_distances_task", tris,
            {Arg::of_buffer(start), Arg::of_buffer(b.tris), Arg::of_buffer(b.tv), Arg::of_buffer(b.state),
             Arg::of_buffer(b.tv_d), Arg::of_buffer(b.tv_reach)},
-           b.tv_d, b.tv_reach);
+           b.tv_d, {b.tv_reach});
   per_list("detect/distances_edges", "sc_edge_distances_task", edges,
            {Arg::of_buffer(start), Arg::of_buffer(b.edges), Arg::of_buffer(b.ee), Arg::of_buffer(b.state),
             Arg::of_buffer(b.ee_d), Arg::of_buffer(b.ee_reach)},
-           b.ee_d, b.ee_reach);
+           b.ee_d, {b.ee_reach});
   const sched::TaskId bound = plan.add_task_after(
       last, detect("detect/bound"),
       {"sc_bound",
@@ -206,17 +209,18 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
   per_list("detect/near_triangles", "sc_near_triangles", tris,
            {Arg::of_buffer(b.tris), Arg::of_buffer(b.tv), Arg::of_buffer(b.tv_d), Arg::of_buffer(b.bound),
             Arg::of_float(r), Arg::of_buffer(b.tv_near), Arg::of_buffer(b.tv_count)},
-           b.tv_near, b.tv_count, b.tv_d);
+           b.tv_near, {b.tv_count}, b.tv_d);
   per_list("detect/near_edges", "sc_near_edges", edges,
            {Arg::of_buffer(b.edges), Arg::of_buffer(b.ee), Arg::of_buffer(b.ee_d), Arg::of_buffer(b.bound),
             Arg::of_float(r), Arg::of_buffer(b.ee_near), Arg::of_buffer(b.ee_count)},
-           b.ee_near, b.ee_count, b.ee_d);
+           b.ee_near, {b.ee_count}, b.ee_d);
   // last: it counts the near entries of each vertex's triangles and edges
-  per_list("detect/near_vertices", "sc_near_vertices", n,
-           {Arg::of_buffer(b.incidence), Arg::of_int(n), Arg::of_buffer(b.tris), Arg::of_buffer(b.vt),
-            Arg::of_buffer(b.vt_d), Arg::of_buffer(b.bound), Arg::of_float(r), Arg::of_buffer(b.tv_count),
-            Arg::of_buffer(b.ee_count), Arg::of_buffer(b.vt_near)},
-           b.vt_near, -1, b.vt_d);
+  per_list(
+      "detect/near_vertices", "sc_near_vertices", n,
+      {Arg::of_buffer(b.incidence), Arg::of_int(n), Arg::of_buffer(b.tris), Arg::of_buffer(b.vt),
+       Arg::of_buffer(b.vt_d), Arg::of_buffer(b.bound), Arg::of_float(r), Arg::of_buffer(b.tv_count),
+       Arg::of_buffer(b.ee_count), Arg::of_buffer(b.vt_near), Arg::of_buffer(b.vt_count), Arg::of_buffer(b.vt_total)},
+      b.vt_near, {b.vt_count, b.vt_total}, b.vt_d);
   return plan.add_task_after(last, plan::make_task("contact/first_guess", plan::TaskKind::collision),
                              {"sc_clamp",
                               {0, n},
@@ -279,7 +283,16 @@ sched::TaskId add_self_contact_projection(plan::SubstepPlan& plan, sched::TaskId
   // bound that shrinks with the gap it could not reopen one (a pillow vertex
   // pressed into the cloth reached distance 0, where its bound froze it, and
   // the cloth then slid over it).
-  last = add_self_contact_clamp(plan, last, layout, b, start, positions, iteration);
+  // The clamp and each vertex's distance from x_t for the near entries'
+  // skip (sc_still_apart), in one pass.
+  last = plan.add_task_after(
+      last,
+      plan::make_task(fmt::format("it{}/collision/bound", iteration + 1), plan::TaskKind::collision, iteration, 2),
+      {"sc_clamp_moved",
+       {0, n},
+       {Arg::of_buffer(positions), Arg::of_buffer(start), Arg::of_buffer(b.bound), Arg::of_buffer(b.colliders),
+        Arg::of_int(layout.collider_count), Arg::of_buffer(b.moved)},
+       {particle_write(positions), WriteSpan::per_element(b.moved, 4)}});
   // Per near-list entry the pair's multiplier (each pair evaluated once per
   // list that holds it, not by each of its four vertices:
   // contact/self_contact.cl) and per list how many act, then per vertex.
@@ -299,22 +312,22 @@ sched::TaskId add_self_contact_projection(plan::SubstepPlan& plan, sched::TaskId
                                 {WriteSpan::per_element(out, kEntryBytes * ATS_SC_CAPACITY),
                                  WriteSpan::per_element(active, sizeof(std::int32_t))}});
   };
-  last = add_moved(plan, last, b, start, positions, n,
-                   plan::make_task(fmt::format("it{}/collision/surface_pairs/moved", iteration + 1),
-                                   plan::TaskKind::collision, iteration, 2));
-  const sched::TaskId points = entries("points", "sc_pair_lambdas_points", n, b.tris,
-                                       {Arg::of_buffer(b.vt_near), Arg::of_buffer(b.vt_d)}, b.vt_l, b.vt_k);
-  const sched::TaskId triangles = entries("triangles", "sc_pair_lambdas_triangles", static_cast<int>(s.tris.size()),
-                                          b.tris, {Arg::of_buffer(b.tv_near), Arg::of_buffer(b.tv_d)}, b.tv_l, b.tv_k);
-  const sched::TaskId edges = entries("edges", "sc_pair_lambdas_edges", static_cast<int>(s.edges.size()), b.edges,
-                                      {Arg::of_buffer(b.ee_near), Arg::of_buffer(b.ee_d)}, b.ee_l, b.ee_k);
+  const sched::TaskId points =
+      entries("points", "sc_pair_lambdas_points", n, b.tris,
+              {Arg::of_buffer(b.vt_near), Arg::of_buffer(b.vt_d), Arg::of_buffer(b.vt_count)}, b.vt_l, b.vt_k);
+  const sched::TaskId triangles =
+      entries("triangles", "sc_pair_lambdas_triangles", static_cast<int>(s.tris.size()), b.tris,
+              {Arg::of_buffer(b.tv_near), Arg::of_buffer(b.tv_d), Arg::of_buffer(b.tv_count)}, b.tv_l, b.tv_k);
+  const sched::TaskId edges =
+      entries("edges", "sc_pair_lambdas_edges", static_cast<int>(s.edges.size()), b.edges,
+              {Arg::of_buffer(b.ee_near), Arg::of_buffer(b.ee_d), Arg::of_buffer(b.ee_count)}, b.ee_l, b.ee_k);
   const sched::TaskId project = plan.add_task_after(
       edges,
       plan::make_task(fmt::format("it{}/collision/surfaces", iteration + 1), plan::TaskKind::collision, iteration, 3),
       {"sc_project",
        {0, n},
        {Arg::of_buffer(positions), Arg::of_buffer(b.tris), Arg::of_buffer(b.edges), Arg::of_buffer(b.incidence),
-        Arg::of_int(n), Arg::of_buffer(b.vt_near), Arg::of_buffer(b.vt_l), Arg::of_buffer(b.tv_l),
+        Arg::of_int(n), Arg::of_buffer(b.vt_total), Arg::of_buffer(b.vt_l), Arg::of_buffer(b.tv_l),
         Arg::of_buffer(b.ee_l), Arg::of_buffer(b.vt_k), Arg::of_buffer(b.tv_k), Arg::of_buffer(b.ee_k)},
        {particle_write(positions)}});
   plan.graph.add_edge(points, project);
