@@ -156,22 +156,31 @@ static inline float4 sc_bounded(float4 p, float4 q, float b) {
   return (float4)(q.x + s * d.x, q.y + s * d.y, q.z + s * d.z, p.w);
 }
 
+/* |a - b| over x, y, z: how far a vertex is from x_t (sc_still_apart). */
+static inline float sc_distance_moved(float4 a, float4 b) {
+  return length((float4)(a.x - b.x, a.y - b.y, a.z - b.z, 0.0f));
+}
+
 /* x[i] held within its bound of x_t, then out of the colliders: an obstacle
  * moving into the surface (a rising box) carries a vertex further than its
  * bound, which only limits how fast surfaces close on each other. */
+static inline float4 sc_clamped(int i, __global const float4* x, __global const float4* x_start,
+                                __global const float* bound, __global const ats_collider_c* colliders,
+                                int collider_count) {
+  return sc_out_of_colliders(sc_bounded(x[i], x_start[i], bound[i]), colliders, collider_count, 1);
+}
 ATS_TASK void sc_clamp(int i, __global float4* x, __global const float4* x_start, __global const float* bound,
                        __global const ats_collider_c* colliders, int collider_count) {
-  x[i] = sc_out_of_colliders(sc_bounded(x[i], x_start[i], bound[i]), colliders, collider_count, 1);
+  x[i] = sc_clamped(i, x, x_start, bound, colliders, collider_count);
 }
 
 /* sc_clamp, then how far the vertex is from x_t (sc_moved_since) in the
  * same pass: XPBD's projection, which reads both. */
 ATS_TASK void sc_clamp_moved(int i, __global float4* x, __global const float4* x_start, __global const float* bound,
                              __global const ats_collider_c* colliders, int collider_count, __global float* moved) {
-  const float4 a = sc_out_of_colliders(sc_bounded(x[i], x_start[i], bound[i]), colliders, collider_count, 1);
-  const float4 b = x_start[i];
+  const float4 a = sc_clamped(i, x, x_start, bound, colliders, collider_count);
   x[i] = a;
-  moved[i] = length((float4)(a.x - b.x, a.y - b.y, a.z - b.z, 0.0f));
+  moved[i] = sc_distance_moved(a, x_start[i]);
 }
 
 /* A pair's other vertices are read through SC_AT(j): x[j] here; VBD's solve
@@ -252,8 +261,7 @@ ATS_TASK void sc_bound(int i, __global const int* inc, int n, __global const flo
  * 12 ms per substep). */
 /* How far vertex i is from x_t, the substep's start x0 (sc_still_apart). */
 ATS_TASK void sc_moved_since(int i, __global const float4* x, __global const float4* x0, __global float* moved) {
-  const float4 a = x[i], b = x0[i];
-  moved[i] = length((float4)(a.x - b.x, a.y - b.y, a.z - b.z, 0.0f));
+  moved[i] = sc_distance_moved(x[i], x0[i]);
 }
 
 /* Whether the pair of near entry d0 (its distance at x_t) is still farther
