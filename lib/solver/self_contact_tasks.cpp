@@ -246,17 +246,20 @@ std::vector<plan::KernelArg> self_contact_args(const SimLayout& layout, const Se
 
 sched::TaskId add_self_contact_clamp(plan::SubstepPlan& plan, sched::TaskId last, const SimLayout& layout,
                                      const SelfContactBuffers& b, plan::BufferId start, plan::BufferId positions,
-                                     int iteration) {
+                                     int iteration, plan::BufferId moved) {
   if (!layout.self_contact.enabled) return last;
   const int n = static_cast<int>(layout.x.size());
+  std::vector<Arg> args{Arg::of_buffer(positions), Arg::of_buffer(start), Arg::of_buffer(b.bound),
+                        Arg::of_buffer(b.colliders), Arg::of_int(layout.collider_count)};
+  std::vector<WriteSpan> writes{particle_write(positions)};
+  if (moved >= 0) {
+    args.push_back(Arg::of_buffer(moved));
+    writes.push_back(WriteSpan::per_element(moved, 4));
+  }
   return plan.add_task_after(
       last,
       plan::make_task(fmt::format("it{}/collision/bound", iteration + 1), plan::TaskKind::collision, iteration, 2),
-      {"sc_clamp",
-       {0, n},
-       {Arg::of_buffer(positions), Arg::of_buffer(start), Arg::of_buffer(b.bound), Arg::of_buffer(b.colliders),
-        Arg::of_int(layout.collider_count)},
-       {particle_write(positions)}});
+      {moved >= 0 ? "sc_clamp_moved" : "sc_clamp", {0, n}, std::move(args), std::move(writes)});
 }
 
 void add_self_contact_projection_buffers(plan::SubstepPlan& plan, const SimLayout& layout, SelfContactBuffers& b) {
@@ -285,14 +288,7 @@ sched::TaskId add_self_contact_projection(plan::SubstepPlan& plan, sched::TaskId
   // the cloth then slid over it).
   // The clamp and each vertex's distance from x_t for the near entries'
   // skip (sc_still_apart), in one pass.
-  last = plan.add_task_after(
-      last,
-      plan::make_task(fmt::format("it{}/collision/bound", iteration + 1), plan::TaskKind::collision, iteration, 2),
-      {"sc_clamp_moved",
-       {0, n},
-       {Arg::of_buffer(positions), Arg::of_buffer(start), Arg::of_buffer(b.bound), Arg::of_buffer(b.colliders),
-        Arg::of_int(layout.collider_count), Arg::of_buffer(b.moved)},
-       {particle_write(positions), WriteSpan::per_element(b.moved, 4)}});
+  last = add_self_contact_clamp(plan, last, layout, b, start, positions, iteration, b.moved);
   // Per near-list entry the pair's multiplier (each pair evaluated once per
   // list that holds it, not by each of its four vertices:
   // contact/self_contact.cl) and per list how many act, then per vertex.

@@ -49,10 +49,12 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
 std::vector<plan::KernelArg> self_contact_args(const SimLayout& layout, const SelfContactBuffers& b, double inertia_h);
 
 // After `last`: `positions` held within each vertex's bound of `start`
-// (JPGD and SOSD after each iteration). Returns the new last task, or `last`.
+// (JPGD and SOSD after each iteration; XPBD before its projection, which
+// passes `moved` to have each vertex's distance from `start` measured in the
+// same pass). Returns the new last task, or `last`.
 sched::TaskId add_self_contact_clamp(plan::SubstepPlan& plan, sched::TaskId last, const SimLayout& layout,
                                      const SelfContactBuffers& b, plan::BufferId start, plan::BufferId positions,
-                                     int iteration);
+                                     int iteration, plan::BufferId moved = -1);
 
 // XPBD: the per-entry buffers add_self_contact_projection needs (into b).
 void add_self_contact_projection_buffers(plan::SubstepPlan& plan, const SimLayout& layout, SelfContactBuffers& b);
