@@ -32,6 +32,18 @@
 #define ATS_FMA(a, b, c) fma(a, b, c)
 #endif
 
+/* ATS_FN_INLINE: a small function the compiler must inline into its caller
+ * even where it judges the caller too large (a per-vertex task whose
+ * work-item loop pocl then vectorizes); ATS_FN_NOINLINE: a large, rarely
+ * taken branch kept out of such a caller (a mesh collider's tree walk). */
+#if defined(__OPENCL_VERSION__) || defined(__GNUC__)
+#define ATS_FN_INLINE static inline __attribute__((always_inline, unused))
+#define ATS_FN_NOINLINE static __attribute__((noinline, unused))
+#else
+#define ATS_FN_INLINE static inline
+#define ATS_FN_NOINLINE static
+#endif
+
 /* The address space of the arrays a kernel is handed; host code has only
  * one. Lets a function over particle and element arrays compile both ways. */
 #ifdef __OPENCL_VERSION__

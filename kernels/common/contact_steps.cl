@@ -17,6 +17,7 @@ ATS_TASK void particles_contact(int i, __global float4* x, __global const ats_co
   float4 p = x[i];
   if (p.w == 0.0f) return;
   for (int c = 0; c < count; ++c) {
+    if (ats_collider_clear(colliders + c, ats_v3(p.x, p.y, p.z))) continue;
     const ats_surface_distance s = ats_collider_gap(colliders + c, ats_v3(p.x, p.y, p.z));
     if (s.phi < 0.0f) p = (float4)(p.x - s.phi * s.n.x, p.y - s.phi * s.n.y, p.z - s.phi * s.n.z, p.w);
   }

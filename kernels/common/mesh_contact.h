@@ -88,7 +88,8 @@ ATS_FN ats_vec3 ats_feature_normal(ATS_GLOBAL const ats_mesh_triangle* t, int fe
 
 /* Distance to the mesh of collider c from the world point xw, within
  * `reach` (no triangle nearer: phi = reach, normal up). */
-ATS_FN ats_surface_distance ats_mesh_distance(ATS_GLOBAL const ats_collider_c* c, ats_vec3 xw, ats_real reach) {
+ATS_FN_NOINLINE ats_surface_distance ats_mesh_distance(ATS_GLOBAL const ats_collider_c* c, ats_vec3 xw,
+                                                       ats_real reach) {
   ats_vec3 axis[3];
   const ats_vec3 d = ats_sub(xw, ats_mesh_float3(c->c));
   ATS_UNROLL for (int k = 0; k < 3; ++k) axis[k] = ats_mesh_float3(c->axes + 4 * k);

@@ -133,6 +133,7 @@ ATS_TASK void sc_near_edges(int e, __global const int2* edges, __global const in
 static inline float4 sc_out_of_colliders(float4 p, __global const ats_collider_c* colliders, int count, int on) {
   if (!on) return p;
   for (int c = 0; c < count; ++c) {
+    if (ats_collider_clear(colliders + c, ats_v3(p.x, p.y, p.z))) continue;
     const ats_surface_distance s = ats_collider_gap(colliders + c, ats_v3(p.x, p.y, p.z));
     const float deepest = -ATS_COLLIDER_SLACK * colliders[c].thickness;
     if (s.phi < deepest) {
