@@ -152,6 +152,9 @@ static inline int sc_moved(float4 a, float4 b) { return a.x != b.x || a.y != b.y
 
 static inline float4 sc_bounded(float4 p, float4 q, float b) {
   const float4 d = (float4)(p.x - q.x, p.y - q.y, p.z - q.z, 0.0f);
+  /* well within the bound (1e-4 below its square, far above the rounding
+   * of either side): p as the length would have kept it, without the root */
+  if (d.x * d.x + d.y * d.y + d.z * d.z < 0.9999f * b * b) return p;
   const float len = length(d);
   if (!(len > b)) return p;
   const float s = b / len;
