@@ -115,6 +115,7 @@ ATS_FN void sc_decide(ATS_GLOBAL const float* block_max, int blocks, float r, fl
  * lists were made, state[3] of sc_decide), into reach[id]: one
  * float per list, so that the bound's gather over a vertex's lists reads
  * packed floats rather than a strided list each (sc_vertex_bound). */
+ATS_FN float sc_list_reach(float least, float horizon, float moved) { return fmin(least, horizon - 2.0f * moved); }
 ATS_FN void sc_store_distances(ATS_GLOBAL const int* list, const float* d, ATS_GLOBAL float* out, float moved,
                                ATS_GLOBAL float* reach) {
   float least = 1e30f;
@@ -123,8 +124,15 @@ ATS_FN void sc_store_distances(ATS_GLOBAL const int* list, const float* d, ATS_G
     least = fmin(least, d[m]);
   }
   out[0] = least;
-  *reach = fmin(least, sc_bits_float(list[1]) - 2.0f * moved);
+  *reach = sc_list_reach(least, sc_bits_float(list[1]), moved);
 }
+/* An empty list's reach: its horizon is the radius it was made with
+ * (sc_list_store), so it needs no read of the list (nor writes its
+ * distances, which nothing reads for an empty list); `listed` packs each
+ * list's count as the substep that made the lists found it, so that the
+ * substeps that keep them read 4 bytes per list rather than a strided list
+ * header each (most lists are empty). */
+ATS_FN float sc_empty_reach(float radius, float moved) { return sc_list_reach(1e30f, radius, moved); }
 
 ATS_FN void sc_vertex_distances(int i, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* tris,
                                 ATS_GLOBAL const int* vt, ATS_GLOBAL float* vt_d, float moved,
@@ -206,6 +214,15 @@ ATS_FN int sc_near_store(ATS_GLOBAL const int* list, const int* keep, ATS_GLOBAL
   return count;
 }
 
+/* The near entries of vertex i's triangles and edges (their counts packed). */
+ATS_FN int sc_near_through(int i, ATS_GLOBAL const int* inc, int n, ATS_GLOBAL const int* tv_count,
+                           ATS_GLOBAL const int* ee_count) {
+  int total = 0;
+  for (int k = inc[i]; k < inc[i + 1]; ++k) total += tv_count[inc[k]];
+  for (int k = inc[n + 1 + i]; k < inc[n + 2 + i]; ++k) total += ee_count[inc[k]];
+  return total;
+}
+
 /* Vertex i's near list, after its triangles' and edges' (sc_near_triangle,
  * sc_near_edge, which leave their counts packed in tv_count, ee_count): [1]
  * holds how many near entries vertex i is in, as a point, through its
@@ -225,9 +242,7 @@ ATS_FN void sc_near_vertex(int i, ATS_GLOBAL const int* inc, int n, ATS_GLOBAL c
     keep[m] = d[2 + m] - bound[i] - sc_side_bound(bound, f[0], f[1], f[2]) < r;
   }
   const int own = sc_near_store(l, keep, vt_near + i * ATS_SC_STRIDE, d);
-  int total = own;
-  for (int k = inc[i]; k < inc[i + 1]; ++k) total += tv_count[inc[k]];
-  for (int k = inc[n + 1 + i]; k < inc[n + 2 + i]; ++k) total += ee_count[inc[k]];
+  const int total = own + sc_near_through(i, inc, n, tv_count, ee_count);
   vt_near[i * ATS_SC_STRIDE + 1] = total;
   vt_count[i] = own;
   vt_total[i] = total;

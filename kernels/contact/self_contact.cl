@@ -85,35 +85,77 @@ ATS_TASK void sc_query_groups(int g, __global const float4* x, __global const in
 /* Once per substep, after the lists (common/self_contact_lists.h): every
  * listed pair's distance at x_t, per vertex, triangle and edge list; then
  * the bound (below) and the near lists the iterations and friction read. */
-/* state[3]: the displacement D since the lists were made (sc_decide). */
+/* state[3]: the displacement D since the lists were made (sc_decide);
+ * state[2] the radius they were made with. listed: each list's count,
+ * packed, written in the substep that made the lists (state[1]) and read
+ * by those that keep them (sc_empty_reach). */
+static inline int sc_list_empty(int id, __global const int* list, __global const int* state, __global int* listed) {
+  if (state[1]) {
+    listed[id] = list[id * ATS_SC_STRIDE];
+    return 0;
+  }
+  return listed[id] == 0;
+}
 ATS_TASK void sc_vertex_distances_task(int i, __global const float4* x, __global const int4* tris,
                                        __global const int* vt, __global const int* state, __global float* vt_d,
-                                       __global float* vt_reach) {
-  sc_vertex_distances(i, x, (__global const int*)tris, vt, vt_d, as_float(state[3]), vt_reach);
+                                       __global float* vt_reach, __global int* listed) {
+  if (sc_list_empty(i, vt, state, listed))
+    vt_reach[i] = sc_empty_reach(as_float(state[2]), as_float(state[3]));
+  else
+    sc_vertex_distances(i, x, (__global const int*)tris, vt, vt_d, as_float(state[3]), vt_reach);
 }
 ATS_TASK void sc_triangle_distances_task(int t, __global const float4* x, __global const int4* tris,
                                          __global const int* tv, __global const int* state, __global float* tv_d,
-                                         __global float* tv_reach) {
-  sc_triangle_distances(t, x, (__global const int*)tris, tv, tv_d, as_float(state[3]), tv_reach);
+                                         __global float* tv_reach, __global int* listed) {
+  if (sc_list_empty(t, tv, state, listed))
+    tv_reach[t] = sc_empty_reach(as_float(state[2]), as_float(state[3]));
+  else
+    sc_triangle_distances(t, x, (__global const int*)tris, tv, tv_d, as_float(state[3]), tv_reach);
 }
 ATS_TASK void sc_edge_distances_task(int e, __global const float4* x, __global const int2* edges,
                                      __global const int* ee, __global const int* state, __global float* ee_d,
-                                     __global float* ee_reach) {
-  sc_edge_distances(e, x, (__global const int*)edges, ee, ee_d, as_float(state[3]), ee_reach);
+                                     __global float* ee_reach, __global int* listed) {
+  if (sc_list_empty(e, ee, state, listed))
+    ee_reach[e] = sc_empty_reach(as_float(state[2]), as_float(state[3]));
+  else
+    sc_edge_distances(e, x, (__global const int*)edges, ee, ee_d, as_float(state[3]), ee_reach);
 }
+/* The near lists (listed: as above): an empty list has an empty near list,
+ * its count written (its horizon, [1], is read by nothing), and vertex
+ * i's [1] the near entries it is in through its triangles and edges. */
 ATS_TASK void sc_near_vertices(int i, __global const int* inc, int n, __global const int4* tris, __global const int* vt,
                                __global float* vt_d, __global const float* bound, float r, __global const int* tv_count,
-                               __global const int* ee_count, __global int* vt_near, __global int* vt_count,
-                               __global int* vt_total) {
+                               __global const int* ee_count, __global const int* listed, __global int* vt_near,
+                               __global int* vt_count, __global int* vt_total) {
+  if (listed[i] == 0) {
+    const int total = sc_near_through(i, inc, n, tv_count, ee_count);
+    vt_near[i * ATS_SC_STRIDE] = 0;
+    vt_near[i * ATS_SC_STRIDE + 1] = total;
+    vt_count[i] = 0;
+    vt_total[i] = total;
+    return;
+  }
   sc_near_vertex(i, inc, n, (__global const int*)tris, vt, vt_d, bound, r, tv_count, ee_count, vt_near, vt_count,
                  vt_total);
 }
 ATS_TASK void sc_near_triangles(int t, __global const int4* tris, __global const int* tv, __global float* tv_d,
-                                __global const float* bound, float r, __global int* tv_near, __global int* tv_count) {
+                                __global const float* bound, float r, __global const int* listed, __global int* tv_near,
+                                __global int* tv_count) {
+  if (listed[t] == 0) {
+    tv_near[t * ATS_SC_STRIDE] = 0;
+    tv_count[t] = 0;
+    return;
+  }
   sc_near_triangle(t, (__global const int*)tris, tv, tv_d, bound, r, tv_near, tv_count);
 }
 ATS_TASK void sc_near_edges(int e, __global const int2* edges, __global const int* ee, __global float* ee_d,
-                            __global const float* bound, float r, __global int* ee_near, __global int* ee_count) {
+                            __global const float* bound, float r, __global const int* listed, __global int* ee_near,
+                            __global int* ee_count) {
+  if (listed[e] == 0) {
+    ee_near[e * ATS_SC_STRIDE] = 0;
+    ee_count[e] = 0;
+    return;
+  }
   sc_near_edge(e, (__global const int*)edges, ee, ee_d, bound, r, ee_near, ee_count);
 }
 

@@ -74,6 +74,9 @@ SelfContactBuffers add_self_contact_buffers(plan::SubstepPlan& plan, const SimLa
   b.vt_reach = plan.add_buffer("sc_vt_reach", BufferRole::scratch, zeros(n * 4));
   b.tv_reach = plan.add_buffer("sc_tv_reach", BufferRole::scratch, zeros(s.tris.size() * 4));
   b.ee_reach = plan.add_buffer("sc_ee_reach", BufferRole::scratch, zeros(s.edges.size() * 4));
+  b.vt_listed = plan.add_buffer("sc_vt_listed", BufferRole::cache, zeros(n * 4));
+  b.tv_listed = plan.add_buffer("sc_tv_listed", BufferRole::cache, zeros(s.tris.size() * 4));
+  b.ee_listed = plan.add_buffer("sc_ee_listed", BufferRole::cache, zeros(s.edges.size() * 4));
   b.tv_count = plan.add_buffer("sc_tv_count", BufferRole::scratch, zeros(s.tris.size() * 4));
   b.ee_count = plan.add_buffer("sc_ee_count", BufferRole::scratch, zeros(s.edges.size() * 4));
   b.vt_count = plan.add_buffer("sc_vt_count", BufferRole::scratch, zeros(n * 4));
@@ -186,16 +189,16 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
   last = pairs;
   per_list("detect/distances_vertices", "sc_vertex_distances_task", n,
            {Arg::of_buffer(start), Arg::of_buffer(b.tris), Arg::of_buffer(b.vt), Arg::of_buffer(b.state),
-            Arg::of_buffer(b.vt_d), Arg::of_buffer(b.vt_reach)},
-           b.vt_d, {b.vt_reach});
+            Arg::of_buffer(b.vt_d), Arg::of_buffer(b.vt_reach), Arg::of_buffer(b.vt_listed)},
+           b.vt_d, {b.vt_reach, b.vt_listed});
   per_list("detect/distances_triangles", "sc_triangle_distances_task", tris,
            {Arg::of_buffer(start), Arg::of_buffer(b.tris), Arg::of_buffer(b.tv), Arg::of_buffer(b.state),
-            Arg::of_buffer(b.tv_d), Arg::of_buffer(b.tv_reach)},
-           b.tv_d, {b.tv_reach});
+            Arg::of_buffer(b.tv_d), Arg::of_buffer(b.tv_reach), Arg::of_buffer(b.tv_listed)},
+           b.tv_d, {b.tv_reach, b.tv_listed});
   per_list("detect/distances_edges", "sc_edge_distances_task", edges,
            {Arg::of_buffer(start), Arg::of_buffer(b.edges), Arg::of_buffer(b.ee), Arg::of_buffer(b.state),
-            Arg::of_buffer(b.ee_d), Arg::of_buffer(b.ee_reach)},
-           b.ee_d, {b.ee_reach});
+            Arg::of_buffer(b.ee_d), Arg::of_buffer(b.ee_reach), Arg::of_buffer(b.ee_listed)},
+           b.ee_d, {b.ee_reach, b.ee_listed});
   const sched::TaskId bound = plan.add_task_after(
       last, detect("detect/bound"),
       {"sc_bound",
@@ -208,19 +211,19 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
   const float r = s.thickness;
   per_list("detect/near_triangles", "sc_near_triangles", tris,
            {Arg::of_buffer(b.tris), Arg::of_buffer(b.tv), Arg::of_buffer(b.tv_d), Arg::of_buffer(b.bound),
-            Arg::of_float(r), Arg::of_buffer(b.tv_near), Arg::of_buffer(b.tv_count)},
+            Arg::of_float(r), Arg::of_buffer(b.tv_listed), Arg::of_buffer(b.tv_near), Arg::of_buffer(b.tv_count)},
            b.tv_near, {b.tv_count}, b.tv_d);
   per_list("detect/near_edges", "sc_near_edges", edges,
            {Arg::of_buffer(b.edges), Arg::of_buffer(b.ee), Arg::of_buffer(b.ee_d), Arg::of_buffer(b.bound),
-            Arg::of_float(r), Arg::of_buffer(b.ee_near), Arg::of_buffer(b.ee_count)},
+            Arg::of_float(r), Arg::of_buffer(b.ee_listed), Arg::of_buffer(b.ee_near), Arg::of_buffer(b.ee_count)},
            b.ee_near, {b.ee_count}, b.ee_d);
   // last: it counts the near entries of each vertex's triangles and edges
-  per_list(
-      "detect/near_vertices", "sc_near_vertices", n,
-      {Arg::of_buffer(b.incidence), Arg::of_int(n), Arg::of_buffer(b.tris), Arg::of_buffer(b.vt),
-       Arg::of_buffer(b.vt_d), Arg::of_buffer(b.bound), Arg::of_float(r), Arg::of_buffer(b.tv_count),
-       Arg::of_buffer(b.ee_count), Arg::of_buffer(b.vt_near), Arg::of_buffer(b.vt_count), Arg::of_buffer(b.vt_total)},
-      b.vt_near, {b.vt_count, b.vt_total}, b.vt_d);
+  per_list("detect/near_vertices", "sc_near_vertices", n,
+           {Arg::of_buffer(b.incidence), Arg::of_int(n), Arg::of_buffer(b.tris), Arg::of_buffer(b.vt),
+            Arg::of_buffer(b.vt_d), Arg::of_buffer(b.bound), Arg::of_float(r), Arg::of_buffer(b.tv_count),
+            Arg::of_buffer(b.ee_count), Arg::of_buffer(b.vt_listed), Arg::of_buffer(b.vt_near),
+            Arg::of_buffer(b.vt_count), Arg::of_buffer(b.vt_total)},
+           b.vt_near, {b.vt_count, b.vt_total}, b.vt_d);
   return plan.add_task_after(last, plan::make_task("contact/first_guess", plan::TaskKind::collision),
                              {"sc_clamp",
                               {0, n},

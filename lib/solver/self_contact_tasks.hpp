@@ -20,11 +20,12 @@ struct SelfContactBuffers {
                  bound = -1, x_out = -1,  // x_out: friction's scratch copy
       motion = -1,             // per block the boxes of the displacements since x_det and of the predicted steps
       x_det = -1, state = -1,  // where the lists were made; whether they serve (common/self_contact_lists.h)
-      vt_d = -1, tv_d = -1, ee_d = -1,              // the listed pairs' distances at x_t
-      vt_reach = -1, tv_reach = -1, ee_reach = -1,  // per list the nearest its primitive can be (sc_store_distances)
-      tv_count = -1, ee_count = -1, vt_count = -1,  // per list its near entries' count, packed (sc_near_vertex)
-      vt_total = -1,                                // per vertex the near entries it is in, packed
-      vt_near = -1, tv_near = -1, ee_near = -1,     // the entries that can come within the thickness this substep
+      vt_d = -1, tv_d = -1, ee_d = -1,                 // the listed pairs' distances at x_t
+      vt_reach = -1, tv_reach = -1, ee_reach = -1,     // per list the nearest its primitive can be (sc_store_distances)
+      vt_listed = -1, tv_listed = -1, ee_listed = -1,  // per list its count, packed when the lists are made
+      tv_count = -1, ee_count = -1, vt_count = -1,     // per list its near entries' count, packed (sc_near_vertex)
+      vt_total = -1,                                   // per vertex the near entries it is in, packed
+      vt_near = -1, tv_near = -1, ee_near = -1,        // the entries that can come within the thickness this substep
       colliders = -1,  // the layout's colliders, which every clamp to the bound puts the positions back out of
       vt_l = -1, tv_l = -1,
                  ee_l = -1,  // per near-list entry the pair's normal, multiplier and weights (XPBD), or friction
