@@ -259,6 +259,25 @@ ATS_FN void sc_leaf_begin(sc_leaf_query* lq, int u, ATS_GLOBAL const ats_float4*
   }
 }
 
+/* Whether segments (a0, a1) and (b0, b1) are certainly at least `radius`
+ * apart, by one separating axis: the offset between their midpoints less
+ * its part along the first segment (u, scaled by |a1 - a0|^2 to need no
+ * division), on which the first projects to a point. The separation of the
+ * projections over |u| bounds the distance from below; 1e-3 of margin, far
+ * above the rounding of both it and the distance (all relative to a0), so
+ * where it says apart ats_edge_edge's d is >= radius too and the lists are
+ * those the exact test alone makes. Cloth's neighbouring edges (a diagonal
+ * beside a parallel one) fail the boxes' test and pass this one. */
+ATS_FN int sc_segments_apart(ats_vec3 a0, ats_vec3 a1, ats_vec3 b0, ats_vec3 b1, float radius) {
+  const ats_vec3 d = ats_sub(a1, a0), p = ats_sub(b0, a0), q = ats_sub(b1, a0);
+  const ats_vec3 m = ats_scale(ats_sub(ats_add(p, q), d), 0.5f);
+  const float dd = ats_dot(d, d);
+  const ats_vec3 u = ats_sub(ats_scale(m, dd), ats_scale(d, ats_dot(m, d)));
+  const float ua = ats_dot(u, d), s0 = ats_dot(u, p), s1 = ats_dot(u, q);
+  const float sep = fmax(fmin(s0, s1) - fmax(ua, 0.0f), fmin(ua, 0.0f) - fmax(s0, s1));
+  return sep > 0.0f && sep * sep > 1.001f * radius * radius * ats_dot(u, u);
+}
+
 /* Candidate leaf o (its box overlaps q). */
 ATS_FN void sc_leaf_candidate(sc_leaf_query* lq, int o, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* tris,
                               ATS_GLOBAL const int* edges, ATS_GLOBAL const int* leaves,
@@ -306,6 +325,7 @@ ATS_FN void sc_leaf_candidate(sc_leaf_query* lq, int o, ATS_GLOBAL const ats_flo
       if (!(near & (1 << k)) || h == lq->eid[k]) continue;
       if (o0 == lq->e0[k] || o0 == lq->e1[k] || o1 == lq->e0[k] || o1 == lq->e1[k] || !sc_boxes_overlap(lq->eq[k], hb))
         continue;
+      if (sc_segments_apart(lq->ea[k], lq->eb[k], p0, p1, radius)) continue;
       const ats_pair_geometry pg = ats_edge_edge(lq->ea[k], lq->eb[k], p0, p1);
       if (pg.d < radius) sc_list_insert(&lq->el[k], h, pg.d);
     }
