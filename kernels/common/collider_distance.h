@@ -87,16 +87,29 @@ ATS_FN_INLINE ats_surface_distance ats_collider_gap(ATS_GLOBAL const ats_collide
 }
 
 /* Whether x is certainly outside collider c's thickened surface, by a test
- * cheaper than its distance (no square root, no division): a sphere's
- * squared distance past (radius + thickness)^2 with a margin of 1e-4, far
+ * cheaper than its distance (no square root, no division): past
+ * (radius + thickness)^2 in squared distance, with a margin of 1e-4, far
  * above the rounding of the distance, so that where it says so the gap is
  * positive and the caller's result is the one the gap would have given.
- * Other shapes: never (their distance is taken). */
+ * A sphere: from its centre. A capsule: from an end where x projects
+ * beyond it, else from the axis, times |b - a|^2 (its rounding, from
+ * cancellation when x is near the axis far from an end, bounded by 1e-6 of
+ * the terms and subtracted). Other shapes: never (their distance is taken). */
 ATS_FN_INLINE int ats_collider_clear(ATS_GLOBAL const ats_collider_c* c, ats_vec3 x) {
-  if ((int)c->shape != ATS_COLLIDER_SPHERE) return 0;
-  const ats_vec3 d = ats_sub(x, ats_collider_vec(c->c));
+  const int shape = (int)c->shape;
   const ats_real reach = c->radius + c->thickness;
-  return ats_dot(d, d) > (ats_real)1.0001 * reach * reach;
+  const ats_real reach2 = (ats_real)1.0001 * reach * reach;
+  const ats_vec3 u = ats_sub(x, ats_collider_vec(c->c));
+  if (shape == ATS_COLLIDER_SPHERE) return ats_dot(u, u) > reach2;
+  if (shape != ATS_COLLIDER_CAPSULE) return 0;
+  const ats_vec3 ab = ats_sub(ats_collider_vec(c->n), ats_collider_vec(c->c));
+  const ats_real len2 = ats_dot(ab, ab), p = ats_dot(u, ab), uu = ats_dot(u, u);
+  if (p <= 0) return uu > reach2;
+  if (p >= len2) {
+    const ats_vec3 w = ats_sub(u, ab);
+    return ats_dot(w, w) > reach2;
+  }
+  return uu * len2 - p * p - (ats_real)1e-6 * uu * len2 > reach2 * len2;
 }
 
 /* A particle counts as touching a collider when its gap is below 1 % of

@@ -1,6 +1,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "common/collider_distance.h"
@@ -92,4 +93,56 @@ TEST_CASE("the contact summary counts touching pairs, the smallest gap and the d
   CHECK(s.min_distance == Approx(-0.006).margin(1e-6));
   CHECK(s.max_penetration == Approx(0.006).margin(1e-6));
   CHECK(std::isnan(solver::summarize_contacts({}, xyz).min_distance));
+}
+
+TEST_CASE("a collider's clear test never claims a point its distance puts within reach") {
+  // ats_collider_clear may skip the distance only where the gap is positive
+  // (the callers' results are then those the gap gives); it should also
+  // claim most points a little past the reach, or it saves nothing.
+  scene::ColliderDesc sphere;
+  sphere.shape = scene::ColliderShape::sphere;
+  sphere.point = {0.2, 0.5, -0.1};
+  sphere.radius = 0.3;
+  sphere.thickness = 0.004;
+  scene::ColliderDesc capsule;
+  capsule.shape = scene::ColliderShape::capsule;
+  capsule.point = {-0.09, 0.85, 0};
+  capsule.end = {-0.12, 0.05, 0};
+  capsule.radius = 0.07;
+  capsule.thickness = 0.002;
+  scene::ColliderDesc thin = capsule;  // long and thin: cancellation near the axis
+  thin.point = {-5, 0, 0};
+  thin.end = {5, 0.01, 0};
+  thin.radius = 0.001;
+  thin.thickness = 0.0005;
+  for (const scene::ColliderDesc& d : {sphere, capsule, thin}) {
+    const ats_collider_c c = record(d);
+    const double reach = d.radius + d.thickness;
+    std::uint32_t seed = 12345;
+    const auto uniform = [&seed] {
+      seed = seed * 1664525u + 1013904223u;
+      return (seed >> 8) / double(1u << 24);
+    };
+    int claimed = 0, wrong = 0, far = 0;
+    for (int k = 0; k < 200000; ++k) {
+      // a point near the surface: a random point, then moved along the
+      // gap's normal to a gap in [-2, 2] reach, some within 1e-4 of it
+      ats_vec3 x = ats_v3(float(d.point[0] + 12 * (uniform() - 0.5) * (&d == &thin ? 1 : 0.1)),
+                          float(d.point[1] + (uniform() - 0.5)), float(d.point[2] + (uniform() - 0.5)));
+      const ats_surface_distance s = ats_collider_gap(&c, x);
+      const double want = (uniform() < 0.2 ? 1e-4 * (uniform() - 0.5) : 4 * (uniform() - 0.5)) * reach;
+      x = ats_add(x, ats_scale(s.n, float(want - s.phi)));
+      const float phi = ats_collider_gap(&c, x).phi;
+      if (ats_collider_clear(&c, x)) {
+        ++claimed;
+        if (!(phi > 0)) ++wrong;
+      } else if (phi > 0.01 * reach) {
+        ++far;
+      }
+    }
+    INFO("collider radius " << d.radius << ": " << claimed << " claimed clear, " << far << " past 1 % not claimed");
+    CHECK(wrong == 0);
+    CHECK(claimed > 50000);
+    CHECK(far < claimed / 100);
+  }
 }
