@@ -138,24 +138,23 @@ ATS_TASK void sc_near_vertices(int i, __global const int* inc, int n, __global c
   sc_near_vertex(i, inc, n, (__global const int*)tris, vt, vt_d, bound, r, tv_count, ee_count, vt_near, vt_count,
                  vt_total);
 }
+/* 1 when list id is empty, its near list then written empty. */
+static inline int sc_near_none(int id, __global const int* listed, __global int* near, __global int* count) {
+  if (listed[id] != 0) return 0;
+  near[id * ATS_SC_STRIDE] = 0;
+  count[id] = 0;
+  return 1;
+}
 ATS_TASK void sc_near_triangles(int t, __global const int4* tris, __global const int* tv, __global float* tv_d,
                                 __global const float* bound, float r, __global const int* listed, __global int* tv_near,
                                 __global int* tv_count) {
-  if (listed[t] == 0) {
-    tv_near[t * ATS_SC_STRIDE] = 0;
-    tv_count[t] = 0;
-    return;
-  }
+  if (sc_near_none(t, listed, tv_near, tv_count)) return;
   sc_near_triangle(t, (__global const int*)tris, tv, tv_d, bound, r, tv_near, tv_count);
 }
 ATS_TASK void sc_near_edges(int e, __global const int2* edges, __global const int* ee, __global float* ee_d,
                             __global const float* bound, float r, __global const int* listed, __global int* ee_near,
                             __global int* ee_count) {
-  if (listed[e] == 0) {
-    ee_near[e * ATS_SC_STRIDE] = 0;
-    ee_count[e] = 0;
-    return;
-  }
+  if (sc_near_none(e, listed, ee_near, ee_count)) return;
   sc_near_edge(e, (__global const int*)edges, ee, ee_d, bound, r, ee_near, ee_count);
 }
 
