@@ -18,6 +18,7 @@ wall time costs.
 
 usage: scripts/bench_self_contact.py [--sizes 128,256] [--frames 4] [--skip 2] [--methods vbd,xpbd]
                                      [--query-radius K]   (contact.query_radius = K thicknesses; unset: 3)
+                                     [--bin PATH]         (the atssim binary; default build/release/atssim)
 Build first (cmake --build --preset release). Prints one Markdown table.
 """
 import argparse
@@ -65,7 +66,7 @@ def run(tmp, n, method, self_on, args):
     with open(scene, "w") as f:
         f.write(SCENE.format(substeps=args.substeps, iterations=args.iterations, frames=args.frames, n=n,
                              self="true" if self_on else "false", thickness=thickness(n), query=query(n, args)))
-    subprocess.run([BIN, "run", scene, "-o", out, "--devices", args.devices, "--set", f"solver.method={method}",
+    subprocess.run([args.bin, "run", scene, "-o", out, "--devices", args.devices, "--set", f"solver.method={method}",
                     "--quiet"], check=True)
     with h5py.File(out, "r") as f:
         frame_ms = float(np.median(f["timing/frame_ms"][args.skip:]))
@@ -113,9 +114,12 @@ def main() -> int:
     ap.add_argument("--devices", default="cpu")
     ap.add_argument("--query-radius", type=float, default=None,
                     help="contact.query_radius in thicknesses (unset: the scene default, 3)")
+    ap.add_argument("--bin", default=BIN,
+                    help="the atssim binary to measure (default: this checkout's release build); an older "
+                         "commit's build, run right after, gives a before/after in one sitting")
     args = ap.parse_args()
-    if not os.path.exists(BIN):
-        print(f"{BIN} is missing: build first", file=sys.stderr)
+    if not os.path.exists(args.bin):
+        print(f"{args.bin} is missing: build first", file=sys.stderr)
         return 2
     os.environ.setdefault("POCL_CACHE_DIR", os.path.expanduser("~/.cache/atssim/pocl"))
     sizes = [int(s) for s in args.sizes.split(",")]
