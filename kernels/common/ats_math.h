@@ -33,9 +33,10 @@
 #endif
 
 /* ATS_FN_INLINE: a small function the compiler must inline into its caller
- * even where it judges the caller too large (a per-vertex task whose
- * work-item loop pocl then vectorizes); ATS_FN_NOINLINE: a large, rarely
- * taken branch kept out of such a caller (a mesh collider's tree walk). */
+ * even where it judges the caller too large (pocl had left the collider
+ * distances out of line, one call per particle and collider);
+ * ATS_FN_NOINLINE: a large, rarely taken branch kept out of such a caller
+ * (a mesh collider's tree walk). */
 #if defined(__OPENCL_VERSION__) || defined(__GNUC__)
 #define ATS_FN_INLINE static inline __attribute__((always_inline, unused))
 #define ATS_FN_NOINLINE static __attribute__((noinline, unused))
