@@ -124,21 +124,27 @@ ATS_FN ats_real ats_contact_energy(ATS_GLOBAL const ats_collider_c* c, ats_vec3 
   return (ats_real)0.5 * c->stiffness * mass * inv_h2 * s.phi * s.phi;
 }
 
-ATS_FN ats_vec3 ats_contact_gradient(ATS_GLOBAL const ats_collider_c* c, ats_vec3 x, ats_real mass, ats_real inv_h2) {
-  const ats_surface_distance s = ats_collider_gap(c, x);
+/* The penalty's gradient and Gauss-Newton block from a gap s already
+ * taken (k = stiffness * mass / h^2): a vertex method's contact terms take
+ * the gap once for both (vertex_contact.h), as a mesh collider's gap is a
+ * tree walk. */
+ATS_FN ats_vec3 ats_contact_gradient_at(ats_surface_distance s, ats_real k) {
   if (!(s.phi < 0)) return ats_v3(0, 0, 0);
-  return ats_scale(s.n, c->stiffness * mass * inv_h2 * s.phi);
+  return ats_scale(s.n, k * s.phi);
 }
-
-ATS_FN ats_mat3 ats_contact_hessian(ATS_GLOBAL const ats_collider_c* c, ats_vec3 x, ats_real mass, ats_real inv_h2) {
-  const ats_surface_distance s = ats_collider_gap(c, x);
+ATS_FN ats_mat3 ats_contact_hessian_at(ats_surface_distance s, ats_real k) {
   ats_mat3 h = ats_m3_diag(0);
   if (!(s.phi < 0)) return h;
-  const ats_real k = c->stiffness * mass * inv_h2;
   h.r[0] = ats_scale(s.n, k * s.n.x);
   h.r[1] = ats_scale(s.n, k * s.n.y);
   h.r[2] = ats_scale(s.n, k * s.n.z);
   return h;
+}
+ATS_FN ats_vec3 ats_contact_gradient(ATS_GLOBAL const ats_collider_c* c, ats_vec3 x, ats_real mass, ats_real inv_h2) {
+  return ats_contact_gradient_at(ats_collider_gap(c, x), c->stiffness * mass * inv_h2);
+}
+ATS_FN ats_mat3 ats_contact_hessian(ATS_GLOBAL const ats_collider_c* c, ats_vec3 x, ats_real mass, ats_real inv_h2) {
+  return ats_contact_hessian_at(ats_collider_gap(c, x), c->stiffness * mass * inv_h2);
 }
 
 #endif

@@ -13,8 +13,10 @@ ATS_FN vertex_system add_contact_terms(vertex_system s, ats_vec3 xi, float inv_m
   const float mass = 1.0f / inv_mass;
   for (int c = 0; c < count; ++c) {
     if (ats_collider_clear(colliders + c, xi)) continue; /* both terms are zero */
-    s.f = ats_sub(s.f, ats_contact_gradient(colliders + c, xi, mass, inv_h2));
-    s.h = ats_m3_add(s.h, ats_contact_hessian(colliders + c, xi, mass, inv_h2));
+    const ats_surface_distance gap = ats_collider_gap(colliders + c, xi);
+    const float k = colliders[c].stiffness * mass * inv_h2;
+    s.f = ats_sub(s.f, ats_contact_gradient_at(gap, k));
+    s.h = ats_m3_add(s.h, ats_contact_hessian_at(gap, k));
   }
   return s;
 }
