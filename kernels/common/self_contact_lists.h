@@ -198,6 +198,21 @@ ATS_FN float sc_side_bound(ATS_GLOBAL const float* bound, int a, int b, int c) {
   return c >= 0 ? fmax(m, bound[c]) : m;
 }
 
+/* Whether a near list's every entry is still apart, without reading them
+ * (contact/self_contact.cl: sc_still_apart skips an entry when
+ * fl(fl(d0 - m0) - m1) > reach, d0 its distance at x_t, m0 and m1 the
+ * largest displacement since x_t on its first and second side). least is
+ * the list's smallest d0 (d0[0], sc_store_distances); first and second
+ * are at least every entry's m0 and m1 (the list's own primitive's side,
+ * exactly; the other side's by the largest of every surface vertex). fl(a -
+ * b) grows with a and falls with b, so every entry's test is at least this
+ * one's, and the skip is the entry by entry skip's result, bit for bit.
+ * Most near lists of layered cloth hold pairs a thickness or more apart
+ * that move far less than their bound within a substep. */
+ATS_FN int sc_list_apart(float least, float first, float second, float reach) {
+  return least > reach && least - first - second > reach;
+}
+
 /* The kept entries' ids into out, and their distances at x_t moved to the
  * front of the list's distances d (in place: the bound has read them), so
  * that d[2 + k] is near entry k's; the iterations and friction skip an

@@ -326,6 +326,30 @@ static inline int sc_still_apart(float d0, const int* pv, int split, __global co
   return d0 - m[0] - m[1] > reach;
 }
 
+/* Per block of ATS_SC_MOTION_BLOCK particles the largest `moved` of its
+ * surface vertices, then (one work-item) of them all: every pair's vertices
+ * are surface vertices, so no side of any pair moved farther. */
+ATS_TASK void sc_moved_blocks(int b, __global const float* moved, __global const int* inc, int n,
+                              __global float* block_max) {
+  const int end = (b + 1) * ATS_SC_MOTION_BLOCK < n ? (b + 1) * ATS_SC_MOTION_BLOCK : n;
+  float m = 0.0f;
+  for (int i = b * ATS_SC_MOTION_BLOCK; i < end; ++i)
+    if (sc_is_surface(inc, i)) m = fmax(m, moved[i]);
+  block_max[b] = m;
+}
+ATS_TASK void sc_moved_max(int k, __global const float* block_max, int blocks, __global float* most) {
+  if (k != 0) return;
+  float m = 0.0f;
+  for (int b = 0; b < blocks; ++b) m = fmax(m, block_max[b]);
+  most[0] = m;
+}
+
+/* A side's largest `moved`, as sc_still_apart takes it. */
+static inline float sc_side_moved(__global const float* moved, int a, int b, int c) {
+  float m = fmax(fmax(0.0f, moved[a]), moved[b]);
+  return c >= 0 ? fmax(m, moved[c]) : m;
+}
+
 static inline int sc_store_lambda(ats_pair_geometry g, const int* pv, __global const float4* x, float r,
                                   __global float4* out) {
   float denom = 0.0f;
@@ -348,16 +372,18 @@ static inline void sc_end_lambdas(int active, int count, __global float4* out) {
 /* count: the lists' near counts, packed (common/self_contact_lists.h
  * sc_near_vertex): most lists have none, and their pass reads no list. */
 ATS_TASK void sc_pair_lambdas_points(int i, __global const float4* x, __global const float* moved,
-                                     __global const int4* tris, __global const int* vt, __global const float* vt_d,
-                                     __global const int* count, float r, __global float4* out, __global int* active) {
-  if (count[i] == 0) {
+                                     __global const float* most, __global const int4* tris, __global const int* vt,
+                                     __global const float* vt_d, __global const int* count, float r,
+                                     __global float4* out, __global int* active) {
+  __global const float* d0 = vt_d + i * ATS_SC_STRIDE;
+  __global float4* o = out + 2 * i * ATS_SC_CAPACITY;
+  if (count[i] == 0 || sc_list_apart(d0[0], fmax(0.0f, moved[i]), most[0], 1.01f * r)) {
+    sc_end_lambdas(0, count[i], o);
     active[i] = 0;
     return;
   }
   __global const int* l = vt + i * ATS_SC_STRIDE;
-  __global const float* d0 = vt_d + i * ATS_SC_STRIDE;
   const ats_vec3 p = sc_v(x[i]);
-  __global float4* o = out + 2 * i * ATS_SC_CAPACITY;
   int k = 0;
   for (int m = 0; m < l[0]; ++m) {
     const int4 f = tris[l[2 + m]];
@@ -371,18 +397,19 @@ ATS_TASK void sc_pair_lambdas_points(int i, __global const float4* x, __global c
 
 /* The entries of triangle t's list (the points near it). */
 ATS_TASK void sc_pair_lambdas_triangles(int t, __global const float4* x, __global const float* moved,
-                                        __global const int4* tris, __global const int* tv, __global const float* tv_d,
-                                        __global const int* count, float r, __global float4* out,
-                                        __global int* active) {
-  if (count[t] == 0) {
+                                        __global const float* most, __global const int4* tris, __global const int* tv,
+                                        __global const float* tv_d, __global const int* count, float r,
+                                        __global float4* out, __global int* active) {
+  __global const float* d0 = tv_d + t * ATS_SC_STRIDE;
+  __global float4* o = out + 2 * t * ATS_SC_CAPACITY;
+  const int4 f = tris[t];
+  if (count[t] == 0 || sc_list_apart(d0[0], most[0], sc_side_moved(moved, f.x, f.y, f.z), 1.01f * r)) {
+    sc_end_lambdas(0, count[t], o);
     active[t] = 0;
     return;
   }
   __global const int* l = tv + t * ATS_SC_STRIDE;
-  __global const float* d0 = tv_d + t * ATS_SC_STRIDE;
-  const int4 f = tris[t];
   const ats_vec3 a = sc_v(x[f.x]), b = sc_v(x[f.y]), c = sc_v(x[f.z]);
-  __global float4* o = out + 2 * t * ATS_SC_CAPACITY;
   int k = 0;
   for (int m = 0; m < l[0]; ++m) {
     const int v = l[2 + m];
@@ -396,17 +423,19 @@ ATS_TASK void sc_pair_lambdas_triangles(int t, __global const float4* x, __globa
 
 /* The entries of edge e's list (the edges near it). */
 ATS_TASK void sc_pair_lambdas_edges(int e, __global const float4* x, __global const float* moved,
-                                    __global const int2* edges, __global const int* ee, __global const float* ee_d,
-                                    __global const int* count, float r, __global float4* out, __global int* active) {
-  if (count[e] == 0) {
+                                    __global const float* most, __global const int2* edges, __global const int* ee,
+                                    __global const float* ee_d, __global const int* count, float r,
+                                    __global float4* out, __global int* active) {
+  __global const float* d0 = ee_d + e * ATS_SC_STRIDE;
+  __global float4* o = out + 2 * e * ATS_SC_CAPACITY;
+  const int2 s = edges[e];
+  if (count[e] == 0 || sc_list_apart(d0[0], sc_side_moved(moved, s.x, s.y, -1), most[0], 1.01f * r)) {
+    sc_end_lambdas(0, count[e], o);
     active[e] = 0;
     return;
   }
   __global const int* l = ee + e * ATS_SC_STRIDE;
-  __global const float* d0 = ee_d + e * ATS_SC_STRIDE;
-  const int2 s = edges[e];
   const ats_vec3 a = sc_v(x[s.x]), b = sc_v(x[s.y]);
-  __global float4* o = out + 2 * e * ATS_SC_CAPACITY;
   int k = 0;
   for (int m = 0; m < l[0]; ++m) {
     const int2 h = edges[l[2 + m]];

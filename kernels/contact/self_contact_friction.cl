@@ -82,11 +82,16 @@ static inline void sc_end_friction(int acting, int count, __global float4* out) 
 ATS_TASK void sc_friction_pairs_points(int i, __global const float4* x, __global const float4* x_prev,
                                        __global const float4* v, float h, __global const int4* tris,
                                        __global const int* vt, __global const float* vt_d, __global const float* moved,
-                                       float r, float mu_s, float mu_k, __global const float2* pf, __global float4* out,
-                                       __global int* active) {
+                                       __global const float* most, float r, float mu_s, float mu_k,
+                                       __global const float2* pf, __global float4* out, __global int* active) {
   __global const int* l = vt + i * ATS_SC_STRIDE;
   __global const float* d0 = vt_d + i * ATS_SC_STRIDE;
   __global float4* o = out + 2 * i * ATS_SC_CAPACITY;
+  if (l[0] > 0 && sc_list_apart(d0[0], fmax(0.0f, moved[i]), most[0], 1.02f * r)) {
+    sc_end_friction(0, l[0], o);
+    active[i] = 0;
+    return;
+  }
   int k = 0;
   for (int m = 0; m < l[0]; ++m) {
     const int4 f = tris[l[2 + m]];
@@ -103,12 +108,18 @@ ATS_TASK void sc_friction_pairs_points(int i, __global const float4* x, __global
 ATS_TASK void sc_friction_pairs_triangles(int t, __global const float4* x, __global const float4* x_prev,
                                           __global const float4* v, float h, __global const int4* tris,
                                           __global const int* tv, __global const float* tv_d,
-                                          __global const float* moved, float r, float mu_s, float mu_k,
-                                          __global const float2* pf, __global float4* out, __global int* active) {
+                                          __global const float* moved, __global const float* most, float r, float mu_s,
+                                          float mu_k, __global const float2* pf, __global float4* out,
+                                          __global int* active) {
   __global const int* l = tv + t * ATS_SC_STRIDE;
   __global const float* d0 = tv_d + t * ATS_SC_STRIDE;
   const int4 f = tris[t];
   __global float4* o = out + 2 * t * ATS_SC_CAPACITY;
+  if (l[0] > 0 && sc_list_apart(d0[0], most[0], sc_side_moved(moved, f.x, f.y, f.z), 1.02f * r)) {
+    sc_end_friction(0, l[0], o);
+    active[t] = 0;
+    return;
+  }
   int k = 0;
   for (int m = 0; m < l[0]; ++m) {
     const int p = l[2 + m];
@@ -125,12 +136,17 @@ ATS_TASK void sc_friction_pairs_triangles(int t, __global const float4* x, __glo
 ATS_TASK void sc_friction_pairs_edges(int e, __global const float4* x, __global const float4* x_prev,
                                       __global const float4* v, float h, __global const int2* edges,
                                       __global const int* ee, __global const float* ee_d, __global const float* moved,
-                                      float r, float mu_s, float mu_k, __global const float2* pf, __global float4* out,
-                                      __global int* active) {
+                                      __global const float* most, float r, float mu_s, float mu_k,
+                                      __global const float2* pf, __global float4* out, __global int* active) {
   __global const int* l = ee + e * ATS_SC_STRIDE;
   __global const float* d0 = ee_d + e * ATS_SC_STRIDE;
   const int2 s = edges[e];
   __global float4* o = out + 2 * e * ATS_SC_CAPACITY;
+  if (l[0] > 0 && sc_list_apart(d0[0], sc_side_moved(moved, s.x, s.y, -1), most[0], 1.02f * r)) {
+    sc_end_friction(0, l[0], o);
+    active[e] = 0;
+    return;
+  }
   int k = 0;
   for (int m = 0; m < l[0]; ++m) {
     const int2 q = edges[l[2 + m]];

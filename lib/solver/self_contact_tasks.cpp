@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <memory>
+#include <string>
 
 #include <fmt/format.h>
 
@@ -42,6 +43,26 @@ sched::TaskId add_moved(plan::SubstepPlan& plan, sched::TaskId last, const SelfC
                               {WriteSpan::per_element(b.moved, 4)}});
 }
 
+// After add_moved's task (`last`): the largest `moved` of the surface
+// vertices, per block of kMotionBlock and then of all, for the near lists'
+// skip as a whole (contact/self_contact.cl sc_list_apart). `name`: the
+// tasks' name without its last part.
+sched::TaskId add_most_moved(plan::SubstepPlan& plan, sched::TaskId last, const SelfContactBuffers& b, int n,
+                             const std::string& name, plan::TaskKind kind, int iteration, int block) {
+  const int blocks = static_cast<int>(motion_blocks(static_cast<std::size_t>(n)));
+  last = plan.add_task_after(
+      last, plan::make_task(name + "/moved_blocks", kind, iteration, block),
+      {"sc_moved_blocks",
+       {0, blocks},
+       {Arg::of_buffer(b.moved), Arg::of_buffer(b.incidence), Arg::of_int(n), Arg::of_buffer(b.moved_blocks)},
+       {WriteSpan::per_element(b.moved_blocks, 4)}});
+  return plan.add_task_after(last, plan::make_task(name + "/moved_max", kind, iteration, block),
+                             {"sc_moved_max",
+                              {0, 1},
+                              {Arg::of_buffer(b.moved_blocks), Arg::of_int(blocks), Arg::of_buffer(b.most)},
+                              {WriteSpan::per_element(b.most, 4)}});
+}
+
 }  // namespace
 
 SelfContactBuffers add_self_contact_buffers(plan::SubstepPlan& plan, const SimLayout& layout,
@@ -66,6 +87,8 @@ SelfContactBuffers add_self_contact_buffers(plan::SubstepPlan& plan, const SimLa
   b.bound = plan.add_buffer("sc_bound", BufferRole::scratch, zeros(n * 4));
   b.x_out = plan.add_buffer("sc_x_out", BufferRole::scratch, zeros(n * kParticleBytes));
   b.moved = plan.add_buffer("sc_moved", BufferRole::scratch, zeros(n * 4));
+  b.moved_blocks = plan.add_buffer("sc_moved_blocks", BufferRole::scratch, zeros(motion_blocks(n) * 4));
+  b.most = plan.add_buffer("sc_most_moved", BufferRole::scratch, zeros(s.enabled ? 4 : 0));
   b.motion = plan.add_buffer("sc_motion", BufferRole::scratch, zeros(motion_blocks(n) * kMotionBytes));
   b.colliders = colliders >= 0 || !s.enabled ? colliders : add_collider_buffer(plan, layout);
   b.vt_d = plan.add_buffer("sc_vt_d", BufferRole::scratch, zeros(n * kListInts * 4));
@@ -292,12 +315,15 @@ sched::TaskId add_self_contact_projection(plan::SubstepPlan& plan, sched::TaskId
   // The clamp and each vertex's distance from x_t for the near entries'
   // skip (sc_still_apart), in one pass.
   last = add_self_contact_clamp(plan, last, layout, b, start, positions, iteration, b.moved);
+  last = add_most_moved(plan, last, b, n, fmt::format("it{}/collision", iteration + 1), plan::TaskKind::collision,
+                        iteration, 2);
   // Per near-list entry the pair's multiplier (each pair evaluated once per
   // list that holds it, not by each of its four vertices:
   // contact/self_contact.cl) and per list how many act, then per vertex.
   const auto entries = [&](const char* part, const char* function, int count, plan::BufferId topology,
                            std::vector<Arg> lists, plan::BufferId out, plan::BufferId active) {
-    std::vector<Arg> args{Arg::of_buffer(positions), Arg::of_buffer(b.moved), Arg::of_buffer(topology)};
+    std::vector<Arg> args{Arg::of_buffer(positions), Arg::of_buffer(b.moved), Arg::of_buffer(b.most),
+                          Arg::of_buffer(topology)};
     args.insert(args.end(), lists.begin(), lists.end());
     args.push_back(Arg::of_float(s.thickness));
     args.push_back(Arg::of_buffer(out));
@@ -354,13 +380,15 @@ sched::TaskId add_self_contact_friction(plan::SubstepPlan& plan, sched::TaskId l
          {0, count},
          {Arg::of_buffer(positions), Arg::of_buffer(start), Arg::of_buffer(velocities),
           Arg::of_float(static_cast<float>(h)), Arg::of_buffer(topology), Arg::of_buffer(list),
-          Arg::of_buffer(distances), Arg::of_buffer(b.moved), Arg::of_float(s.thickness), Arg::of_float(s.mu_s),
-          Arg::of_float(s.mu_k), Arg::of_buffer(friction), Arg::of_buffer(out), Arg::of_buffer(active)},
+          Arg::of_buffer(distances), Arg::of_buffer(b.moved), Arg::of_buffer(b.most), Arg::of_float(s.thickness),
+          Arg::of_float(s.mu_s), Arg::of_float(s.mu_k), Arg::of_buffer(friction), Arg::of_buffer(out),
+          Arg::of_buffer(active)},
          {WriteSpan::per_element(out, kEntryBytes * ATS_SC_CAPACITY),
           WriteSpan::per_element(active, sizeof(std::int32_t))}});
   };
   last = add_moved(plan, last, b, start, positions, n,
                    plan::make_task("contact/friction_pairs/moved", plan::TaskKind::friction, -1, 0));
+  last = add_most_moved(plan, last, b, n, "contact/friction_pairs", plan::TaskKind::friction, -1, 0);
   const sched::TaskId points =
       entries("points", "sc_friction_pairs_points", n, b.tris, b.vt_near, b.vt_d, b.vt_l, b.vt_k);
   const sched::TaskId triangles = entries("triangles", "sc_friction_pairs_triangles", static_cast<int>(s.tris.size()),

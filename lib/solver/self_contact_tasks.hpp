@@ -30,7 +30,8 @@ struct SelfContactBuffers {
       vt_l = -1, tv_l = -1,
                  ee_l = -1,  // per near-list entry the pair's normal, multiplier and weights (XPBD), or friction
       vt_k = -1, tv_k = -1, ee_k = -1,  // per list the count of its active entries (the projection, then friction)
-      moved = -1;                       // per vertex how far it is from x_t (the near entries' skip, sc_still_apart)
+      moved = -1,                       // per vertex how far it is from x_t (the near entries' skip, sc_still_apart)
+      moved_blocks = -1, most = -1;     // the largest `moved` per block of vertices, then of all (sc_list_apart)
 };
 
 // `colliders`: the plan's collider buffer (solver/collision_tasks
