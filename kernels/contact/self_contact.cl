@@ -367,6 +367,11 @@ static inline int sc_store_lambda(ats_pair_geometry g, const int* pv, __global c
 static inline void sc_end_lambdas(int active, int count, __global float4* out) {
   if (active < count) out[2 * active] = (float4)(0.0f, 0.0f, 0.0f, -1.0f);
 }
+/* List id of `count` near entries, none evaluated (none near, or all apart). */
+static inline void sc_no_lambdas(int id, int count, __global float4* out, __global int* active) {
+  sc_end_lambdas(0, count, out);
+  active[id] = 0;
+}
 
 /* The entries of vertex i's list (as the point of a vertex-triangle pair). */
 /* count: the lists' near counts, packed (common/self_contact_lists.h
@@ -378,8 +383,7 @@ ATS_TASK void sc_pair_lambdas_points(int i, __global const float4* x, __global c
   __global const float* d0 = vt_d + i * ATS_SC_STRIDE;
   __global float4* o = out + 2 * i * ATS_SC_CAPACITY;
   if (count[i] == 0 || sc_list_apart(d0[0], fmax(0.0f, moved[i]), most[0], 1.01f * r)) {
-    sc_end_lambdas(0, count[i], o);
-    active[i] = 0;
+    sc_no_lambdas(i, count[i], o, active);
     return;
   }
   __global const int* l = vt + i * ATS_SC_STRIDE;
@@ -404,8 +408,7 @@ ATS_TASK void sc_pair_lambdas_triangles(int t, __global const float4* x, __globa
   __global float4* o = out + 2 * t * ATS_SC_CAPACITY;
   const int4 f = tris[t];
   if (count[t] == 0 || sc_list_apart(d0[0], most[0], sc_side_moved(moved, f.x, f.y, f.z), 1.01f * r)) {
-    sc_end_lambdas(0, count[t], o);
-    active[t] = 0;
+    sc_no_lambdas(t, count[t], o, active);
     return;
   }
   __global const int* l = tv + t * ATS_SC_STRIDE;
@@ -430,8 +433,7 @@ ATS_TASK void sc_pair_lambdas_edges(int e, __global const float4* x, __global co
   __global float4* o = out + 2 * e * ATS_SC_CAPACITY;
   const int2 s = edges[e];
   if (count[e] == 0 || sc_list_apart(d0[0], sc_side_moved(moved, s.x, s.y, -1), most[0], 1.01f * r)) {
-    sc_end_lambdas(0, count[e], o);
-    active[e] = 0;
+    sc_no_lambdas(e, count[e], o, active);
     return;
   }
   __global const int* l = ee + e * ATS_SC_STRIDE;

@@ -77,6 +77,11 @@ static inline int sc_store_friction(ats_pair_geometry g, const int* pv, __global
 static inline void sc_end_friction(int acting, int count, __global float4* out) {
   if (acting < count) out[2 * acting] = (float4)(0.0f, 0.0f, 0.0f, -1.0f);
 }
+/* List id of `count` near entries, none evaluated (all apart, sc_list_apart). */
+static inline void sc_no_friction(int id, int count, __global float4* out, __global int* active) {
+  sc_end_friction(0, count, out);
+  active[id] = 0;
+}
 
 /* The entries of vertex i's near list (as the point of a vertex-triangle pair). */
 ATS_TASK void sc_friction_pairs_points(int i, __global const float4* x, __global const float4* x_prev,
@@ -88,8 +93,7 @@ ATS_TASK void sc_friction_pairs_points(int i, __global const float4* x, __global
   __global const float* d0 = vt_d + i * ATS_SC_STRIDE;
   __global float4* o = out + 2 * i * ATS_SC_CAPACITY;
   if (l[0] > 0 && sc_list_apart(d0[0], fmax(0.0f, moved[i]), most[0], 1.02f * r)) {
-    sc_end_friction(0, l[0], o);
-    active[i] = 0;
+    sc_no_friction(i, l[0], o, active);
     return;
   }
   int k = 0;
@@ -116,8 +120,7 @@ ATS_TASK void sc_friction_pairs_triangles(int t, __global const float4* x, __glo
   const int4 f = tris[t];
   __global float4* o = out + 2 * t * ATS_SC_CAPACITY;
   if (l[0] > 0 && sc_list_apart(d0[0], most[0], sc_side_moved(moved, f.x, f.y, f.z), 1.02f * r)) {
-    sc_end_friction(0, l[0], o);
-    active[t] = 0;
+    sc_no_friction(t, l[0], o, active);
     return;
   }
   int k = 0;
@@ -143,8 +146,7 @@ ATS_TASK void sc_friction_pairs_edges(int e, __global const float4* x, __global 
   const int2 s = edges[e];
   __global float4* o = out + 2 * e * ATS_SC_CAPACITY;
   if (l[0] > 0 && sc_list_apart(d0[0], sc_side_moved(moved, s.x, s.y, -1), most[0], 1.02f * r)) {
-    sc_end_friction(0, l[0], o);
-    active[e] = 0;
+    sc_no_friction(e, l[0], o, active);
     return;
   }
   int k = 0;
