@@ -406,8 +406,12 @@ ATS_TASK void sc_pair_lambdas_triangles(int t, __global const float4* x, __globa
                                         __global float4* out, __global int* active) {
   __global const float* d0 = tv_d + t * ATS_SC_STRIDE;
   __global float4* o = out + 2 * t * ATS_SC_CAPACITY;
+  if (count[t] == 0) {  // most lists: not even the triangle read
+    sc_no_lambdas(t, 0, o, active);
+    return;
+  }
   const int4 f = tris[t];
-  if (count[t] == 0 || sc_list_apart(d0[0], most[0], sc_side_moved(moved, f.x, f.y, f.z), 1.01f * r)) {
+  if (sc_list_apart(d0[0], most[0], sc_side_moved(moved, f.x, f.y, f.z), 1.01f * r)) {
     sc_no_lambdas(t, count[t], o, active);
     return;
   }
@@ -431,8 +435,12 @@ ATS_TASK void sc_pair_lambdas_edges(int e, __global const float4* x, __global co
                                     __global float4* out, __global int* active) {
   __global const float* d0 = ee_d + e * ATS_SC_STRIDE;
   __global float4* o = out + 2 * e * ATS_SC_CAPACITY;
+  if (count[e] == 0) {  // most lists: not even the edge read
+    sc_no_lambdas(e, 0, o, active);
+    return;
+  }
   const int2 s = edges[e];
-  if (count[e] == 0 || sc_list_apart(d0[0], sc_side_moved(moved, s.x, s.y, -1), most[0], 1.01f * r)) {
+  if (sc_list_apart(d0[0], sc_side_moved(moved, s.x, s.y, -1), most[0], 1.01f * r)) {
     sc_no_lambdas(e, count[e], o, active);
     return;
   }
