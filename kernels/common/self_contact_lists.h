@@ -193,6 +193,7 @@ ATS_FN float sc_vertex_bound(int i, ATS_GLOBAL const int* inc, int n, ATS_GLOBAL
  * the constraints the whole substep. The iterations and friction read the
  * near lists. Same layout as the lists ([1]: the list's horizon, but see
  * sc_near_vertex). */
+/* The largest of a per-vertex value (the bound; `moved`, sc_list_apart) over a side's vertices (c < 0: two). */
 ATS_FN float sc_side_bound(ATS_GLOBAL const float* bound, int a, int b, int c) {
   const float m = fmax(bound[a], bound[b]);
   return c >= 0 ? fmax(m, bound[c]) : m;
@@ -203,8 +204,10 @@ ATS_FN float sc_side_bound(ATS_GLOBAL const float* bound, int a, int b, int c) {
  * fl(fl(d0 - m0) - m1) > reach, d0 its distance at x_t, m0 and m1 the
  * largest displacement since x_t on its first and second side). least is
  * the list's smallest d0 (d0[0], sc_store_distances); first and second
- * are at least every entry's m0 and m1 (the list's own primitive's side,
- * exactly; the other side's by the largest of every surface vertex). fl(a -
+ * are at least every entry's m0 and m1 (the list's own primitive's side by
+ * its vertices' largest, sc_side_bound; the other side's by the largest of
+ * every surface vertex; a NaN among them fails the test and skips
+ * nothing). fl(a -
  * b) grows with a and falls with b, so every entry's test is at least this
  * one's, and the skip is the entry by entry skip's result, bit for bit.
  * Most near lists of layered cloth hold pairs a thickness or more apart

@@ -344,12 +344,6 @@ ATS_TASK void sc_moved_max(int k, __global const float* block_max, int blocks, _
   most[0] = m;
 }
 
-/* A side's largest `moved`, as sc_still_apart takes it. */
-static inline float sc_side_moved(__global const float* moved, int a, int b, int c) {
-  float m = fmax(fmax(0.0f, moved[a]), moved[b]);
-  return c >= 0 ? fmax(m, moved[c]) : m;
-}
-
 static inline int sc_store_lambda(ats_pair_geometry g, const int* pv, __global const float4* x, float r,
                                   __global float4* out) {
   float denom = 0.0f;
@@ -382,7 +376,7 @@ ATS_TASK void sc_pair_lambdas_points(int i, __global const float4* x, __global c
                                      __global float4* out, __global int* active) {
   __global const float* d0 = vt_d + i * ATS_SC_STRIDE;
   __global float4* o = out + 2 * i * ATS_SC_CAPACITY;
-  if (count[i] == 0 || sc_list_apart(d0[0], fmax(0.0f, moved[i]), most[0], 1.01f * r)) {
+  if (count[i] == 0 || sc_list_apart(d0[0], moved[i], most[0], 1.01f * r)) {
     sc_no_lambdas(i, count[i], o, active);
     return;
   }
@@ -411,7 +405,7 @@ ATS_TASK void sc_pair_lambdas_triangles(int t, __global const float4* x, __globa
     return;
   }
   const int4 f = tris[t];
-  if (sc_list_apart(d0[0], most[0], sc_side_moved(moved, f.x, f.y, f.z), 1.01f * r)) {
+  if (sc_list_apart(d0[0], most[0], sc_side_bound(moved, f.x, f.y, f.z), 1.01f * r)) {
     sc_no_lambdas(t, count[t], o, active);
     return;
   }
@@ -440,7 +434,7 @@ ATS_TASK void sc_pair_lambdas_edges(int e, __global const float4* x, __global co
     return;
   }
   const int2 s = edges[e];
-  if (sc_list_apart(d0[0], sc_side_moved(moved, s.x, s.y, -1), most[0], 1.01f * r)) {
+  if (sc_list_apart(d0[0], sc_side_bound(moved, s.x, s.y, -1), most[0], 1.01f * r)) {
     sc_no_lambdas(e, count[e], o, active);
     return;
   }

@@ -92,7 +92,7 @@ ATS_TASK void sc_friction_pairs_points(int i, __global const float4* x, __global
   __global const int* l = vt + i * ATS_SC_STRIDE;
   __global const float* d0 = vt_d + i * ATS_SC_STRIDE;
   __global float4* o = out + 2 * i * ATS_SC_CAPACITY;
-  if (l[0] > 0 && sc_list_apart(d0[0], fmax(0.0f, moved[i]), most[0], 1.02f * r)) {
+  if (l[0] > 0 && sc_list_apart(d0[0], moved[i], most[0], 1.02f * r)) {
     sc_no_friction(i, l[0], o, active);
     return;
   }
@@ -119,7 +119,7 @@ ATS_TASK void sc_friction_pairs_triangles(int t, __global const float4* x, __glo
   __global const float* d0 = tv_d + t * ATS_SC_STRIDE;
   const int4 f = tris[t];
   __global float4* o = out + 2 * t * ATS_SC_CAPACITY;
-  if (l[0] > 0 && sc_list_apart(d0[0], most[0], sc_side_moved(moved, f.x, f.y, f.z), 1.02f * r)) {
+  if (l[0] > 0 && sc_list_apart(d0[0], most[0], sc_side_bound(moved, f.x, f.y, f.z), 1.02f * r)) {
     sc_no_friction(t, l[0], o, active);
     return;
   }
@@ -145,7 +145,7 @@ ATS_TASK void sc_friction_pairs_edges(int e, __global const float4* x, __global 
   __global const float* d0 = ee_d + e * ATS_SC_STRIDE;
   const int2 s = edges[e];
   __global float4* o = out + 2 * e * ATS_SC_CAPACITY;
-  if (l[0] > 0 && sc_list_apart(d0[0], sc_side_moved(moved, s.x, s.y, -1), most[0], 1.02f * r)) {
+  if (l[0] > 0 && sc_list_apart(d0[0], sc_side_bound(moved, s.x, s.y, -1), most[0], 1.02f * r)) {
     sc_no_friction(e, l[0], o, active);
     return;
   }
