@@ -11,9 +11,6 @@
 #include "broad_phase/surface_pairs.hpp"
 #include "solver/layout/sim_layout.hpp"
 
-#define ats_float4 ::atssim::solver::Float4
-#include "common/self_contact_bvh.h"
-
 namespace atssim::bench {
 
 using solver::Float4;

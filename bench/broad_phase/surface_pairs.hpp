@@ -2,7 +2,8 @@
 // What the self-contact queries find (kernels/contact/self_contact.cl
 // sc_query_groups), on the host in float through the
 // kernels' own narrow phase (common/self_contact.h): every vertex-triangle
-// and edge-edge pair closer than the query radius, incident pairs excluded.
+// and edge-edge pair closer than the query radius, incident pairs and sheet
+// neighbours excluded (common/self_contact_bvh.h sc_sheet_*).
 // Unlike the kernels, which keep the 8 nearest per primitive, all pairs are
 // kept, so two broad phases can be compared pair for pair.
 #include <algorithm>
@@ -11,8 +12,11 @@
 #include <cstdint>
 #include <vector>
 
-#include "common/self_contact.h"
 #include "solver/layout/self_contact_layout.hpp"
+#include "solver/layout/sim_layout.hpp"
+
+#define ats_float4 ::atssim::solver::Float4
+#include "common/self_contact_bvh.h"
 
 namespace atssim::bench {
 
@@ -81,14 +85,25 @@ inline std::vector<ats_vec3> float_positions(const std::vector<Eigen::Vector3d>&
 inline bool is_surface(const SelfContactLayout& s, int i) { return s.incidence[i + 1] > s.incidence[i]; }
 
 // The narrow phase of one candidate, with the kernels' exclusion of incident
-// pairs; records the pair when it is closer than r.
+// pairs and sheet neighbours; records the pair when it is closer than r.
 inline void test_vertex_triangle(const SelfContactLayout& s, const std::vector<ats_vec3>& x, int v, int t, float r,
                                  PairLists& out, bool per_vertex) {
   const auto& f = s.tris[t];
   if (v == f[0] || v == f[1] || v == f[2]) return;
   ++out.tested;
   const ats_pair_geometry g = ats_point_triangle(x[v], x[f[0]], x[f[1]], x[f[2]]);
-  if (g.d < r) (per_vertex ? out.vt : out.tv).push_back(per_vertex ? std::array{v, t} : std::array{t, v});
+  if (g.d < r &&
+      !sc_sheet_vertex_triangle(s.incidence.data(), s.tris[0].data(), v, f.data(), g.diff, x[f[0]], x[f[1]], x[f[2]]))
+    (per_vertex ? out.vt : out.tv).push_back(per_vertex ? std::array{v, t} : std::array{t, v});
+}
+
+// sc_edge_in_plane on the bench's positions (ats_vec3, not the kernels' float4).
+inline bool edge_in_plane(const SelfContactLayout& s, const std::vector<ats_vec3>& x, int e0, int e1, ats_vec3 diff) {
+  for (int k = s.incidence[e0]; k < s.incidence[e0 + 1]; ++k) {
+    const auto& f = s.tris[s.incidence[k]];
+    if ((f[0] == e1 || f[1] == e1 || f[2] == e1) && !ats_pair_in_plane(diff, x[f[0]], x[f[1]], x[f[2]])) return false;
+  }
+  return true;
 }
 
 inline void test_edge_edge(const SelfContactLayout& s, const std::vector<ats_vec3>& x, int e, int f, float r,
@@ -99,7 +114,11 @@ inline void test_edge_edge(const SelfContactLayout& s, const std::vector<ats_vec
   if (b[0] == a[0] || b[0] == a[1] || b[1] == a[0] || b[1] == a[1]) return;
   ++out.tested;
   const ats_pair_geometry g = ats_edge_edge(x[a[0]], x[a[1]], x[b[0]], x[b[1]]);
-  if (g.d < r) out.ee.push_back({e, f});
+  const int* inc = s.incidence.data();
+  const int* tris = s.tris[0].data();
+  const bool sheet = (sc_joined(inc, tris, a[0], b[0], b[1], b[1]) || sc_joined(inc, tris, a[1], b[0], b[1], b[1])) &&
+                     edge_in_plane(s, x, a[0], a[1], g.diff) && edge_in_plane(s, x, b[0], b[1], g.diff);
+  if (g.d < r && !sheet) out.ee.push_back({e, f});
 }
 
 // Every pair tested (a box 1 % wider than r skips the far ones; a pair

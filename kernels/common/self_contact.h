@@ -106,6 +106,20 @@ ATS_FN ats_pair_geometry ats_edge_edge(ats_vec3 p0, ats_vec3 p1, ats_vec3 q0, at
   return ats_pair_of(p0, p1, q0, q1, 1 - s, s, -(1 - t), -t);
 }
 
+/* Sheet neighbours. A pair whose primitives are joined (a vertex of one
+ * and a vertex of the other corners of one surface triangle) and whose
+ * offset D lies within 30 degrees of the plane of its triangles is two
+ * neighbours side by side in one sheet, held apart by the sheet's own
+ * stretch: no contact. The same pair with D off that plane (the sheet
+ * folded onto itself) is one. Whether D is within 30 degrees of the plane
+ * of (a, b, c): (n . D)^2 < sin^2(30 deg) |n|^2 |D|^2, n = (b - a) x (c - a);
+ * a degenerate triangle or D = 0 has no such angle: not in the plane. */
+ATS_FN int ats_pair_in_plane(ats_vec3 diff, ats_vec3 a, ats_vec3 b, ats_vec3 c) {
+  const ats_vec3 n = ats_v3_cross(ats_sub(b, a), ats_sub(c, a));
+  const ats_real dn = ats_dot(n, diff);
+  return dn * dn < (ats_real)0.25 * ats_dot(n, n) * ats_dot(diff, diff);
+}
+
 /* The pair's contact energy (see above). */
 ATS_FN ats_real ats_pair_energy(ats_pair_geometry g, ats_real k, ats_real r) {
   if (!(g.d < r)) return 0;

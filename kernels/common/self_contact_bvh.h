@@ -278,9 +278,45 @@ ATS_FN int sc_segments_apart(ats_vec3 a0, ats_vec3 a1, ats_vec3 b0, ats_vec3 b1,
   return sep > 0.0f && sep * sep > 1.001f * radius * radius * ats_dot(u, u);
 }
 
+/* Sheet neighbours (common/self_contact.h ats_pair_in_plane): whether
+ * vertex v and a corner of (a, b, c) are corners of one triangle, from v's
+ * incident triangles (inc). */
+ATS_FN int sc_joined(ATS_GLOBAL const int* inc, ATS_GLOBAL const int* tris, int v, int a, int b, int c) {
+  for (int k = inc[v]; k < inc[v + 1]; ++k) {
+    ATS_GLOBAL const int* f = tris + 4 * inc[k];
+    for (int j = 0; j < 3; ++j)
+      if (f[j] == a || f[j] == b || f[j] == c) return 1;
+  }
+  return 0;
+}
+
+/* Whether D lies in the plane of every triangle of edge (e0, e1). */
+ATS_FN int sc_edge_in_plane(ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* inc, ATS_GLOBAL const int* tris,
+                            int e0, int e1, ats_vec3 diff) {
+  for (int k = inc[e0]; k < inc[e0 + 1]; ++k) {
+    ATS_GLOBAL const int* f = tris + 4 * inc[k];
+    if (f[0] != e1 && f[1] != e1 && f[2] != e1) continue;
+    if (!ats_pair_in_plane(diff, sc_v(x[f[0]]), sc_v(x[f[1]]), sc_v(x[f[2]]))) return 0;
+  }
+  return 1;
+}
+
+/* Vertex v and triangle f (corners a, b, c) at offset D: sheet neighbours. */
+ATS_FN int sc_sheet_vertex_triangle(ATS_GLOBAL const int* inc, ATS_GLOBAL const int* tris, int v, const int* f,
+                                    ats_vec3 diff, ats_vec3 a, ats_vec3 b, ats_vec3 c) {
+  return ats_pair_in_plane(diff, a, b, c) && sc_joined(inc, tris, v, f[0], f[1], f[2]);
+}
+
+/* Edges (a0, a1) and (b0, b1) at offset D: sheet neighbours. */
+ATS_FN int sc_sheet_edge_edge(ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* inc, ATS_GLOBAL const int* tris,
+                              int a0, int a1, int b0, int b1, ats_vec3 diff) {
+  return (sc_joined(inc, tris, a0, b0, b1, b1) || sc_joined(inc, tris, a1, b0, b1, b1)) &&
+         sc_edge_in_plane(x, inc, tris, a0, a1, diff) && sc_edge_in_plane(x, inc, tris, b0, b1, diff);
+}
+
 /* Candidate leaf o (its box overlaps q). */
-ATS_FN void sc_leaf_candidate(sc_leaf_query* lq, int o, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* tris,
-                              ATS_GLOBAL const int* edges, ATS_GLOBAL const int* leaves,
+ATS_FN void sc_leaf_candidate(sc_leaf_query* lq, int o, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* inc,
+                              ATS_GLOBAL const int* tris, ATS_GLOBAL const int* edges, ATS_GLOBAL const int* leaves,
                               ATS_GLOBAL const ats_float4* nodes, float radius) {
   ATS_GLOBAL const int* g = tris + 4 * o;
   ATS_GLOBAL const int* theirs = leaves + 8 * o;
@@ -292,7 +328,8 @@ ATS_FN void sc_leaf_candidate(sc_leaf_query* lq, int o, ATS_GLOBAL const ats_flo
     const ats_vec3 p = sc_v(x[v]);
     if (!sc_box_holds(lq->q, p)) continue;
     const ats_pair_geometry pg = ats_point_triangle(p, lq->a, lq->b, lq->c);
-    if (pg.d < radius) sc_list_insert(&lq->tri, v, pg.d);
+    if (pg.d < radius && !sc_sheet_vertex_triangle(inc, tris, v, lq->f, pg.diff, lq->a, lq->b, lq->c))
+      sc_list_insert(&lq->tri, v, pg.d);
   }
   /* per vertex the triangles: triangle o, near each vertex u owns (its
    * corners read once for all of them) */
@@ -303,10 +340,12 @@ ATS_FN void sc_leaf_candidate(sc_leaf_query* lq, int o, ATS_GLOBAL const ats_flo
   }
   if (near) {
     const ats_vec3 ga = sc_v(x[g[0]]), gb = sc_v(x[g[1]]), gc = sc_v(x[g[2]]);
+    const int gf[3] = {g[0], g[1], g[2]};
     for (int k = 0; k < 3; ++k) {
       if (!(near & (1 << k))) continue;
       const ats_pair_geometry pg = ats_point_triangle(lq->vp[k], ga, gb, gc);
-      if (pg.d < radius) sc_list_insert(&lq->vl[k], o, pg.d);
+      if (pg.d < radius && !sc_sheet_vertex_triangle(inc, tris, lq->vid[k], gf, pg.diff, ga, gb, gc))
+        sc_list_insert(&lq->vl[k], o, pg.d);
     }
   }
   /* per edge the edges: the edges leaf o owns, near each edge u owns (each
@@ -327,7 +366,8 @@ ATS_FN void sc_leaf_candidate(sc_leaf_query* lq, int o, ATS_GLOBAL const ats_flo
         continue;
       if (sc_segments_apart(lq->ea[k], lq->eb[k], p0, p1, radius)) continue;
       const ats_pair_geometry pg = ats_edge_edge(lq->ea[k], lq->eb[k], p0, p1);
-      if (pg.d < radius) sc_list_insert(&lq->el[k], h, pg.d);
+      if (pg.d < radius && !sc_sheet_edge_edge(x, inc, tris, lq->e0[k], lq->e1[k], o0, o1, pg.diff))
+        sc_list_insert(&lq->el[k], h, pg.d);
     }
   }
 }
@@ -353,7 +393,7 @@ ATS_FN void sc_query_leaf(int u, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL cons
   sc_walk_begin(&w, nodes, levels, root, lq.q);
   int o;
   while ((o = sc_walk_next(&w, nodes, levels, lq.q)) >= 0)
-    sc_leaf_candidate(&lq, o, x, tris, edges, leaves, nodes, radius);
+    sc_leaf_candidate(&lq, o, x, inc, tris, edges, leaves, nodes, radius);
   sc_leaf_end(&lq, radius, leaves, vt, tv, ee);
 }
 
@@ -398,7 +438,7 @@ ATS_FN void sc_query_group(int g, int leaf_count, ATS_GLOBAL const ats_float4* x
     sc_leaf_begin(&lq, u, x, inc, tris, edges, leaves, radius);
     for (int k = 0; k < count; ++k)
       if (sc_boxes_overlap(sc_node_box(nodes, cand[k]), lq.q))
-        sc_leaf_candidate(&lq, cand[k], x, tris, edges, leaves, nodes, radius);
+        sc_leaf_candidate(&lq, cand[k], x, inc, tris, edges, leaves, nodes, radius);
     sc_leaf_end(&lq, radius, leaves, vt, tv, ee);
   }
 }

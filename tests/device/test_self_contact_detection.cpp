@@ -39,33 +39,38 @@ const char* kScene =
 
 Eigen::Vector3d at(const std::vector<solver::Float4>& x, int i) { return {x[i].x, x[i].y, x[i].z}; }
 
-// Pairs of primitives that share a vertex are no contact pairs (incident).
-struct Incident {
-  bool vertex_triangle(int v, const std::array<int, 4>& f) const { return v == f[0] || v == f[1] || v == f[2]; }
-  bool edge_edge(const std::array<int, 2>& a, const std::array<int, 2>& b) const {
-    return a[0] == b[0] || a[0] == b[1] || a[1] == b[0] || a[1] == b[1];
-  }
-};
-
-double seg_dist(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+double seg_param(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   const Eigen::Vector3d ab = b - a;
-  const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-  return (p - a - t * ab).norm();
+  return std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
 }
 
-// Point-triangle by dense sampling plus the edges (independent of the kernels' closed form).
-double pt_dist(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
-  double best = std::min({seg_dist(p, a, b), seg_dist(p, b, c), seg_dist(p, c, a)});
-  const Eigen::Vector3d n = (b - a).cross(c - a).normalized();
+double seg_dist(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return (p - a - seg_param(p, a, b) * (b - a)).norm();
+}
+
+// Point-triangle: the closest point of the triangle to p, from its plane and
+// its edges (independent of the kernels' closed form).
+Eigen::Vector3d pt_closest(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                           const Eigen::Vector3d& c) {
+  const Eigen::Vector3d m = (b - a).cross(c - a), n = m.normalized();
   const Eigen::Vector3d q = p - (p - a).dot(n) * n;
-  const Eigen::Vector3d m = (b - a).cross(c - a);
   if ((b - a).cross(q - a).dot(m) >= 0 && (c - b).cross(q - b).dot(m) >= 0 && (a - c).cross(q - c).dot(m) >= 0)
-    best = std::min(best, std::abs((p - a).dot(n)));
+    return q;
+  Eigen::Vector3d best = a;
+  for (const auto& [u, w] : {std::pair{a, b}, std::pair{b, c}, std::pair{c, a}}) {
+    const Eigen::Vector3d on = u + seg_param(p, u, w) * (w - u);
+    if ((p - on).norm() < (p - best).norm()) best = on;
+  }
   return best;
 }
 
-double ee_dist(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& q0,
-               const Eigen::Vector3d& q1) {
+double pt_dist(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  return (p - pt_closest(p, a, b, c)).norm();
+}
+
+// Edge-edge: the offset between the closest points.
+Eigen::Vector3d ee_offset(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& q0,
+                          const Eigen::Vector3d& q1) {
   // The distance from p(s) to segment q is convex in s: ternary search.
   double lo = 0.0, hi = 1.0;
   const auto f = [&](double t) { return seg_dist(p0 + t * (p1 - p0), q0, q1); };
@@ -77,8 +82,54 @@ double ee_dist(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen
       lo = m1;
     }
   }
-  return std::min({f(lo), f(0.0), f(1.0)});
+  const double s = f(0.0) < f(lo) ? 0.0 : f(1.0) < f(lo) ? 1.0 : lo;
+  const Eigen::Vector3d p = p0 + s * (p1 - p0);
+  return p - (q0 + seg_param(p, q0, q1) * (q1 - q0));
 }
+
+double ee_dist(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& q0,
+               const Eigen::Vector3d& q1) {
+  return ee_offset(p0, p1, q0, q1).norm();
+}
+
+// No contact pairs: primitives that share a vertex (incident), and sheet
+// neighbours: a vertex of each corners of one triangle, the offset between
+// the closest points within 30 degrees of the plane of the triangle (of
+// every triangle of either edge).
+struct Excluded {
+  const solver::SelfContactLayout& s;
+  const std::vector<solver::Float4>& x;
+
+  bool joined(int v, std::initializer_list<int> others) const {
+    for (const auto& t : s.tris) {
+      if (t[0] != v && t[1] != v && t[2] != v) continue;
+      for (int w : others)
+        if (t[0] == w || t[1] == w || t[2] == w) return true;
+    }
+    return false;
+  }
+  bool in_plane(const Eigen::Vector3d& d, const std::array<int, 4>& t) const {
+    const Eigen::Vector3d n = (at(x, t[1]) - at(x, t[0])).cross(at(x, t[2]) - at(x, t[0])).normalized();
+    return std::abs(n.dot(d.normalized())) < 0.5;  // sin 30 degrees
+  }
+  bool edge_in_plane(const Eigen::Vector3d& d, const std::array<int, 2>& e) const {
+    for (const auto& t : s.tris) {
+      const auto has = [&](int v) { return t[0] == v || t[1] == v || t[2] == v; };
+      if (has(e[0]) && has(e[1]) && !in_plane(d, t)) return false;
+    }
+    return true;
+  }
+  bool vertex_triangle(int v, const std::array<int, 4>& f) const {
+    if (v == f[0] || v == f[1] || v == f[2]) return true;
+    const Eigen::Vector3d d = at(x, v) - pt_closest(at(x, v), at(x, f[0]), at(x, f[1]), at(x, f[2]));
+    return joined(v, {f[0], f[1], f[2]}) && in_plane(d, f);
+  }
+  bool edge_edge(const std::array<int, 2>& a, const std::array<int, 2>& b) const {
+    if (a[0] == b[0] || a[0] == b[1] || a[1] == b[0] || a[1] == b[1]) return true;
+    const Eigen::Vector3d d = ee_offset(at(x, a[0]), at(x, a[1]), at(x, b[0]), at(x, b[1]));
+    return (joined(a[0], {b[0], b[1]}) || joined(a[1], {b[0], b[1]})) && edge_in_plane(d, a) && edge_in_plane(d, b);
+  }
+};
 
 std::vector<int> ints_of(const std::vector<std::byte>& raw) {
   std::vector<int> out(raw.size() / 4);
@@ -100,6 +151,7 @@ void check_list(const std::vector<int>& list, int e, std::vector<std::pair<doubl
   std::sort(expected.begin(), expected.end());
   const int* l = list.data() + e * kStride;
   INFO("element " << e << ": " << expected.size() << " within the radius");
+
   REQUIRE(l[0] == std::min<int>(kCapacity, int(expected.size())));
   // [1]: the horizon, the distance every unlisted candidate is at least at
   float horizon;
@@ -113,18 +165,16 @@ void check_list(const std::vector<int>& list, int e, std::vector<std::pair<doubl
   }
 }
 
-}  // namespace
+// One detection (a frame's first substep, at contact.query_radius;
+// common/self_contact_lists.h sc_decide) from `layout`'s positions, its
+// lists against the brute force. Counts of vertex-triangle pairs within the
+// radius: contact pairs, those of them joined by a triangle (folded), and
+// sheet neighbours (not contact pairs).
+struct PairCounts {
+  int pairs = 0, folded = 0, sheet = 0;
+};
 
-TEST_CASE("self-contact detection on the device finds the brute force's nearest pairs and bound", "[self]") {
-  const model::Model m = model::build_model(scene::parse_scene(kScene, "s.yaml", "."));
-  solver::SimLayout layout = solver::make_sim_layout(m);
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<float> u(-0.002f, 0.002f);
-  for (auto& p : layout.x) {
-    p.x += u(rng);
-    p.y += u(rng);
-    p.z += u(rng);
-  }
+PairCounts check_detection(const solver::SimLayout& layout) {
   const solver::SelfContactLayout& s = layout.self_contact;
   REQUIRE(s.enabled);
   const plan::SubstepPlan plan = solver::vbd::make_vbd_plan(layout, 1.0 / 60.0, 1);
@@ -134,8 +184,6 @@ TEST_CASE("self-contact detection on the device finds the brute force's nearest 
   const std::vector<int> vt = ints_of(exec.read(buffer_named(plan, "sc_vt")));
   const std::vector<int> tv = ints_of(exec.read(buffer_named(plan, "sc_tv")));
   const std::vector<int> ee = ints_of(exec.read(buffer_named(plan, "sc_ee")));
-  // A frame's first substep detects, at the largest radius
-  // (contact.query_radius; common/self_contact_lists.h sc_decide).
   const std::vector<int> state = ints_of(exec.read(buffer_named(plan, "sc_state")));
   CHECK(state[1] == 1);
   float radius = 0.0f;
@@ -143,19 +191,25 @@ TEST_CASE("self-contact detection on the device finds the brute force's nearest 
   CHECK(radius == s.query_radius);
   const auto& x = layout.x;  // detection runs on x_t, the substep's start
   const int n = int(x.size());
-  const Incident excluded;
+  const Excluded excluded{s, x};
   std::vector<char> surface(n, 0);
   for (const auto& t : s.tris) surface[t[0]] = surface[t[1]] = surface[t[2]] = 1;
-  int pairs = 0;
+  PairCounts c;
   for (int v = 0; v < n; ++v) {
     std::vector<std::pair<double, int>> expected;
     for (int t = 0; surface[v] && t < int(s.tris.size()); ++t) {
       const auto& f = s.tris[t];
-      if (excluded.vertex_triangle(v, f)) continue;
+      if (v == f[0] || v == f[1] || v == f[2]) continue;
       const double d = pt_dist(at(x, v), at(x, f[0]), at(x, f[1]), at(x, f[2]));
-      if (d < radius) expected.emplace_back(d, t);
+      if (!(d < radius)) continue;
+      if (excluded.vertex_triangle(v, f)) {
+        ++c.sheet;
+      } else {
+        expected.emplace_back(d, t);
+        c.folded += excluded.joined(v, {f[0], f[1], f[2]});
+      }
     }
-    pairs += int(expected.size());
+    c.pairs += int(expected.size());
     check_list(vt, v, expected, radius);
   }
   for (int t = 0; t < int(s.tris.size()); ++t) {
@@ -179,7 +233,48 @@ TEST_CASE("self-contact detection on the device finds the brute force's nearest 
     }
     check_list(ee, e, expected, radius);
   }
-  CHECK(pairs > 100);  // the two layers do face each other
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE("self-contact detection on the device finds the brute force's nearest pairs and bound", "[self]") {
+  const model::Model m = model::build_model(scene::parse_scene(kScene, "s.yaml", "."));
+  solver::SimLayout layout = solver::make_sim_layout(m);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(-0.002f, 0.002f);
+  for (auto& p : layout.x) {
+    p.x += u(rng);
+    p.y += u(rng);
+    p.z += u(rng);
+  }
+  CHECK(check_detection(layout).pairs > 100);  // the two layers do face each other
+}
+
+TEST_CASE("a sheet folded onto itself keeps its folded neighbours as contact pairs, not its flat ones", "[self]") {
+  // One sheet, edges 6 cm, a query radius of 6 cm: in the flat part every
+  // vertex has triangles of its neighbours within the radius, in the sheet's
+  // plane (sheet neighbours, not listed); the part beyond x = 0 is folded up
+  // by 100 degrees, so a vertex there and the flat triangles beside the fold
+  // are joined but apart mostly along the flat part's normal (listed).
+  const char* scene =
+      "simulation: {fps: 60, substeps: 1, iterations: 1, frames: 1, gravity: [0, 0, 0]}\n"
+      "objects:\n"
+      "  - {name: a, grid: {size: [0.3, 0.3], resolution: [6, 6]}, material: {density: 0.2, stretch_stiffness: 100}}\n"
+      "contact: {self: true, thickness: 0.012, query_radius: 0.06}\n";
+  const model::Model m = model::build_model(scene::parse_scene(scene, "s.yaml", "."));
+  solver::SimLayout layout = solver::make_sim_layout(m);
+  const double fold = 100.0 * M_PI / 180.0;
+  for (auto& p : layout.x) {
+    if (p.x > 0.0f) {
+      const double r = p.x;
+      p.x = static_cast<float>(r * std::cos(fold));
+      p.y = static_cast<float>(r * std::sin(fold));
+    }
+  }
+  const PairCounts c = check_detection(layout);
+  CHECK(c.folded > 0);
+  CHECK(c.sheet > c.folded);
 }
 
 TEST_CASE(
@@ -203,7 +298,6 @@ TEST_CASE(
   const auto devices = device::DeviceSet::open("cpu");
   device::PlanExecutor exec(devices, plan, {});
   const float near = 1.5f * s.thickness;
-  const Incident excluded;
   const int substeps = 24;
   int kept = 0, checked = 0;
   for (int k = 0; k < substeps; ++k) {
@@ -213,6 +307,7 @@ TEST_CASE(
     std::vector<solver::Float4> x(layout.x.size());
     const std::vector<std::byte> raw = exec.read(buffer_named(plan, "x_prev"));  // x_t of this substep
     std::memcpy(x.data(), raw.data(), raw.size());
+    const Excluded excluded{s, x};
     const std::vector<int> vt = ints_of(exec.read(buffer_named(plan, "sc_vt")));
     const std::vector<int> ee = ints_of(exec.read(buffer_named(plan, "sc_ee")));
     for (int v = 0; v < int(x.size()); ++v) {

@@ -83,7 +83,7 @@ Tally reduce(int count, Body&& body) {
 }  // namespace
 
 SurfaceContactCheck::SurfaceContactCheck(std::vector<std::array<int, 3>> triangles, double thickness)
-    : tris_(std::move(triangles)), thickness_(thickness) {
+    : tris_(std::move(triangles)), sheet_(tris_), thickness_(thickness) {
   std::set<std::pair<int, int>> seen;
   std::set<int> vertices;
   own_vertices_.assign(tris_.size(), {-1, -1, -1});
@@ -113,6 +113,7 @@ SurfaceContacts SurfaceContactCheck::measure(std::span<const float> xyz) const {
   std::vector<Vector3d> x(n);
   for (std::size_t i = 0; i < n; ++i) x[i] = Vector3d(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
   const double r = thickness_;
+  const energy::SheetNeighbours::Positions at = [&](int i) { return x[i]; };
   const auto finite = [](const Box& b) { return b.min().allFinite() && b.max().allFinite(); };
 
   // Triangle j's box in the grid holds the triangle and the edges it owns:
@@ -158,8 +159,9 @@ SurfaceContacts SurfaceContactCheck::measure(std::span<const float> xyz) const {
       const Box& ob = triangles.box(o);
       for (int v : own_v) {
         if (v < 0 || v == f[0] || v == f[1] || v == f[2] || (ob.exteriorDistance(x[v]) > r)) continue;
-        const double d = f64::ats_point_triangle(v3(x[v]), v3(x[f[0]]), v3(x[f[1]]), v3(x[f[2]])).d;
-        if (d < r) {
+        const f64::ats_pair_geometry g = f64::ats_point_triangle(v3(x[v]), v3(x[f[0]]), v3(x[f[1]]), v3(x[f[2]]));
+        const double d = g.d;
+        if (d < r && !sheet_.vertex_triangle(v, f, {g.diff.x, g.diff.y, g.diff.z}, at)) {
           ++t.vertex_triangle;
           t.closest = std::min(t.closest, d);
         }
@@ -173,8 +175,9 @@ SurfaceContacts SurfaceContactCheck::measure(std::span<const float> xyz) const {
           const auto& b = edges_[h];
           if (b[0] == a[0] || b[0] == a[1] || b[1] == a[0] || b[1] == a[1] || !wide[k].intersects(edge_boxes[h]))
             continue;
-          const double d = f64::ats_edge_edge(v3(x[a[0]]), v3(x[a[1]]), v3(x[b[0]]), v3(x[b[1]])).d;
-          if (d < r) {
+          const f64::ats_pair_geometry g = f64::ats_edge_edge(v3(x[a[0]]), v3(x[a[1]]), v3(x[b[0]]), v3(x[b[1]]));
+          const double d = g.d;
+          if (d < r && !sheet_.edge_edge(a, b, {g.diff.x, g.diff.y, g.diff.z}, at)) {
             ++t.edge_edge;
             t.closest = std::min(t.closest, d);
           }

@@ -4,8 +4,9 @@
 // (model::ContactSurface, `contact: {self: true}`; docs/output-format.md).
 // Measured on the host in double, independently of the device's detection
 // (which keeps only the 8 nearest pairs of each primitive, at the start of a
-// substep): every non-incident vertex-triangle and edge-edge pair closer
-// than the contact thickness, through the kernels' narrow phase
+// substep): every vertex-triangle and edge-edge pair closer than the contact
+// thickness, incident ones and sheet neighbours (solver/energy/
+// sheet_neighbours) excluded, through the kernels' narrow phase
 // (common/self_contact.h), and every surface edge against every surface
 // triangle it does not touch, for a crossing. Broad phase: solver/contact/
 // box_grid (a uniform hashed grid rebuilt per call) over the triangles, one
@@ -17,11 +18,13 @@
 
 #include <Eigen/Core>
 
+#include "solver/energy/sheet_neighbours.hpp"
+
 namespace atssim::solver {
 
 struct SurfaceContacts {
-  int vertex_triangle = 0;       // non-incident pairs closer than the thickness
-  int edge_edge = 0;             // pairs of edges that share no vertex, closer than the thickness
+  int vertex_triangle = 0;       // contact pairs (not incident, not sheet neighbours) closer than the thickness
+  int edge_edge = 0;             // the same of edges (sharing no vertex)
   double max_penetration = 0.0;  // thickness − the smallest distance of those pairs (0: none)
   int crossings = 0;             // (edge, triangle) pairs sharing no vertex, the edge through the triangle
   int pairs() const { return vertex_triangle + edge_edge; }
@@ -47,6 +50,7 @@ class SurfaceContactCheck {
   // Per triangle, the vertices (particle ids) and edges (ids into edges_)
   // it owns; -1: none.
   std::vector<std::array<int, 3>> own_vertices_, own_edges_;
+  energy::SheetNeighbours sheet_;
   double thickness_ = 0.0;
 };
 

@@ -58,8 +58,9 @@ struct TetTerm {
 };
 
 // Contact between simulated surfaces (common/self_contact.h): every
-// vertex-triangle and edge-edge pair closer than r, incident ones excluded,
-// adds 1/2 k (r - d)^2 (solver/energy/self_contact_energy.hpp).
+// vertex-triangle and edge-edge pair closer than r, incident ones and sheet
+// neighbours excluded, adds 1/2 k (r - d)^2
+// (solver/energy/self_contact_energy.hpp).
 struct SurfaceContactTerm {
   std::vector<std::array<int, 3>> tris;  // empty: no such contact
   std::vector<std::array<int, 2>> edges;

@@ -2,6 +2,8 @@
 
 #include "solver/energy/self_contact_energy.hpp"
 
+#include "solver/energy/sheet_neighbours.hpp"
+
 #include <algorithm>
 #include <set>
 
@@ -46,13 +48,16 @@ std::vector<SurfacePair> surface_pairs(const SurfaceContactTerm& term, const Eig
   std::vector<Box> tri_box, edge_box;
   for (const auto& t : term.tris) tri_box.push_back(box_of(t, x));
   for (const auto& e : term.edges) edge_box.push_back(box_of(e, x));
+  const SheetNeighbours sheet(term.tris);
+  const SheetNeighbours::Positions pos = [&](int i) { return Eigen::Vector3d(x.segment<3>(3 * i)); };
   for (int v : vertices) {
     const Box pb{x.segment<3>(3 * v), x.segment<3>(3 * v)};
     for (std::size_t t = 0; t < term.tris.size(); ++t) {
       const auto& f = term.tris[t];
       if (f[0] == v || f[1] == v || f[2] == v || !pb.overlaps(tri_box[t], term.r)) continue;
       const SurfacePair p{false, {v, f[0], f[1], f[2]}};
-      if (geometry(p, x).d < term.r) out.push_back(p);
+      const f64::ats_pair_geometry g = geometry(p, x);
+      if (g.d < term.r && !sheet.vertex_triangle(v, f, {g.diff.x, g.diff.y, g.diff.z}, pos)) out.push_back(p);
     }
   }
   for (std::size_t e = 0; e < term.edges.size(); ++e) {
@@ -62,7 +67,8 @@ std::vector<SurfacePair> surface_pairs(const SurfaceContactTerm& term, const Eig
       if (a[0] == b[0] || a[0] == b[1] || a[1] == b[0] || a[1] == b[1]) continue;
       if (!edge_box[e].overlaps(edge_box[f], term.r)) continue;
       const SurfacePair p{true, {a[0], a[1], b[0], b[1]}};
-      if (geometry(p, x).d < term.r) out.push_back(p);
+      const f64::ats_pair_geometry g = geometry(p, x);
+      if (g.d < term.r && !sheet.edge_edge(a, b, {g.diff.x, g.diff.y, g.diff.z}, pos)) out.push_back(p);
     }
   }
   return out;

@@ -15,7 +15,8 @@
 namespace atssim::solver::energy {
 
 // A pair closer than the term's r: vertex-triangle (v = point, a, b, c) or
-// edge-edge (v = p0, p1, q0, q1); incident pairs excluded, each pair once.
+// edge-edge (v = p0, p1, q0, q1); incident pairs and sheet neighbours
+// (solver/energy/sheet_neighbours) excluded, each pair once.
 struct SurfacePair {
   bool edge_edge = false;
   std::array<int, 4> v{};
