@@ -53,7 +53,7 @@ double seg_dist(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen:
 Eigen::Vector3d pt_closest(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                            const Eigen::Vector3d& c) {
   const Eigen::Vector3d m = (b - a).cross(c - a), n = m.normalized();
-  const Eigen::Vector3d q = p - (p - a).dot(n) * n;
+  Eigen::Vector3d q = p - (p - a).dot(n) * n;
   if ((b - a).cross(q - a).dot(m) >= 0 && (c - b).cross(q - b).dot(m) >= 0 && (a - c).cross(q - c).dot(m) >= 0)
     return q;
   Eigen::Vector3d best = a;
