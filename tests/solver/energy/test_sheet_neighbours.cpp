@@ -41,7 +41,7 @@ struct Surface {
 };
 
 // A unit vector at `angle` degrees out of the plane z = 0, in the direction d.
-Vector3d tilted(Vector3d d, double angle) {
+Vector3d tilted(const Vector3d& d, double angle) {
   const double a = angle * std::numbers::pi / 180.0;
   return std::cos(a) * d.normalized() + std::sin(a) * Vector3d::UnitZ();
 }
