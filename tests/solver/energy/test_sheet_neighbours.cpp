@@ -48,7 +48,7 @@ Vector3d tilted(const Vector3d& d, double angle) {
 
 }  // namespace
 
-TEST_CASE("a vertex beside a triangle in one flat sheet is a sheet neighbour; folded off its plane it is not",
+TEST_CASE("a vertex beside a triangle in one flat sheet is a sheet neighbour, and folded off its plane it is not",
           "[contact]") {
   for (const double lift : {0.0, 10.0, 25.0}) {
     const Surface s(lift);
