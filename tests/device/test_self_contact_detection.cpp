@@ -93,19 +93,22 @@ double ee_dist(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen
 }
 
 // No contact pairs: primitives that share a vertex (incident), and sheet
-// neighbours: a vertex of each corners of one triangle, the offset between
-// the closest points within 30 degrees of the plane of the triangle (of
-// every triangle of either edge).
+// neighbours (tested on pairs within reach only, after the distance): a vertex of each corners of one triangle, the
+// offset between the closest points within 30 degrees of the plane of the triangle (of every triangle of either edge).
 struct Excluded {
   const solver::SelfContactLayout& s;
   const std::vector<solver::Float4>& x;
+  std::vector<std::vector<int>> tris_of;  // per particle, its triangles
 
+  Excluded(const solver::SelfContactLayout& layout, const std::vector<solver::Float4>& positions)
+      : s(layout), x(positions), tris_of(positions.size()) {
+    for (int t = 0; t < int(s.tris.size()); ++t)
+      for (int k = 0; k < 3; ++k) tris_of[s.tris[t][k]].push_back(t);
+  }
   bool joined(int v, std::initializer_list<int> others) const {
-    for (const auto& t : s.tris) {
-      if (t[0] != v && t[1] != v && t[2] != v) continue;
+    for (int t : tris_of[v])
       for (int w : others)
-        if (t[0] == w || t[1] == w || t[2] == w) return true;
-    }
+        if (s.tris[t][0] == w || s.tris[t][1] == w || s.tris[t][2] == w) return true;
     return false;
   }
   bool in_plane(const Eigen::Vector3d& d, const std::array<int, 4>& t) const {
@@ -113,9 +116,9 @@ struct Excluded {
     return std::abs(n.dot(d.normalized())) < 0.5;  // sin 30 degrees
   }
   bool edge_in_plane(const Eigen::Vector3d& d, const std::array<int, 2>& e) const {
-    for (const auto& t : s.tris) {
-      const auto has = [&](int v) { return t[0] == v || t[1] == v || t[2] == v; };
-      if (has(e[0]) && has(e[1]) && !in_plane(d, t)) return false;
+    for (int t : tris_of[e[0]]) {
+      const auto& f = s.tris[t];
+      if ((f[0] == e[1] || f[1] == e[1] || f[2] == e[1]) && !in_plane(d, f)) return false;
     }
     return true;
   }
@@ -130,6 +133,12 @@ struct Excluded {
     return (joined(a[0], {b[0], b[1]}) || joined(a[1], {b[0], b[1]})) && edge_in_plane(d, a) && edge_in_plane(d, b);
   }
 };
+
+// Incident pairs, which no list holds (cheap: tested before the distance).
+bool incident(int v, const std::array<int, 4>& f) { return v == f[0] || v == f[1] || v == f[2]; }
+bool incident(const std::array<int, 2>& a, const std::array<int, 2>& b) {
+  return a[0] == b[0] || a[0] == b[1] || a[1] == b[0] || a[1] == b[1];
+}
 
 std::vector<int> ints_of(const std::vector<std::byte>& raw) {
   std::vector<int> out(raw.size() / 4);
@@ -191,7 +200,7 @@ PairCounts check_detection(const solver::SimLayout& layout) {
   CHECK(radius == s.query_radius);
   const auto& x = layout.x;  // detection runs on x_t, the substep's start
   const int n = int(x.size());
-  const Excluded excluded{s, x};
+  const Excluded excluded(s, x);
   std::vector<char> surface(n, 0);
   for (const auto& t : s.tris) surface[t[0]] = surface[t[1]] = surface[t[2]] = 1;
   PairCounts c;
@@ -199,7 +208,7 @@ PairCounts check_detection(const solver::SimLayout& layout) {
     std::vector<std::pair<double, int>> expected;
     for (int t = 0; surface[v] && t < int(s.tris.size()); ++t) {
       const auto& f = s.tris[t];
-      if (v == f[0] || v == f[1] || v == f[2]) continue;
+      if (incident(v, f)) continue;
       const double d = pt_dist(at(x, v), at(x, f[0]), at(x, f[1]), at(x, f[2]));
       if (!(d < radius)) continue;
       if (excluded.vertex_triangle(v, f)) {
@@ -216,9 +225,9 @@ PairCounts check_detection(const solver::SimLayout& layout) {
     const auto& f = s.tris[t];
     std::vector<std::pair<double, int>> expected;
     for (int v = 0; v < n; ++v) {
-      if (!surface[v] || excluded.vertex_triangle(v, f)) continue;
+      if (!surface[v] || incident(v, f)) continue;
       const double d = pt_dist(at(x, v), at(x, f[0]), at(x, f[1]), at(x, f[2]));
-      if (d < radius) expected.emplace_back(d, v);
+      if (d < radius && !excluded.vertex_triangle(v, f)) expected.emplace_back(d, v);
     }
     check_list(tv, t, expected, radius);
   }
@@ -227,9 +236,9 @@ PairCounts check_detection(const solver::SimLayout& layout) {
     std::vector<std::pair<double, int>> expected;
     for (int f = 0; f < int(s.edges.size()); ++f) {
       const auto& b = s.edges[f];
-      if (excluded.edge_edge(a, b)) continue;
+      if (incident(a, b)) continue;
       const double d = ee_dist(at(x, a[0]), at(x, a[1]), at(x, b[0]), at(x, b[1]));
-      if (d < radius) expected.emplace_back(d, f);
+      if (d < radius && !excluded.edge_edge(a, b)) expected.emplace_back(d, f);
     }
     check_list(ee, e, expected, radius);
   }
@@ -307,14 +316,14 @@ TEST_CASE(
     std::vector<solver::Float4> x(layout.x.size());
     const std::vector<std::byte> raw = exec.read(buffer_named(plan, "x_prev"));  // x_t of this substep
     std::memcpy(x.data(), raw.data(), raw.size());
-    const Excluded excluded{s, x};
+    const Excluded excluded(s, x);
     const std::vector<int> vt = ints_of(exec.read(buffer_named(plan, "sc_vt")));
     const std::vector<int> ee = ints_of(exec.read(buffer_named(plan, "sc_ee")));
     for (int v = 0; v < int(x.size()); ++v) {
       for (int t = 0; t < int(s.tris.size()); ++t) {
         const auto& f = s.tris[t];
+        if (incident(v, f) || pt_dist(at(x, v), at(x, f[0]), at(x, f[1]), at(x, f[2])) >= near) continue;
         if (excluded.vertex_triangle(v, f)) continue;
-        if (pt_dist(at(x, v), at(x, f[0]), at(x, f[1]), at(x, f[2])) >= near) continue;
         const int* l = vt.data() + v * kStride;
         INFO("substep " << k << ": vertex " << v << ", triangle " << t);
         // listed, or the list is full of nearer ones (the 8 nearest are kept)
@@ -326,8 +335,8 @@ TEST_CASE(
       const auto& a = s.edges[e];
       for (int f = 0; f < int(s.edges.size()); ++f) {
         const auto& b = s.edges[f];
+        if (incident(a, b) || ee_dist(at(x, a[0]), at(x, a[1]), at(x, b[0]), at(x, b[1])) >= near) continue;
         if (excluded.edge_edge(a, b)) continue;
-        if (ee_dist(at(x, a[0]), at(x, a[1]), at(x, b[0]), at(x, b[1])) >= near) continue;
         const int* l = ee.data() + e * kStride;
         INFO("substep " << k << ": edge " << e << ", edge " << f);
         CHECK((std::find(l + 2, l + 2 + l[0], f) != l + 2 + l[0] || l[0] == kCapacity));
