@@ -114,11 +114,12 @@ inline void test_edge_edge(const SelfContactLayout& s, const std::vector<ats_vec
   if (b[0] == a[0] || b[0] == a[1] || b[1] == a[0] || b[1] == a[1]) return;
   ++out.tested;
   const ats_pair_geometry g = ats_edge_edge(x[a[0]], x[a[1]], x[b[0]], x[b[1]]);
+  if (!(g.d < r)) return;
   const int* inc = s.incidence.data();
   const int* tris = s.tris[0].data();
   const bool sheet = (sc_joined(inc, tris, a[0], b[0], b[1], b[1]) || sc_joined(inc, tris, a[1], b[0], b[1], b[1])) &&
                      edge_in_plane(s, x, a[0], a[1], g.diff) && edge_in_plane(s, x, b[0], b[1], g.diff);
-  if (g.d < r && !sheet) out.ee.push_back({e, f});
+  if (!sheet) out.ee.push_back({e, f});
 }
 
 // Every pair tested (a box 1 % wider than r skips the far ones; a pair
