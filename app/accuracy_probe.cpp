@@ -301,7 +301,7 @@ struct AccuracyProbe::Impl {
     const plan::BufferId collider_buffer = run.plan().find_buffer(plan::BufferRole::colliders);
     double worst = 0.0;
     for (std::size_t s : counted) {
-      run.reset({plan::bytes_of(states[s].x), plan::bytes_of(states[s].v)});
+      run.reset({plan::bytes_of(states[s].x), plan::bytes_of(states[s].v), {}});
       if (colliders.moving() && collider_buffer >= 0) {
         run.write(collider_buffer, std::as_bytes(std::span(states[s].colliders)));
       }

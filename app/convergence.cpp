@@ -153,7 +153,7 @@ io::ConvergenceResult run_convergence(const ConvergeOptions& o) {
       solver::MethodSettings settings = solver::method_settings(scene, method);
       settings.iterations = k;
       Execution e = prepare_execution(devices, method.build(state, settings), v.options);
-      const plan::PlanState start{plan::bytes_of(state.x), plan::bytes_of(state.v)};
+      const plan::PlanState start{plan::bytes_of(state.x), plan::bytes_of(state.v), {}};
       std::vector<double> times;
       std::vector<Float4> x;
       for (int r = 0; r < std::max(1, o.timing_repeats); ++r) {

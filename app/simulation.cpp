@@ -52,11 +52,12 @@ std::vector<float> xyz_of(const std::vector<std::byte>& raw) {
 
 // Runs one frame's substeps one at a time, so that a stop request (Ctrl-C)
 // is honoured within a substep and moving colliders are posed for each;
-// the last substep is timed task by task.
+// the last substep is timed task by task. A frame's result depends only on
+// the state it starts from (PlanState: what a checkpoint holds), so resumed
+// and repeated frames are those of an uninterrupted run.
 void run_frame(device::PlanExecutor& executor, solver::KinematicColliders& colliders, int substeps, int frame,
                double frame_dt) {
   const double h = frame_dt / substeps;
-  executor.begin_frame();  // a frame depends only on the state it starts from (resume, repeats)
   for (int s = 0; s < substeps; ++s) {
     if (g_stop) throw runtime_error(fmt::format("interrupted in frame {} (substep {} of {})", frame, s, substeps));
     const double t0 = (frame - 1) * frame_dt + s * h;
@@ -325,7 +326,7 @@ void run_simulation(const RunOptions& options, RunResult& result,
     execution = prepare_execution(devices, with_stiffness_line(scene, [&] { return m.build(tuning->layout(), s); }),
                                   exec_options);
     executor = execution.executor.get();
-    executor->reset(now);
+    executor->reset({now.positions, now.velocities, {}});  // (what another plan carried is not this one's)
     result.method = choice.method;
     result.schedule = choice.schedule;
   };
@@ -361,7 +362,7 @@ void run_simulation(const RunOptions& options, RunResult& result,
       const SolverChoice in_force = tuning->resume(writer.decisions(), static_cast<int>(resumed.frame));
       if (in_force.method != result.method || in_force.iterations != sim.iterations ||
           in_force.schedule != result.schedule) {
-        switch_to(in_force, {resumed.positions, resumed.velocities});
+        switch_to(in_force, {resumed.positions, resumed.velocities, {}});
       }
     }
     write_decisions();
@@ -381,13 +382,19 @@ void run_simulation(const RunOptions& options, RunResult& result,
                       writer.path(), resumed.positions.size() + resumed.velocities.size(),
                       fresh.positions.size() + fresh.velocities.size()));
     }
+    if (!resumed.carried.empty() && resumed.carried.size() != executor->carried_bytes()) {
+      throw input_error(
+          fmt::format("--resume: the state in '{}' carries {} bytes of contact lists' state, this scene's plan "
+                      "{}; run without --resume",
+                      writer.path(), resumed.carried.size(), executor->carried_bytes()));
+    }
     if (resumed.frame >= sim.frames) {
       throw input_error(
           fmt::format("--resume: '{}' already holds {} simulated frames; pass --frames with more to "
                       "go on",
                       writer.path(), resumed.frame));
     }
-    executor->reset({resumed.positions, resumed.velocities});
+    executor->reset({resumed.positions, resumed.velocities, resumed.carried});
     first_frame = static_cast<int>(resumed.frame) + 1;
     // The frames kept: in the summary, not reported again.
     const auto& kept = writer.resumed_contact();
@@ -402,7 +409,7 @@ void run_simulation(const RunOptions& options, RunResult& result,
   EnergyGrowthCheck::Energy energy = energy_check.energy(xyz, xyz_of(state.velocities));
   std::optional<io::ContactFrame> first_contact;
   if (!options.resume) {
-    writer.set_checkpoint(0, state.positions, state.velocities);
+    writer.set_checkpoint(0, state.positions, state.velocities, state.carried);
     first_contact = contact_frame(colliders, xyz, SurfaceMeasurement(surfaces, xyz).get());
     writer.append_frame(0.0, xyz, 0.0, 0.0, *first_contact);
   }
@@ -452,7 +459,10 @@ void run_simulation(const RunOptions& options, RunResult& result,
         tuning->frame_done(ms);
         if (frame < sim.frames && tuning->due(frame)) {
           const plan::PlanState now = executor->read_state();
-          if (const auto next = tuning->recheck(frame, now)) switch_to(*next, now);
+          if (const auto next = tuning->recheck(frame, now)) {
+            switch_to(*next, now);
+            state = executor->read_state();  // (the checkpoint's carried state is the new plan's)
+          }
           write_decisions();
         }
       }
@@ -466,7 +476,7 @@ void run_simulation(const RunOptions& options, RunResult& result,
       if (written) {
         record_schedule(writer, frame, {used, used_waits, used_merge, used_unmerged_ms}, measured);
         if (!energy_check.enabled()) state = executor->read_state();
-        writer.set_checkpoint(frame, state.positions, state.velocities);
+        writer.set_checkpoint(frame, state.positions, state.velocities, state.carried);
         const io::ContactFrame contact = contact_frame(colliders, xyz, surface_measurement.get());
         // The host's own work on the frame since it ended, less the
         // rescheduling: the checks, the state read, the surface record.

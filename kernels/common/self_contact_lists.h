@@ -9,10 +9,9 @@
 
 #include "common/self_contact_bvh.h"
 
-/* When the lists are rebuilt. A frame's first substep detects (the
- * frame_state buffer `state` is restored then: state[0] = 0), on x_t with
- * the radius R_det = r_max (contact.query_radius, 3 r by default), and
- * remembers x_t as x_det. Distances between primitives do not change when
+/* When the lists are rebuilt. The first substep detects (state[0] = 0), on
+ * x_t with the radius R_det = r_max (contact.query_radius, 3 r by default),
+ * and remembers x_t as x_det. Distances between primitives do not change when
  * every vertex moves by one common vector, so motion is measured relative
  * to one: with u_i = x_t - x_det (since the lists were made) and s_i = x~ -
  * x_t (this substep's predicted step) over the surface vertices, D and
@@ -27,9 +26,14 @@
  * the relative predicted step (it may double), R >= r + 2.5 delta keeps a
  * pair closing at the predicted speed from reaching the thickness r
  * unlisted, and R >= 1.5 r keeps touching pairs listed. A cloth falling or
- * carried as a whole keeps its lists.
- * state: [0] lists valid, [1] detect in this substep, [2] R_det (float
- * bits), [3] D (float bits), [4] detections in this frame. */
+ * carried as a whole keeps its lists, from one frame to the next too.
+ * `state` is carried with the positions (and kept in a checkpoint, with
+ * x_det); `in_memory` is cleared by a reset (resume, repeats, probes). A
+ * substep that keeps lists no longer in memory makes them again at x_det,
+ * which gives the lists it had, bit for bit.
+ * state: [0] lists made (x_det and R_det hold), [1] make the lists in this
+ * substep (at x_det), [2] R_det (float bits), [3] D (float bits), [4] times the
+ * lists were made anew, [5] made anew in this substep (x_det = x_t first). */
 #define ATS_SC_MOTION_BLOCK 256
 #define ATS_SC_MOTION_FLOATS 12
 #define ATS_SC_STATE_INTS 8
@@ -82,7 +86,8 @@ ATS_FN float sc_needed_radius(float delta, float r, float r_max) {
   return fmin(fmax(1.5f * r, fmax(r + 2.5f * delta, 5.0f * delta)), r_max);
 }
 
-ATS_FN void sc_decide(ATS_GLOBAL const float* block_max, int blocks, float r, float r_max, ATS_GLOBAL int* state) {
+ATS_FN void sc_decide(ATS_GLOBAL const float* block_max, int blocks, float r, float r_max, ATS_GLOBAL int* state,
+                      ATS_GLOBAL int* in_memory) {
   sc_box moved_box = sc_box_empty(), step_box = sc_box_empty();
   for (int b = 0; b < blocks; ++b) {
     const sc_box m = sc_load_box(block_max + ATS_SC_MOTION_FLOATS * b);
@@ -95,7 +100,9 @@ ATS_FN void sc_decide(ATS_GLOBAL const float* block_max, int blocks, float r, fl
   const float moved = sc_half_diagonal(moved_box), delta = sc_half_diagonal(step_box);
   const int detect = state[0] == 0 || sc_needed_radius(delta, r, r_max) + 2.0f * moved > sc_bits_float(state[2]);
   state[0] = 1;
-  state[1] = detect;
+  state[1] = detect || in_memory[0] == 0;
+  state[5] = detect;
+  in_memory[0] = 1;
   if (detect) {
     state[2] = sc_float_bits(r_max);
     state[3] = sc_float_bits(0.0f);

@@ -34,8 +34,9 @@
 #include "common/self_contact_lists.h"
 #include "common/task.h"
 
-/* state: the frame_state of common/self_contact_lists.h (sc_decide); the
- * detection tasks do nothing in a substep that keeps the lists. */
+/* state: the carried state of common/self_contact_lists.h (sc_decide); the
+ * detection tasks do nothing in a substep that keeps the lists, and make
+ * them at x_det in one that does not (x: x_det). */
 ATS_TASK void sc_leaf_boxes(int t, __global const float4* x, __global const int4* tris, __global float4* nodes,
                             __global const int* state) {
   if (state[1]) sc_leaf_box(t, x, (__global const int*)tris, nodes);
@@ -60,15 +61,15 @@ ATS_TASK void sc_motion(int b, __global const float4* x_det, __global const floa
   sc_block_motion(b, x_det, x_start, x_guess, inc, n, block_max);
 }
 
-/* Whether this substep rebuilds the lists (one work-item). */
+/* Whether this substep makes the lists, and where (one work-item). */
 ATS_TASK void sc_decide_detection(int k, __global const float* block_max, int blocks, float r, float r_max,
-                                  __global int* state) {
-  if (k == 0) sc_decide(block_max, blocks, r, r_max, state);
+                                  __global int* state, __global int* in_memory) {
+  if (k == 0) sc_decide(block_max, blocks, r, r_max, state, in_memory);
 }
 
-/* x_det: where the lists are made. */
+/* x_det: where the lists are made; x_t when they are made anew. */
 ATS_TASK void sc_snap(int i, __global const float4* x_start, __global float4* x_det, __global const int* state) {
-  if (state[1]) x_det[i] = x_start[i];
+  if (state[5]) x_det[i] = x_start[i];
 }
 
 /* The lists of the leaves of group g, one walk per group

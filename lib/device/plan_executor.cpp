@@ -61,7 +61,8 @@ struct PlanExecutor::Impl {
   std::vector<std::unique_ptr<SvmArena>> arenas;  // per memory: the plan's buffers
   SvmArena sync_arena;                            // fused: counters and records (fine grain, atomics)
   PlanResources resources;
-  std::vector<std::pair<plan::BufferId, std::vector<std::byte>>> frame_states;  // and their initial contents
+  // The cache_state and carried buffers, with their initial contents.
+  std::vector<std::pair<plan::BufferId, std::vector<std::byte>>> cache_states, carried;
   std::vector<Step> steps;
   std::unique_ptr<EventRunner> events;  // created when first needed
   std::unique_ptr<FusedRunner> fused;
@@ -101,9 +102,9 @@ struct PlanExecutor::Impl {
         resources.buffers[m].push_back(ptr);
       }
       resources.sizes.push_back(spec.initial.size());
-      if (spec.role == plan::BufferRole::frame_state) {
-        frame_states.emplace_back(static_cast<plan::BufferId>(resources.sizes.size() - 1), spec.initial);
-      }
+      const auto id = static_cast<plan::BufferId>(resources.sizes.size() - 1);
+      if (spec.role == plan::BufferRole::cache_state) cache_states.emplace_back(id, spec.initial);
+      if (spec.role == plan::BufferRole::carried) carried.emplace_back(id, spec.initial);
       std::vector<std::byte>().swap(spec.initial);  // the devices hold it now
     }
     resources.written = written_by_task(plan, resources.sizes);
@@ -221,17 +222,36 @@ struct PlanExecutor::Impl {
     plan::PlanState state;
     state.positions = read(plan.buffer(plan::BufferRole::positions));
     if (const plan::BufferId v = plan.find_buffer(plan::BufferRole::velocities); v >= 0) state.velocities = read(v);
+    for (const auto& [id, initial] : carried) {
+      const std::vector<std::byte> bytes = read(id);
+      state.carried.insert(state.carried.end(), bytes.begin(), bytes.end());
+    }
     return state;
+  }
+
+  std::size_t carried_bytes() const {
+    std::size_t bytes = 0;
+    for (const auto& [id, initial] : carried) bytes += initial.size();
+    return bytes;
   }
 
   void reset(const plan::PlanState& state) {
     write(plan.buffer(plan::BufferRole::positions), state.positions);
     if (const plan::BufferId v = plan.find_buffer(plan::BufferRole::velocities); v >= 0) write(v, state.velocities);
-    begin_frame();
-  }
-
-  void begin_frame() {
-    for (const auto& [id, initial] : frame_states) write(id, initial);
+    if (!state.carried.empty() && state.carried.size() != carried_bytes()) {
+      throw internal_error(
+          fmt::format("executor: a state carries {} bytes, the plan {}", state.carried.size(), carried_bytes()));
+    }
+    std::size_t at = 0;
+    for (const auto& [id, initial] : carried) {
+      if (state.carried.empty()) {
+        write(id, initial);
+      } else {
+        write(id, std::span(state.carried).subspan(at, initial.size()));
+        at += initial.size();
+      }
+    }
+    for (const auto& [id, initial] : cache_states) write(id, initial);
   }
 };
 
@@ -315,7 +335,7 @@ void PlanExecutor::finish() { impl_->finish(); }
 
 plan::PlanState PlanExecutor::read_state() { return impl_->read_state(); }
 void PlanExecutor::reset(const plan::PlanState& state) { impl_->reset(state); }
-void PlanExecutor::begin_frame() { impl_->begin_frame(); }
+std::size_t PlanExecutor::carried_bytes() const { return impl_->carried_bytes(); }
 std::vector<std::byte> PlanExecutor::read(plan::BufferId id) { return impl_->read(id); }
 void PlanExecutor::write(plan::BufferId id, std::span<const std::byte> bytes) { impl_->write(id, bytes); }
 

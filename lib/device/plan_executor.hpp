@@ -112,12 +112,13 @@ class PlanExecutor {
 
   // The state carried between substeps (waits first).
   plan::PlanState read_state();
-  // Restores the state and, as begin_frame() does, every frame_state buffer.
+  // Restores the state (the carried buffers to their initial contents when
+  // it holds none) and every cache_state buffer: the caches those guard are
+  // remade in the next substep from the carried buffers, as they were, so a
+  // substep's result depends only on the state it starts from.
   void reset(const plan::PlanState& state);
-  // A frame starts: every frame_state buffer gets the plan's initial
-  // contents again (the caches it guards are rebuilt in the first substep),
-  // so a frame's result depends only on the state it starts from.
-  void begin_frame();
+  // The size of PlanState::carried for this plan.
+  std::size_t carried_bytes() const;
   std::vector<std::byte> read(plan::BufferId id);
   void write(plan::BufferId id, std::span<const std::byte> bytes);
   // Positions as xyz float triplets (from the plan's float4 positions buffer).

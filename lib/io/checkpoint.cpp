@@ -26,7 +26,8 @@ std::uint64_t hash_of(const Checkpoint& c) {
   const long long fields[5] = {c.frame, c.frames_written, c.schedule_rows, c.wait_rows, c.makespan_rows};
   h = fnv1a(h, fields, sizeof fields);
   h = fnv1a(h, c.positions.data(), c.positions.size());
-  return fnv1a(h, c.velocities.data(), c.velocities.size());
+  h = fnv1a(h, c.velocities.data(), c.velocities.size());
+  return fnv1a(h, c.carried.data(), c.carried.size());  // (nothing for a file without it: the same hash)
 }
 
 std::array<long long, kSlots * kFields> read_index(hid_t index) {
@@ -45,14 +46,17 @@ H5Handle row_space(hid_t set, int slot, hsize_t cols) {
 
 }  // namespace
 
-CheckpointSlots CheckpointSlots::create(hid_t file, std::size_t position_bytes, std::size_t velocity_bytes) {
+CheckpointSlots CheckpointSlots::create(hid_t file, std::size_t position_bytes, std::size_t velocity_bytes,
+                                        std::size_t carried_bytes) {
   CheckpointSlots s;
   s.position_bytes_ = position_bytes;
   s.velocity_bytes_ = velocity_bytes;
+  s.carried_bytes_ = carried_bytes;
   H5Handle group = create_group(file, "checkpoint");
   write_int_attribute(group, "positions_bytes", static_cast<long long>(position_bytes));
   write_int_attribute(group, "velocities_bytes", static_cast<long long>(velocity_bytes));
-  const hsize_t state_dims[2] = {kSlots, std::max<hsize_t>(1, position_bytes + velocity_bytes)};
+  write_int_attribute(group, "carried_bytes", static_cast<long long>(carried_bytes));
+  const hsize_t state_dims[2] = {kSlots, std::max<hsize_t>(1, s.state_bytes())};
   H5Handle state_space = h5_check(H5Screate_simple(2, state_dims, nullptr), H5Sclose, "checkpoint space");
   s.state_ = h5_check(H5Dcreate2(group, "state", H5T_STD_U8LE, state_space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
                       H5Dclose, "creating /checkpoint/state");
@@ -78,6 +82,13 @@ std::optional<CheckpointSlots> CheckpointSlots::open(hid_t file) {
     h5_check(H5Aread(attr, H5T_NATIVE_LLONG, &v), name);
     *out = static_cast<std::size_t>(v);
   }
+  // (A file written before atssim kept the carried state has none.)
+  if (H5Aexists(group, "carried_bytes") > 0) {
+    H5Handle attr = h5_check(H5Aopen(group, "carried_bytes", H5P_DEFAULT), H5Aclose, "carried_bytes");
+    long long v = 0;
+    h5_check(H5Aread(attr, H5T_NATIVE_LLONG, &v), "carried_bytes");
+    s.carried_bytes_ = static_cast<std::size_t>(v);
+  }
   s.state_ = h5_check(H5Dopen2(group, "state", H5P_DEFAULT), H5Dclose, "opening /checkpoint/state");
   s.index_ = h5_check(H5Dopen2(group, "index", H5P_DEFAULT), H5Dclose, "opening /checkpoint/index");
   const auto rows = read_index(s.index_);
@@ -86,13 +97,16 @@ std::optional<CheckpointSlots> CheckpointSlots::open(hid_t file) {
 }
 
 void CheckpointSlots::write(const Checkpoint& c) {
-  if (c.positions.size() != position_bytes_ || c.velocities.size() != velocity_bytes_) {
-    throw std::logic_error(fmt::format("checkpoint: state of {}+{} bytes, the file holds {}+{}", c.positions.size(),
-                                       c.velocities.size(), position_bytes_, velocity_bytes_));
+  if (c.positions.size() != position_bytes_ || c.velocities.size() != velocity_bytes_ ||
+      c.carried.size() != carried_bytes_) {
+    throw std::logic_error(fmt::format("checkpoint: state of {}+{}+{} bytes, the file holds {}+{}+{}",
+                                       c.positions.size(), c.velocities.size(), c.carried.size(), position_bytes_,
+                                       velocity_bytes_, carried_bytes_));
   }
   const int slot = next_slot_;
   std::vector<std::byte> bytes(c.positions);
   bytes.insert(bytes.end(), c.velocities.begin(), c.velocities.end());
+  bytes.insert(bytes.end(), c.carried.begin(), c.carried.end());
   if (bytes.empty()) bytes.resize(1);
   const hsize_t cols = bytes.size();
   H5Handle space = row_space(state_, slot, cols);
@@ -112,11 +126,11 @@ void CheckpointSlots::write(const Checkpoint& c) {
 std::optional<Checkpoint> CheckpointSlots::newest(long long frames_available, int* slot_found) const {
   auto rows = read_index(index_);
   std::optional<Checkpoint> best;
-  const hsize_t cols = std::max<std::size_t>(1, position_bytes_ + velocity_bytes_);
+  const hsize_t cols = std::max<std::size_t>(1, state_bytes());
   for (int slot = 0; slot < kSlots; ++slot) {
     const long long* f = &rows[slot * kFields];
     if (f[0] < 0 || f[1] > frames_available || (best && best->frame >= f[0])) continue;
-    Checkpoint c{f[0], f[1], f[2], f[3], f[4], {}, {}};
+    Checkpoint c{f[0], f[1], f[2], f[3], f[4], {}, {}, {}};
     std::vector<std::byte> bytes(cols);
     H5Handle space = row_space(state_, slot, cols);
     const hsize_t count[2] = {1, cols};
@@ -125,6 +139,8 @@ std::optional<Checkpoint> CheckpointSlots::newest(long long frames_available, in
     c.positions.assign(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(position_bytes_));
     c.velocities.assign(bytes.begin() + static_cast<std::ptrdiff_t>(position_bytes_),
                         bytes.begin() + static_cast<std::ptrdiff_t>(position_bytes_ + velocity_bytes_));
+    c.carried.assign(bytes.begin() + static_cast<std::ptrdiff_t>(position_bytes_ + velocity_bytes_),
+                     bytes.begin() + static_cast<std::ptrdiff_t>(state_bytes()));
     std::uint64_t stored = 0;
     std::memcpy(&stored, &f[5], sizeof stored);
     if (hash_of(c) == stored) {

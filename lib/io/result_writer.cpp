@@ -353,11 +353,12 @@ void ResultWriter::set_decision_measured(double measured_ms) {
 const std::vector<DecisionRecord>& ResultWriter::decisions() const { return decisions_.records(); }
 
 void ResultWriter::set_checkpoint(long long frame, std::span<const std::byte> positions,
-                                  std::span<const std::byte> velocities) {
+                                  std::span<const std::byte> velocities, std::span<const std::byte> carried) {
   Checkpoint c;
   c.frame = frame;
   c.positions.assign(positions.begin(), positions.end());
   c.velocities.assign(velocities.begin(), velocities.end());
+  c.carried.assign(carried.begin(), carried.end());
   pending_ = std::move(c);
 }
 
@@ -367,7 +368,8 @@ void ResultWriter::append_frame(double time, std::span<const float> xyz, double 
     throw std::logic_error(fmt::format("output: frame has {} values, expected {}", xyz.size(), particles_ * 3));
   }
   if (broken_) throw runtime_error(fmt::format("output '{}': an earlier write failed", writing_));
-  const std::size_t state_bytes = pending_ ? pending_->positions.size() + pending_->velocities.size() : 0;
+  const std::size_t state_bytes =
+      pending_ ? pending_->positions.size() + pending_->velocities.size() + pending_->carried.size() : 0;
   check_output_health(writing_, opened_, xyz.size() * sizeof(float) + state_bytes);
   try {
     const hsize_t size[3] = {static_cast<hsize_t>(frames_ + 1), particles_, 3};
@@ -394,8 +396,11 @@ void ResultWriter::append_frame(double time, std::span<const float> xyz, double 
       pending_->schedule_rows = static_cast<long long>(sched_rows_);
       pending_->wait_rows = static_cast<long long>(wait_rows_);
       pending_->makespan_rows = static_cast<long long>(makespan_rows_);
+      // (A file resumed from an atssim that kept no carried state goes on without it.)
+      if (checkpoint_.valid() && checkpoint_.carried_bytes() == 0) pending_->carried.clear();
       if (!checkpoint_.valid()) {
-        checkpoint_ = CheckpointSlots::create(file_, pending_->positions.size(), pending_->velocities.size());
+        checkpoint_ = CheckpointSlots::create(file_, pending_->positions.size(), pending_->velocities.size(),
+                                              pending_->carried.size());
       }
       checkpoint_.write(*pending_);
       pending_.reset();

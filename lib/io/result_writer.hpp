@@ -83,8 +83,10 @@ class ResultWriter {
   void append_frame(double time, std::span<const float> xyz, double frame_ms, double schedule_ms = 0.0,
                     const ContactFrame& contact = {}, double host_ms = 0.0);
   // The executor's state at the end of simulated frame `frame`, stored with
-  // the next append_frame (for --resume).
-  void set_checkpoint(long long frame, std::span<const std::byte> positions, std::span<const std::byte> velocities);
+  // the next append_frame (for --resume); `carried`: what its plan carries
+  // besides (plan::PlanState, the contact lists' state).
+  void set_checkpoint(long long frame, std::span<const std::byte> positions, std::span<const std::byte> velocities,
+                      std::span<const std::byte> carried = {});
   // Appends the recorded substep of simulated frame `frame` (written with
   // the next append_frame's flush).
   void append_schedule(int frame, std::span<const ScheduledTask> tasks, std::span<const sched::Wait> waits,

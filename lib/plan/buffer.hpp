@@ -26,10 +26,15 @@ enum class BufferRole {
   results,          // what a plan computes for the host to read (energy terms)
   colliders,        // collider records and mesh data; never written by a task, rewritten by the host
                     // between substeps when colliders move (solver/contact/kinematic_colliders)
-  cache,            // results carried from one substep to the next within a frame (the surface
-                    // contact pair lists), valid only while a frame_state buffer says so
-  frame_state,      // small per-frame state: restored to the plan's initial contents at the start
-                    // of every frame (PlanExecutor::begin_frame) and by reset()
+  cache,            // results kept from one substep to the next (the surface contact pair
+                    // lists), valid only while a cache_state buffer says so; remade from the
+                    // carried buffers after a reset (PlanState)
+  cache_state,      // small state saying whether the caches hold anything: restored to the
+                    // plan's initial contents by PlanExecutor::reset() (resume, repeats, probes)
+  carried,          // what the caches were made from (the lists' positions and their decision
+                    // state): carried with the positions between substeps and frames, read
+                    // into PlanState and kept in a checkpoint, so that a restored run remakes
+                    // the caches it had, bit for bit
 };
 
 std::string_view to_string(BufferRole role);

@@ -72,8 +72,10 @@ std::string_view to_string(BufferRole role) {
       return "colliders";
     case BufferRole::cache:
       return "cache";
-    case BufferRole::frame_state:
-      return "frame_state";
+    case BufferRole::cache_state:
+      return "cache_state";
+    case BufferRole::carried:
+      return "carried";
   }
   return "?";
 }

@@ -76,14 +76,18 @@ SelfContactBuffers add_self_contact_buffers(plan::SubstepPlan& plan, const SimLa
   b.leaves = plan.add_buffer("sc_leaves", BufferRole::topology, plan::bytes_of(s.leaves));
   b.levels = plan.add_buffer("sc_levels", BufferRole::topology, plan::bytes_of(s.levels));
   b.incidence = plan.add_buffer("sc_incidence", BufferRole::topology, plan::bytes_of(s.incidence));
-  // The tree, the lists and where they were made are kept from one substep
-  // to the next while sc_state (restored at every frame's start) says so.
+  // The tree and the lists are kept from one substep and frame to the next
+  // while sc_state says they serve; where they were made (x_det) and sc_state
+  // are carried with the positions (and kept in a checkpoint), so that after a
+  // reset, which clears sc_in_memory, the next substep remakes them at x_det
+  // as they were.
   b.nodes = plan.add_buffer("sc_nodes", BufferRole::cache, zeros(std::size_t(s.node_count()) * kNodeBytes));
   b.vt = plan.add_buffer("sc_vt", BufferRole::cache, zeros(n * kListInts * 4));
   b.tv = plan.add_buffer("sc_tv", BufferRole::cache, zeros(s.tris.size() * kListInts * 4));
   b.ee = plan.add_buffer("sc_ee", BufferRole::cache, zeros(s.edges.size() * kListInts * 4));
-  b.x_det = plan.add_buffer("sc_x_det", BufferRole::cache, zeros(n * kParticleBytes));
-  b.state = plan.add_buffer("sc_state", BufferRole::frame_state, zeros(s.enabled ? kStateInts * 4 : 0));
+  b.x_det = plan.add_buffer("sc_x_det", BufferRole::carried, zeros(n * kParticleBytes));
+  b.state = plan.add_buffer("sc_state", BufferRole::carried, zeros(s.enabled ? kStateInts * 4 : 0));
+  b.in_memory = plan.add_buffer("sc_in_memory", BufferRole::cache_state, zeros(s.enabled ? 4 : 0));
   b.bound = plan.add_buffer("sc_bound", BufferRole::scratch, zeros(n * 4));
   b.x_out = plan.add_buffer("sc_x_out", BufferRole::scratch, zeros(n * kParticleBytes));
   b.moved = plan.add_buffer("sc_moved", BufferRole::scratch, zeros(n * 4));
@@ -134,20 +138,20 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
                           {"sc_decide_detection",
                            {0, 1},
                            {Arg::of_buffer(b.motion), Arg::of_int(blocks), Arg::of_float(s.thickness),
-                            Arg::of_float(s.query_radius), Arg::of_buffer(b.state)},
-                           {WriteSpan::whole_buffer(b.state)}});
+                            Arg::of_float(s.query_radius), Arg::of_buffer(b.state), Arg::of_buffer(b.in_memory)},
+                           {WriteSpan::whole_buffer(b.state), WriteSpan::whole_buffer(b.in_memory)}});
   const sched::TaskId snap =
       plan.add_task_after(decide, detect("detect/snap"),
                           {"sc_snap",
                            {0, n},
                            {Arg::of_buffer(start), Arg::of_buffer(b.x_det), Arg::of_buffer(b.state)},
                            {particle_write(b.x_det)}});
-  // BVH refit, bottom up (He et al. 2025 Fig. 2: "BVH updates").
+  // BVH refit at x_det, bottom up (He et al. 2025 Fig. 2: "BVH updates").
   last = plan.add_task_after(
-      decide, detect("detect/leaves"),
+      snap, detect("detect/leaves"),
       {"sc_leaf_boxes",
        {0, tris},
-       {Arg::of_buffer(start), Arg::of_buffer(b.tris), Arg::of_buffer(b.nodes), Arg::of_buffer(b.state)},
+       {Arg::of_buffer(b.x_det), Arg::of_buffer(b.tris), Arg::of_buffer(b.nodes), Arg::of_buffer(b.state)},
        {WriteSpan::per_element(b.nodes, kNodeBytes)}});
   const int root = s.root();
   int level = 1;
@@ -186,7 +190,7 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
       refit, detect("detect/pairs"),
       {"sc_query_groups",
        {0, groups},
-       {Arg::of_buffer(start), Arg::of_buffer(b.incidence), Arg::of_buffer(b.tris), Arg::of_buffer(b.edges),
+       {Arg::of_buffer(b.x_det), Arg::of_buffer(b.incidence), Arg::of_buffer(b.tris), Arg::of_buffer(b.edges),
         Arg::of_buffer(b.leaves), Arg::of_buffer(b.nodes), Arg::of_buffer(b.levels), Arg::of_int(root),
         Arg::of_int(tris), Arg::of_buffer(b.state), Arg::of_buffer(b.vt), Arg::of_buffer(b.tv), Arg::of_buffer(b.ee)},
        {WriteSpan::per_index(b.vt, kListInts * 4, 3 * ATS_SC_GROUP, owned(0, 3)),
@@ -229,7 +233,6 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
        {Arg::of_buffer(b.incidence), Arg::of_int(n), Arg::of_buffer(b.vt_reach), Arg::of_buffer(b.tv_reach),
         Arg::of_buffer(b.ee_reach), Arg::of_float(s.gamma), Arg::of_buffer(b.bound)},
        {WriteSpan::per_element(b.bound, 4)}});
-  plan.graph.add_edge(snap, bound);
   last = bound;
   const float r = s.thickness;
   per_list("detect/near_triangles", "sc_near_triangles", tris,

@@ -20,6 +20,7 @@ struct SelfContactBuffers {
                  bound = -1, x_out = -1,  // x_out: friction's scratch copy
       motion = -1,             // per block the boxes of the displacements since x_det and of the predicted steps
       x_det = -1, state = -1,  // where the lists were made; whether they serve (common/self_contact_lists.h)
+      in_memory = -1,          // whether the lists are in memory (0 after a reset: remade at x_det)
       vt_d = -1, tv_d = -1, ee_d = -1,                 // the listed pairs' distances at x_t
       vt_reach = -1, tv_reach = -1, ee_reach = -1,     // per list the nearest its primitive can be (sc_store_distances)
       vt_listed = -1, tv_listed = -1, ee_listed = -1,  // per list its count, packed when the lists are made

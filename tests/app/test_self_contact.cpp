@@ -155,7 +155,7 @@ TEST_CASE("the falling sheet folds onto itself (VBD, JPGD)", "[contact][self][fo
 // iterations {6, 10, 20} (scripts/fold_rate.py) it ended folded (closest
 // far pair < 2 thicknesses at frame 60) in 15 of 15 runs under VBD, 14 of 15
 // JPGD, 12 of 15 SOSD and 6 of 15 XPBD; this scene's 8 x 6 is one of the
-// runs where XPBD (0.046 m) and SOSD (0.035 m) end as a row of tents a
+// runs where XPBD (0.035 m) and SOSD (0.042 m) end as a row of tents a
 // grid spacing wide instead. Not "hinges held open", as this comment once
 // said: the same XPBD folds its layers to 0.0100-0.0105 m at 8 x 20, 12 x 6 and
 // 24 x 6, and every method closes the fold below (the napkin) to the

@@ -287,13 +287,13 @@ TEST_CASE("a sheet folded onto itself keeps its folded neighbours as contact pai
 }
 
 TEST_CASE(
-    "within a frame the lists are kept while the motion allows, and always hold every pair closer than 1.5 "
-    "thicknesses at the substep's start",
+    "the lists are kept while the motion allows, and always hold every pair closer than 1.5 thicknesses at the "
+    "substep's start",
     "[self][slow]") {  // [slow]: its brute force over 24 substeps took ~460 s under ASan (check.sh --quick skips it)
   // The upper layer of the scene above falling onto the lower one, pinned,
-  // under a weak gravity, one frame of many substeps (no begin_frame between
-  // them): early substeps move little and keep the lists, later ones move
-  // more and rebuild them; the pairs change as the layers close.
+  // under a weak gravity, many substeps: early substeps move little and keep
+  // the lists, later ones move more and rebuild them; the pairs change as
+  // the layers close.
   std::string scene = kScene;
   scene.replace(scene.find("gravity: [0, 0, 0]"), 18, "gravity: [4, -1, 0]");  // sliding over it
   const std::string a = "material: {density: 0.2, stretch_stiffness: 100}}\n";
@@ -351,20 +351,15 @@ TEST_CASE(
     }
   }
   CHECK(checked > 100);
-  // A new frame rebuilds them whatever the motion.
-  exec.begin_frame();
-  exec.run_substeps(1);
-  CHECK(ints_of(exec.read(buffer_named(plan, "sc_state")))[1] == 1);
 }
 
 TEST_CASE("two layers falling as a whole keep their lists, and fall freely", "[self]") {
   // The two near layers of the scene above, and the far one, dropped with
-  // one gravity and no pins, substeps of 1/60 s in one frame (no begin_frame
-  // between them): every vertex moves by the same vector, which changes no
-  // distance between primitives, so after the frame's first substep the
-  // lists are kept (common/self_contact_lists.h sc_decide), although from the
-  // sixth substep on the layers have fallen further since then than the
-  // query radius's slack, (3 r - 1.5 r) / 2 = 7.5 mm; and the bound (0.4 of
+  // one gravity and no pins, substeps of 1/60 s: every vertex moves by the
+  // same vector, which changes no distance between primitives, so after the
+  // first substep the lists are kept (common/self_contact_lists.h
+  // sc_decide), although from the sixth substep on the layers have fallen
+  // further since then than the query radius's slack, (3 r - 1.5 r) / 2 = 7.5 mm; and the bound (0.4 of
   // the 11-12 mm between the layers) truncates no step: each substep ends at
   // x_t + h v + h^2 g (discrete free fall, VBD's inertia).
   std::string scene = kScene;
@@ -394,4 +389,56 @@ TEST_CASE("two layers falling as a whole keep their lists, and fall freely", "[s
     x = next;
   }
   CHECK(layout.x[0].y - x[0].y > 0.015);  // 1.5 / 3600 * 36 m
+}
+
+TEST_CASE("a run restored from its own state at every substep remakes its lists where they were made, bit for bit",
+          "[self]") {
+  // The sliding upper layer of the scene above, twice: one executor runs
+  // on, the other is reset from its own state (positions, velocities and the
+  // carried x_det and decision state, as a checkpoint holds them) before
+  // every substep, which clears its lists from memory. A substep that keeps
+  // the lists must remake them at x_det (state[1] = 1, state[5] = 0), and
+  // both runs must stay equal, bit for bit. Restored from positions and
+  // velocities alone, the lists are made at x_t instead.
+  std::string scene = kScene;
+  scene.replace(scene.find("gravity: [0, 0, 0]"), 18, "gravity: [4, -1, 0]");
+  const std::string a = "material: {density: 0.2, stretch_stiffness: 100}}\n";
+  scene.replace(scene.find(a), a.size(),
+                "material: {density: 0.2, stretch_stiffness: 100},\n"
+                "     pins: {boxes: [{min: [-1, -0.01, -1], max: [1, 0.005, 1]}]}}\n");
+  const model::Model m = model::build_model(scene::parse_scene(scene, "s.yaml", "."));
+  const solver::SimLayout layout = solver::make_sim_layout(m);
+  const plan::SubstepPlan plan = solver::vbd::make_vbd_plan(layout, 1.0 / 60.0, 2);
+  const auto devices = device::DeviceSet::open("cpu");
+  device::PlanExecutor on(devices, plan, {}), restored(devices, plan, {}), fresh(devices, plan, {});
+  REQUIRE(on.carried_bytes() == layout.x.size() * 16 + 8 * 4);  // x_det (float4s) and sc_state (8 ints)
+  int remade = 0, anew = 0;
+  for (int k = 0; k < 16; ++k) {
+    on.run_substeps(1);
+    const plan::PlanState state = restored.read_state();
+    REQUIRE(state.carried.size() == restored.carried_bytes());
+    restored.reset(state);
+    restored.run_substeps(1);
+    const std::vector<int> s = ints_of(restored.read(buffer_named(plan, "sc_state")));
+    INFO("substep " << k);
+    CHECK(s[1] == 1);  // made, at x_det or anew
+    if (s[5] == 0) ++remade;
+    if (s[5] == 1) ++anew;
+    CHECK(ints_of(on.read(buffer_named(plan, "sc_vt"))) == ints_of(restored.read(buffer_named(plan, "sc_vt"))));
+    CHECK(ints_of(on.read(buffer_named(plan, "sc_ee"))) == ints_of(restored.read(buffer_named(plan, "sc_ee"))));
+    CHECK(on.read(buffer_named(plan, "x")) == restored.read(buffer_named(plan, "x")));
+    std::vector<int> kept = s;
+    kept[1] = s[5];  // (the one without a reset made its lists only where they were made anew)
+    CHECK(ints_of(on.read(buffer_named(plan, "sc_state"))) == kept);
+    if (k == 5) {
+      // From positions and velocities alone: made anew at x_t.
+      plan::PlanState bare = on.read_state();
+      bare.carried.clear();
+      fresh.reset(bare);
+      fresh.run_substeps(1);
+      CHECK(ints_of(fresh.read(buffer_named(plan, "sc_state")))[5] == 1);
+    }
+  }
+  CHECK(remade >= 2);  // the kept lists were remade at x_det
+  CHECK(anew >= 2);    // and the motion made new ones
 }

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 #include "io/checkpoint.hpp"
 #include "io/output_lock.hpp"
@@ -102,6 +103,44 @@ TEST_CASE("a run at a path that holds a result writes beside it and replaces it 
   CHECK_FALSE(std::filesystem::exists(dir.file("out.partial.xdmf")));
 }
 
+TEST_CASE("a checkpoint keeps the carried bytes after the velocities, and a torn carried byte spoils its slot") {
+  test::TempDir dir;
+  const std::string path = dir.file("c.h5");
+  const hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  REQUIRE(file >= 0);
+  {
+    auto slots = io::CheckpointSlots::create(file, 16, 8, 12);
+    CHECK(slots.carried_bytes() == 12);
+    for (int k = 1; k <= 2; ++k)
+      slots.write({k, k + 1, 0, 0, 0, bytes_of(16, k), bytes_of(8, -k), bytes_of(12, 50 + k)});
+    CHECK_THROWS_AS(slots.write({3, 4, 0, 0, 0, bytes_of(16, 3), bytes_of(8, -3), {}}), std::logic_error);
+    // Frame 2 went to slot 1: tear its last carried byte (column 16 + 8 + 11).
+    const hid_t state = H5Dopen2(file, "checkpoint/state", H5P_DEFAULT);
+    const hid_t space = H5Dget_space(state);
+    hsize_t dims[2] = {0, 0};
+    H5Sget_simple_extent_dims(space, dims, nullptr);
+    CHECK(dims[1] == 36);
+    const hsize_t start[2] = {1, 35}, count[2] = {1, 1};
+    H5Sselect_hyperslab(space, H5S_SELECT_SET, start, nullptr, count, nullptr);
+    const hid_t mem = H5Screate_simple(2, count, nullptr);
+    const unsigned char torn = 0xEE;
+    REQUIRE(H5Dwrite(state, H5T_NATIVE_UCHAR, mem, space, H5P_DEFAULT, &torn) >= 0);
+    H5Sclose(mem);
+    H5Sclose(space);
+    H5Dclose(state);
+  }
+  auto reopened = io::CheckpointSlots::open(file);
+  REQUIRE(reopened);
+  CHECK(reopened->carried_bytes() == 12);
+  const auto c = reopened->take_newest(100);
+  REQUIRE(c);
+  CHECK(c->frame == 1);
+  CHECK(c->positions == bytes_of(16, 1));
+  CHECK(c->velocities == bytes_of(8, -1));
+  CHECK(c->carried == bytes_of(12, 51));
+  H5Fclose(file);
+}
+
 TEST_CASE("a checkpoint slot whose bytes were torn is skipped for the other slot") {
   test::TempDir dir;
   const std::string path = dir.file("c.h5");
@@ -109,7 +148,7 @@ TEST_CASE("a checkpoint slot whose bytes were torn is skipped for the other slot
   REQUIRE(file >= 0);
   {
     auto slots = io::CheckpointSlots::create(file, 16, 8);
-    for (int k = 1; k <= 3; ++k) slots.write({k, k + 1, 0, 0, 0, bytes_of(16, k), bytes_of(8, -k)});
+    for (int k = 1; k <= 3; ++k) slots.write({k, k + 1, 0, 0, 0, bytes_of(16, k), bytes_of(8, -k), {}});
     // Frame 3 went to slot 0 (1 -> 0, 2 -> 1, 3 -> 0): tear its state bytes.
     const hid_t state = H5Dopen2(file, "checkpoint/state", H5P_DEFAULT);
     const hid_t space = H5Dget_space(state);
@@ -121,15 +160,19 @@ TEST_CASE("a checkpoint slot whose bytes were torn is skipped for the other slot
     H5Sclose(mem);
     H5Sclose(space);
     H5Dclose(state);
+    // as a file written before atssim kept carried bytes
+    REQUIRE(H5Adelete_by_name(file, "checkpoint", "carried_bytes", H5P_DEFAULT) >= 0);
   }
   auto reopened = io::CheckpointSlots::open(file);
   REQUIRE(reopened);
+  CHECK(reopened->carried_bytes() == 0);
   const auto c = reopened->take_newest(100);
   REQUIRE(c);
   CHECK(c->frame == 2);
   CHECK(c->frames_written == 3);
   CHECK(c->positions == bytes_of(16, 2));
   CHECK(c->velocities == bytes_of(8, -2));
+  CHECK(c->carried.empty());              // none kept
   CHECK_FALSE(reopened->take_newest(2));  // frame 2 needs 3 frames in the file
   H5Fclose(file);
 }

@@ -105,13 +105,17 @@ std::vector<float> block(ats_vec3 moved_lo, ats_vec3 moved_hi, ats_vec3 step_lo,
 }
 }  // namespace
 
-TEST_CASE("the lists are rebuilt at a frame's start and when the relative motion since outgrows them, else kept",
-          "[solver][contact][broad_phase]") {
+TEST_CASE(
+    "the lists are made at the start and when the relative motion since outgrows them, else kept or remade as they "
+    "were",
+    "[solver][contact][broad_phase]") {
   const float r = 0.001f, cap = 0.003f;
   const ats_vec3 o = ats_v3(0, 0, 0);
-  std::vector<int> state(ATS_SC_STATE_INTS, 0);  // as a frame starts
+  std::vector<int> state(ATS_SC_STATE_INTS, 0);  // as a run starts
+  int in_memory = 0;
   const auto decide = [&](const std::vector<float>& blocks) {
-    sc_decide(blocks.data(), static_cast<int>(blocks.size() / ATS_SC_MOTION_FLOATS), r, cap, state.data());
+    sc_decide(blocks.data(), static_cast<int>(blocks.size() / ATS_SC_MOTION_FLOATS), r, cap, state.data(), &in_memory);
+    CHECK(state[1] == state[5]);  // (the lists stay in memory here: made anew or kept)
     return state[1];
   };
   CHECK(decide(block(o, o, o, o)) == 1);  // a frame's first substep detects, at the cap
@@ -135,7 +139,16 @@ TEST_CASE("the lists are rebuilt at a frame's start and when the relative motion
   // Steps spread over 0.6 mm: delta 0.3 mm, need r + 2.5 delta = 1.75 mm.
   CHECK(decide(block(o, ats_v3(0.0002f, 0, 0), ats_v3(0, -0.0006f, 0), o)) == 0);  // 1.75 + 0.2 mm
   CHECK(decide(block(o, ats_v3(0.0002f, 0, 0), ats_v3(0, -0.0012f, 0), o)) == 1);  // need 3 mm (5 delta)
-  CHECK(state[4] == 3);                                                            // detections this frame
+  CHECK(state[4] == 3);                                                            // made anew three times
+  // A reset clears in_memory: the lists kept are made again where they were
+  // made (state[1], not state[5]), and the decision is the same.
+  in_memory = 0;
+  sc_decide(block(o, ats_v3(0.0002f, 0, 0), ats_v3(0, -0.0006f, 0), o).data(), 1, r, cap, state.data(), &in_memory);
+  CHECK(state[1] == 1);
+  CHECK(state[5] == 0);
+  CHECK(sc_bits_float(state[3]) == Approx(0.0001));  // D still since x_det
+  CHECK(state[4] == 3);
+  CHECK(in_memory == 1);
 }
 
 TEST_CASE("a block's motion is the box of its surface vertices' displacements and steps",
