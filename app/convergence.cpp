@@ -49,13 +49,13 @@ std::vector<Variant> variants_of(const ConvergeOptions& o, const ExecutionOption
       e.mode = parse_schedule_mode(s);
       e.profile_repetitions = 3;
       if (e.mode != ScheduleMode::async) {
-        out.push_back({method + "/" + s, method, e});
+        out.push_back({fmt::format("{}/{}", method, s), method, e});
         continue;
       }
       if (!described.gauss_seidel) continue;
       for (const std::string& m : o.merges) {
         e.merge = plan::parse_merge_strategy(m);
-        out.push_back({method + "/async/" + m, method, e});
+        out.push_back({fmt::format("{}/async/{}", method, m), method, e});
       }
     }
   }

@@ -8,8 +8,9 @@ contact energy inside VBD's and JPGD's vertex solves, which is no task of
 its own), and the share of the last recorded substep the contact tasks
 took; then the log-log slope of the contact time over the sizes. The last
 substep is a frame's last, which often keeps the pair lists (detection
-rebuilds them at a frame's start and when the motion since outgrows them),
-so its breakdown by task shows a kept substep; a frame's mean is in on - off.
+rebuilds them when the motion since they were made outgrows them; they are
+kept across frames), so its breakdown by task shows a kept substep; a
+frame's mean is in on - off.
 Frame time is /timing/frame_ms (the substeps on the device); the host's own
 work on each frame (/timing/host_ms: with self-contact mostly the per-frame
 surface record, /contact/surface_*) comes after it and before the next

@@ -48,8 +48,8 @@ TEST_CASE("the BVH walk and the spatial hash find exactly the brute force's pair
   const std::vector<ats_vec3> x = float_positions(m.particles.position);
   const Found f = find_all(s, x, cell_factor * s.query_radius);
   CAPTURE(n, cell_factor, f.brute.vt.size(), f.brute.ee.size());
-  REQUIRE(f.brute.vt.size() > 0);
-  REQUIRE(f.brute.ee.size() > 0);
+  REQUIRE(!f.brute.vt.empty());
+  REQUIRE(!f.brute.ee.empty());
   CHECK(transposes_agree(f.brute));
   CHECK(same_pairs(f.bvh, f.brute));
   CHECK(same_pairs(f.hash, f.brute));
