@@ -286,6 +286,20 @@ TEST_CASE("a sheet folded onto itself keeps its folded neighbours as contact pai
   CHECK(c.sheet > c.folded);
 }
 
+namespace {
+// The upper layer of kScene sliding over the lower one, which is pinned,
+// under a weak gravity.
+model::Model sliding_layers() {
+  std::string scene = kScene;
+  scene.replace(scene.find("gravity: [0, 0, 0]"), 18, "gravity: [4, -1, 0]");
+  const std::string a = "material: {density: 0.2, stretch_stiffness: 100}}\n";
+  scene.replace(scene.find(a), a.size(),
+                "material: {density: 0.2, stretch_stiffness: 100},\n"
+                "     pins: {boxes: [{min: [-1, -0.01, -1], max: [1, 0.005, 1]}]}}\n");
+  return model::build_model(scene::parse_scene(scene, "s.yaml", "."));
+}
+}  // namespace
+
 TEST_CASE(
     "the lists are kept while the motion allows, and always hold every pair closer than 1.5 thicknesses at the "
     "substep's start",
@@ -294,13 +308,7 @@ TEST_CASE(
   // under a weak gravity, many substeps: early substeps move little and keep
   // the lists, later ones move more and rebuild them; the pairs change as
   // the layers close.
-  std::string scene = kScene;
-  scene.replace(scene.find("gravity: [0, 0, 0]"), 18, "gravity: [4, -1, 0]");  // sliding over it
-  const std::string a = "material: {density: 0.2, stretch_stiffness: 100}}\n";
-  scene.replace(scene.find(a), a.size(),
-                "material: {density: 0.2, stretch_stiffness: 100},\n"
-                "     pins: {boxes: [{min: [-1, -0.01, -1], max: [1, 0.005, 1]}]}}\n");
-  const model::Model m = model::build_model(scene::parse_scene(scene, "s.yaml", "."));
+  const model::Model m = sliding_layers();
   const solver::SimLayout layout = solver::make_sim_layout(m);
   const solver::SelfContactLayout& s = layout.self_contact;
   const plan::SubstepPlan plan = solver::vbd::make_vbd_plan(layout, 1.0 / 60.0, 1);
@@ -400,13 +408,7 @@ TEST_CASE("a run restored from its own state at every substep remakes its lists 
   // the lists must remake them at x_det (state[1] = 1, state[5] = 0), and
   // both runs must stay equal, bit for bit. Restored from positions and
   // velocities alone, the lists are made at x_t instead.
-  std::string scene = kScene;
-  scene.replace(scene.find("gravity: [0, 0, 0]"), 18, "gravity: [4, -1, 0]");
-  const std::string a = "material: {density: 0.2, stretch_stiffness: 100}}\n";
-  scene.replace(scene.find(a), a.size(),
-                "material: {density: 0.2, stretch_stiffness: 100},\n"
-                "     pins: {boxes: [{min: [-1, -0.01, -1], max: [1, 0.005, 1]}]}}\n");
-  const model::Model m = model::build_model(scene::parse_scene(scene, "s.yaml", "."));
+  const model::Model m = sliding_layers();
   const solver::SimLayout layout = solver::make_sim_layout(m);
   const plan::SubstepPlan plan = solver::vbd::make_vbd_plan(layout, 1.0 / 60.0, 2);
   const auto devices = device::DeviceSet::open("cpu");

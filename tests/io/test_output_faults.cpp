@@ -103,6 +103,26 @@ TEST_CASE("a run at a path that holds a result writes beside it and replaces it 
   CHECK_FALSE(std::filesystem::exists(dir.file("out.partial.xdmf")));
 }
 
+namespace {
+// Overwrites byte `col` of slot `row` of /checkpoint/state, as a write cut
+// short would leave it; returns the bytes per slot.
+hsize_t tear_state_byte(hid_t file, hsize_t row, hsize_t col) {
+  const hid_t state = H5Dopen2(file, "checkpoint/state", H5P_DEFAULT);
+  const hid_t space = H5Dget_space(state);
+  hsize_t dims[2] = {0, 0};
+  H5Sget_simple_extent_dims(space, dims, nullptr);
+  const hsize_t start[2] = {row, col}, count[2] = {1, 1};
+  H5Sselect_hyperslab(space, H5S_SELECT_SET, start, nullptr, count, nullptr);
+  const hid_t mem = H5Screate_simple(2, count, nullptr);
+  const unsigned char torn = 0xEE;
+  REQUIRE(H5Dwrite(state, H5T_NATIVE_UCHAR, mem, space, H5P_DEFAULT, &torn) >= 0);
+  H5Sclose(mem);
+  H5Sclose(space);
+  H5Dclose(state);
+  return dims[1];
+}
+}  // namespace
+
 TEST_CASE("a checkpoint keeps the carried bytes after the velocities, and a torn carried byte spoils its slot") {
   test::TempDir dir;
   const std::string path = dir.file("c.h5");
@@ -114,20 +134,8 @@ TEST_CASE("a checkpoint keeps the carried bytes after the velocities, and a torn
     for (int k = 1; k <= 2; ++k)
       slots.write({k, k + 1, 0, 0, 0, bytes_of(16, k), bytes_of(8, -k), bytes_of(12, 50 + k)});
     CHECK_THROWS_AS(slots.write({3, 4, 0, 0, 0, bytes_of(16, 3), bytes_of(8, -3), {}}), std::logic_error);
-    // Frame 2 went to slot 1: tear its last carried byte (column 16 + 8 + 11).
-    const hid_t state = H5Dopen2(file, "checkpoint/state", H5P_DEFAULT);
-    const hid_t space = H5Dget_space(state);
-    hsize_t dims[2] = {0, 0};
-    H5Sget_simple_extent_dims(space, dims, nullptr);
-    CHECK(dims[1] == 36);
-    const hsize_t start[2] = {1, 35}, count[2] = {1, 1};
-    H5Sselect_hyperslab(space, H5S_SELECT_SET, start, nullptr, count, nullptr);
-    const hid_t mem = H5Screate_simple(2, count, nullptr);
-    const unsigned char torn = 0xEE;
-    REQUIRE(H5Dwrite(state, H5T_NATIVE_UCHAR, mem, space, H5P_DEFAULT, &torn) >= 0);
-    H5Sclose(mem);
-    H5Sclose(space);
-    H5Dclose(state);
+    // Frame 2 went to slot 1: tear its last carried byte (column 16 + 8 + 11 of 36).
+    CHECK(tear_state_byte(file, 1, 35) == 36);
   }
   auto reopened = io::CheckpointSlots::open(file);
   REQUIRE(reopened);
@@ -150,16 +158,7 @@ TEST_CASE("a checkpoint slot whose bytes were torn is skipped for the other slot
     auto slots = io::CheckpointSlots::create(file, 16, 8);
     for (int k = 1; k <= 3; ++k) slots.write({k, k + 1, 0, 0, 0, bytes_of(16, k), bytes_of(8, -k), {}});
     // Frame 3 went to slot 0 (1 -> 0, 2 -> 1, 3 -> 0): tear its state bytes.
-    const hid_t state = H5Dopen2(file, "checkpoint/state", H5P_DEFAULT);
-    const hid_t space = H5Dget_space(state);
-    const hsize_t start[2] = {0, 5}, count[2] = {1, 1};
-    H5Sselect_hyperslab(space, H5S_SELECT_SET, start, nullptr, count, nullptr);
-    const hid_t mem = H5Screate_simple(2, count, nullptr);
-    const unsigned char torn = 0xEE;
-    REQUIRE(H5Dwrite(state, H5T_NATIVE_UCHAR, mem, space, H5P_DEFAULT, &torn) >= 0);
-    H5Sclose(mem);
-    H5Sclose(space);
-    H5Dclose(state);
+    tear_state_byte(file, 0, 5);
     // as a file written before atssim kept carried bytes
     REQUIRE(H5Adelete_by_name(file, "checkpoint", "carried_bytes", H5P_DEFAULT) >= 0);
   }
