@@ -82,13 +82,8 @@ std::optional<CheckpointSlots> CheckpointSlots::open(hid_t file) {
     h5_check(H5Aread(attr, H5T_NATIVE_LLONG, &v), name);
     *out = static_cast<std::size_t>(v);
   }
-  // (A file written before atssim kept the carried state has none.)
-  if (H5Aexists(group, "carried_bytes") > 0) {
-    H5Handle attr = h5_check(H5Aopen(group, "carried_bytes", H5P_DEFAULT), H5Aclose, "carried_bytes");
-    long long v = 0;
-    h5_check(H5Aread(attr, H5T_NATIVE_LLONG, &v), "carried_bytes");
-    s.carried_bytes_ = static_cast<std::size_t>(v);
-  }
+  // (0 in a file written before atssim kept the carried state.)
+  s.carried_bytes_ = static_cast<std::size_t>(read_int_attribute(group, "carried_bytes"));
   s.state_ = h5_check(H5Dopen2(group, "state", H5P_DEFAULT), H5Dclose, "opening /checkpoint/state");
   s.index_ = h5_check(H5Dopen2(group, "index", H5P_DEFAULT), H5Dclose, "opening /checkpoint/index");
   const auto rows = read_index(s.index_);

@@ -97,6 +97,14 @@ void write_int_attribute(hid_t object, const std::string& name, long long value)
   h5_check(H5Awrite(attr, H5T_NATIVE_LLONG, &value), "writing attribute " + name);
 }
 
+long long read_int_attribute(hid_t object, const char* name) {
+  if (H5Aexists(object, name) <= 0) return 0;
+  H5Handle attr = h5_check(H5Aopen(object, name, H5P_DEFAULT), H5Aclose, name);
+  long long v = 0;
+  h5_check(H5Aread(attr, H5T_NATIVE_LLONG, &v), name);
+  return v;
+}
+
 void write_string_dataset(hid_t parent, const std::string& name, const std::string& value) {
   H5Handle type = string_type(value.size());
   H5Handle space = h5_check(H5Screate(H5S_SCALAR), H5Sclose, "scalar space");

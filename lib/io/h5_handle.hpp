@@ -37,6 +37,8 @@ void h5_check(herr_t rc, const std::string& what);
 H5Handle create_group(hid_t parent, const std::string& name);
 void write_string_attribute(hid_t object, const std::string& name, const std::string& value);
 void write_int_attribute(hid_t object, const std::string& name, long long value);
+// An integer attribute, 0 when the object has none.
+long long read_int_attribute(hid_t object, const char* name);
 void write_string_dataset(hid_t parent, const std::string& name, const std::string& value);
 void write_string_array(hid_t parent, const std::string& name, const std::vector<std::string>& values);
 // Row-major [rows, cols] arrays (cols = 0: one dimension).

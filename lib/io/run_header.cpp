@@ -147,12 +147,4 @@ std::string read_string_dataset(hid_t file, const char* name) {
   return value.substr(0, value.find('\0'));
 }
 
-long long read_int_attribute(hid_t object, const char* name) {
-  if (H5Aexists(object, name) <= 0) return 0;
-  H5Handle attr = h5_check(H5Aopen(object, name, H5P_DEFAULT), H5Aclose, name);
-  long long v = 0;
-  h5_check(H5Aread(attr, H5T_NATIVE_LLONG, &v), name);
-  return v;
-}
-
 }  // namespace atssim::io

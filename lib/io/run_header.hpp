@@ -27,7 +27,4 @@ std::string resumable_part(const std::string& resolved);
 
 std::string read_string_dataset(hid_t file, const char* name);
 
-// An integer attribute, 0 when the object has none.
-long long read_int_attribute(hid_t object, const char* name);
-
 }  // namespace atssim::io
