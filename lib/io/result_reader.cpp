@@ -39,14 +39,6 @@ std::string string_attribute(hid_t obj, const char* name) {
   return value;
 }
 
-long long int_attribute(hid_t obj, const char* name) {
-  if (H5Aexists(obj, name) <= 0) return 0;
-  H5Handle attr = h5_check(H5Aopen(obj, name, H5P_DEFAULT), H5Aclose, name);
-  long long v = 0;
-  h5_check(H5Aread(attr, H5T_NATIVE_LLONG, &v), name);
-  return v;
-}
-
 std::vector<hsize_t> dims_of(hid_t set) {
   H5Handle space = h5_check(H5Dget_space(set), H5Sclose, "space");
   const int rank = H5Sget_simple_extent_ndims(space);
@@ -86,11 +78,11 @@ ResultSummary read_summary(const std::string& path) {
   ResultSummary s;
   s.format = string_attribute(file, "format");
   if (s.format != "atssim") throw input_error(fmt::format("{}: not an atssim result file (no format=atssim)", path));
-  s.format_version = int_attribute(file, "format_version");
+  s.format_version = read_int_attribute(file, "format_version");
   s.atssim_version = string_attribute(file, "atssim_version");
   s.command_line = string_attribute(file, "command_line");
   s.created = string_attribute(file, "created");
-  s.complete = int_attribute(file, "complete") != 0;
+  s.complete = read_int_attribute(file, "complete") != 0;
   s.error = string_attribute(file, "error");
   s.time = read_doubles(file, "/frames/time");
   s.frame_ms = read_doubles(file, "/timing/frame_ms");
