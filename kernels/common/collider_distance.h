@@ -15,7 +15,7 @@
 #include "common/ats_math.h"
 #include "common/collider_types.h"
 #include "common/energy_mat3.h"
-#include "common/mesh_contact.h"
+#include "common/mesh_near.h"
 #include "common/surface_distance.h"
 
 ATS_FN_INLINE ats_vec3 ats_collider_vec(ATS_GLOBAL const float* v) { return ats_v3(v[0], v[1], v[2]); }
@@ -57,7 +57,18 @@ ATS_FN_INLINE ats_surface_distance ats_box_distance(ATS_GLOBAL const ats_collide
   return s;
 }
 
-ATS_FN_INLINE ats_surface_distance ats_collider_distance(ATS_GLOBAL const ats_collider_c* c, ats_vec3 x) {
+/* A particle's near lists (common/mesh_near.h), one per mesh collider, or
+ * null (the mesh's tree is walked): particle i's of the buffer `near`. */
+ATS_FN_INLINE ATS_GLOBAL const ats_mesh_near* ats_near_of(ATS_GLOBAL const ats_collider_c* colliders, int count,
+                                                          ATS_GLOBAL const ats_mesh_near* near, int i) {
+  if (count == 0 || near == 0) return 0;
+  return near + i * (int)colliders[0].near_slots;
+}
+
+/* The signed distance of x to collider c; `near`: the particle's near
+ * lists (ats_near_of), or null. */
+ATS_FN_INLINE ats_surface_distance ats_collider_distance_near(ATS_GLOBAL const ats_collider_c* c, ats_vec3 x,
+                                                              ATS_GLOBAL const ats_mesh_near* near) {
   const int shape = (int)c->shape;
   if (shape == ATS_COLLIDER_PLANE) {
     ats_surface_distance s;
@@ -74,16 +85,25 @@ ATS_FN_INLINE ats_surface_distance ats_collider_distance(ATS_GLOBAL const ats_co
     t = fmin(fmax(t, (ats_real)0), (ats_real)1);
     return ats_radial_distance(ats_sub(x, ats_add(a, ats_scale(ab, t))), c->radius);
   }
-  if (shape == ATS_COLLIDER_MESH) return ats_mesh_distance(c, x, c->mesh[3]);
+  if (shape == ATS_COLLIDER_MESH)
+    return ats_mesh_distance_near(c, x, c->mesh[3], near == 0 ? near : near + (int)c->near_slot);
   return ats_box_distance(c, x);
+}
+
+ATS_FN_INLINE ats_surface_distance ats_collider_distance(ATS_GLOBAL const ats_collider_c* c, ats_vec3 x) {
+  return ats_collider_distance_near(c, x, 0);
 }
 
 /* The gap g = phi - thickness (negative: the particle is inside the
  * collider's thickened surface) and the normal. */
-ATS_FN_INLINE ats_surface_distance ats_collider_gap(ATS_GLOBAL const ats_collider_c* c, ats_vec3 x) {
-  ats_surface_distance s = ats_collider_distance(c, x);
+ATS_FN_INLINE ats_surface_distance ats_collider_gap_near(ATS_GLOBAL const ats_collider_c* c, ats_vec3 x,
+                                                         ATS_GLOBAL const ats_mesh_near* near) {
+  ats_surface_distance s = ats_collider_distance_near(c, x, near);
   s.phi -= c->thickness;
   return s;
+}
+ATS_FN_INLINE ats_surface_distance ats_collider_gap(ATS_GLOBAL const ats_collider_c* c, ats_vec3 x) {
+  return ats_collider_gap_near(c, x, 0);
 }
 
 /* Whether x is certainly outside collider c's thickened surface, by a test

@@ -25,7 +25,10 @@ typedef struct {
   float extent[4]; /* box: half extents along its axes ("half" is an OpenCL C type) */
   float radius;    /* sphere, capsule */
   float stiffness; /* contact energy stiffness relative to m/h^2 (dimensionless, > 0) */
-  float pad0, pad1;
+  /* Near lists (common/mesh_near.h): a mesh's slot among a particle's
+   * lists, and (in every record) how many lists a particle has: one per
+   * mesh collider. Floats, like the rest. */
+  float near_slot, near_slots;
   /* Kinematic colliders: the surface's motion over the current substep, so
    * that friction acts on the velocity relative to it: a surface point p
    * moved by move + turn x (p - pivot) (zero for a static collider). */

@@ -13,23 +13,41 @@
 #include "common/collider_distance.h"
 #include "common/task.h"
 
-ATS_TASK void particles_contact(int i, __global float4* x, __global const ats_collider_c* colliders, int count) {
+/* Every particle's near lists of the mesh colliders (common/mesh_near.h),
+ * kept or made at its position at the substep's start, before any task
+ * that takes them. */
+ATS_TASK void colliders_near(int i, __global const float4* x, __global const ats_collider_c* colliders, int count,
+                             __global ats_mesh_near* near) {
+  if (count == 0) return;
+  const float4 p = x[i];
+  __global ats_mesh_near* mine = near + i * (int)colliders[0].near_slots;
+  for (int c = 0; c < count; ++c) {
+    if ((int)colliders[c].shape != ATS_COLLIDER_MESH) continue;
+    ats_mesh_near_refresh(colliders + c, ats_mesh_local(colliders + c, ats_v3(p.x, p.y, p.z)),
+                          mine + (int)colliders[c].near_slot);
+  }
+}
+
+ATS_TASK void particles_contact(int i, __global float4* x, __global const ats_collider_c* colliders, int count,
+                                __global const ats_mesh_near* near) {
   float4 p = x[i];
   if (p.w == 0.0f) return;
+  __global const ats_mesh_near* mine = ats_near_of(colliders, count, near, i);
   for (int c = 0; c < count; ++c) {
     if (ats_collider_clear(colliders + c, ats_v3(p.x, p.y, p.z))) continue;
-    const ats_surface_distance s = ats_collider_gap(colliders + c, ats_v3(p.x, p.y, p.z));
+    const ats_surface_distance s = ats_collider_gap_near(colliders + c, ats_v3(p.x, p.y, p.z), mine);
     if (s.phi < 0.0f) p = (float4)(p.x - s.phi * s.n.x, p.y - s.phi * s.n.y, p.z - s.phi * s.n.z, p.w);
   }
   x[i] = p;
 }
 
 /* The collider particle p touches with the smallest gap (-1: none), and its normal. */
-static inline int touching_collider(float4 p, __global const ats_collider_c* colliders, int count, ats_vec3* normal) {
+static inline int touching_collider(float4 p, __global const ats_collider_c* colliders, int count,
+                                    __global const ats_mesh_near* near, ats_vec3* normal) {
   int best = -1;
   float best_gap = 0.0f;
   for (int c = 0; c < count; ++c) {
-    const ats_surface_distance s = ats_collider_gap(colliders + c, ats_v3(p.x, p.y, p.z));
+    const ats_surface_distance s = ats_collider_gap_near(colliders + c, ats_v3(p.x, p.y, p.z), near);
     if (ats_collider_touching(colliders + c, s.phi) && (best < 0 || s.phi < best_gap)) {
       best = c;
       best_gap = s.phi;
@@ -78,25 +96,28 @@ static inline float4 coulomb_friction(float4 p, float4 q, ats_vec3 n, float dn, 
  * from p, is put back to p's gap (or onto the surface, if p was outside).
  * Friction never deepens a contact (before: cloth on a mesh figure ended
  * 1.02 % of the thickness inside under VBD, 0 with friction off). */
-static inline float4 no_deeper(float4 f, float4 p, __global const ats_collider_c* c) {
-  const float before = fmin(ats_collider_gap(c, ats_v3(p.x, p.y, p.z)).phi, 0.0f);
-  const ats_surface_distance s = ats_collider_gap(c, ats_v3(f.x, f.y, f.z));
+static inline float4 no_deeper(float4 f, float4 p, __global const ats_collider_c* c,
+                               __global const ats_mesh_near* near) {
+  const float before = fmin(ats_collider_gap_near(c, ats_v3(p.x, p.y, p.z), near).phi, 0.0f);
+  const ats_surface_distance s = ats_collider_gap_near(c, ats_v3(f.x, f.y, f.z), near);
   if (!(s.phi < before)) return f;
   const float push = before - s.phi;
   return (float4)(f.x + push * s.n.x, f.y + push * s.n.y, f.z + push * s.n.z, f.w);
 }
 
 ATS_TASK void particles_friction(int i, __global float4* x, __global const float4* x_prev, __global const float4* v,
-                                 __global const ats_collider_c* colliders, int count, float dt,
-                                 __global const float2* pf) {
+                                 __global const ats_collider_c* colliders, int count,
+                                 __global const ats_mesh_near* near, float dt, __global const float2* pf) {
   const float4 p = x[i];
   if (p.w == 0.0f) return;
+  __global const ats_mesh_near* mine = ats_near_of(colliders, count, near, i);
   ats_vec3 n;
-  const int c = touching_collider(p, colliders, count, &n);
+  const int c = touching_collider(p, colliders, count, mine, &n);
   if (c < 0) return;
   const float4 q = x_prev[i];
   const float4 vel = v[i];
   const ats_vec3 predicted = ats_v3(q.x + dt * vel.x, q.y + dt * vel.y, q.z + dt * vel.z);
   const float dn = ats_dot(ats_sub(ats_v3(p.x, p.y, p.z), predicted), n);
-  x[i] = no_deeper(coulomb_friction(p, q, n, dn, colliders + c, contact_mu(colliders + c, pf[i])), p, colliders + c);
+  x[i] =
+      no_deeper(coulomb_friction(p, q, n, dn, colliders + c, contact_mu(colliders + c, pf[i])), p, colliders + c, mine);
 }

@@ -86,40 +86,76 @@ ATS_FN ats_vec3 ats_feature_normal(ATS_GLOBAL const ats_mesh_triangle* t, int fe
   return ats_mesh_float3(t->edge + 3 * (feature - 4));
 }
 
-/* Distance to the mesh of collider c from the world point xw, within
- * `reach` (no triangle nearer: phi = reach, normal up). */
-ATS_FN_NOINLINE ats_surface_distance ats_mesh_distance(ATS_GLOBAL const ats_collider_c* c, ats_vec3 xw,
-                                                       ats_real reach) {
-  ats_vec3 axis[3];
-  const ats_vec3 d = ats_sub(xw, ats_mesh_float3(c->c));
-  ATS_UNROLL for (int k = 0; k < 3; ++k) axis[k] = ats_mesh_float3(c->axes + 4 * k);
-  const ats_vec3 x = ats_v3(ats_dot(d, axis[0]), ats_dot(d, axis[1]), ats_dot(d, axis[2]));
-  ATS_GLOBAL const ats_bvh_node* nodes = (ATS_GLOBAL const ats_bvh_node*)(c + (int)c->mesh[0]);
-  ATS_GLOBAL const ats_mesh_triangle* tris = (ATS_GLOBAL const ats_mesh_triangle*)(c + (int)c->mesh[1]);
+/* The nearest triangle a mesh query has found: its squared distance, index
+ * (-1: none nearer than the reach), feature and closest point. */
+typedef struct {
+  ats_real d2;
+  int t;
+  int feature;
+  ats_vec3 point;
+} ats_mesh_hit;
 
-  ats_real best2 = reach * reach;
-  int best = -1, best_feature = 0;
-  ats_vec3 best_point = x;
+ATS_FN_INLINE ats_mesh_hit ats_mesh_no_hit(ats_vec3 x, ats_real reach) {
+  ats_mesh_hit h;
+  h.d2 = reach * reach;
+  h.t = -1;
+  h.feature = 0;
+  h.point = x;
+  return h;
+}
+
+/* Triangle t of the local point x against the hit so far. The nearer wins
+ * and an equal distance goes to the lower index, so that the tree walk
+ * and a near list (common/mesh_near.h), which meet the same triangles in
+ * other orders, find the same one, bit for bit. */
+ATS_FN_INLINE void ats_mesh_consider(ATS_GLOBAL const ats_mesh_triangle* tris, int t, ats_vec3 x, ats_mesh_hit* h) {
+  int feature = 0;
+  const ats_vec3 q = ats_closest_on_triangle(x, ats_mesh_float3(tris[t].p), ats_mesh_float3(tris[t].p + 3),
+                                             ats_mesh_float3(tris[t].p + 6), &feature);
+  const ats_vec3 e = ats_sub(x, q);
+  const ats_real d2 = ats_dot(e, e);
+  if (d2 < h->d2 || (d2 == h->d2 && h->t >= 0 && t < h->t)) {
+    h->d2 = d2;
+    h->t = t;
+    h->feature = feature;
+    h->point = q;
+  }
+}
+
+/* A node is passed over when its box is farther than the nearest triangle
+ * by more than this factor on the squared distance: a box holds its
+ * triangles, but both distances are rounded, and a triangle at the nearest
+ * distance (a tie) must still be met. */
+#define ATS_MESH_PRUNE ((ats_real)1.001)
+
+ATS_FN ATS_GLOBAL const ats_bvh_node* ats_mesh_nodes(ATS_GLOBAL const ats_collider_c* c) {
+  return (ATS_GLOBAL const ats_bvh_node*)(c + (int)c->mesh[0]);
+}
+ATS_FN ATS_GLOBAL const ats_mesh_triangle* ats_mesh_triangles(ATS_GLOBAL const ats_collider_c* c) {
+  return (ATS_GLOBAL const ats_mesh_triangle*)(c + (int)c->mesh[1]);
+}
+
+/* The world point xw in the mesh's local frame. */
+ATS_FN ats_vec3 ats_mesh_local(ATS_GLOBAL const ats_collider_c* c, ats_vec3 xw) {
+  const ats_vec3 d = ats_sub(xw, ats_mesh_float3(c->c));
+  return ats_v3(ats_dot(d, ats_mesh_float3(c->axes)), ats_dot(d, ats_mesh_float3(c->axes + 4)),
+                ats_dot(d, ats_mesh_float3(c->axes + 8)));
+}
+
+/* The nearest triangle to the local point x nearer than `reach`, by a walk
+ * of the tree with a small stack, pruned by the nearest distance so far. */
+ATS_FN_NOINLINE ats_mesh_hit ats_mesh_walk(ATS_GLOBAL const ats_collider_c* c, ats_vec3 x, ats_real reach) {
+  ATS_GLOBAL const ats_bvh_node* nodes = ats_mesh_nodes(c);
+  ATS_GLOBAL const ats_mesh_triangle* tris = ats_mesh_triangles(c);
+  ats_mesh_hit h = ats_mesh_no_hit(x, reach);
   int stack[ATS_BVH_STACK];
   int top = 0;
   stack[top++] = 0;
   while (top > 0) {
     ATS_GLOBAL const ats_bvh_node* node = nodes + stack[--top];
-    if (ats_bvh_box_distance2(node, x) > best2) continue;
+    if (ats_bvh_box_distance2(node, x) > ATS_MESH_PRUNE * h.d2) continue;
     if (node->count > 0) {
-      for (int t = node->first; t < node->first + node->count; ++t) {
-        int feature = 0;
-        const ats_vec3 q = ats_closest_on_triangle(x, ats_mesh_float3(tris[t].p), ats_mesh_float3(tris[t].p + 3),
-                                                   ats_mesh_float3(tris[t].p + 6), &feature);
-        const ats_vec3 e = ats_sub(x, q);
-        const ats_real d2 = ats_dot(e, e);
-        if (d2 < best2) {
-          best2 = d2;
-          best = t;
-          best_feature = feature;
-          best_point = q;
-        }
-      }
+      for (int t = node->first; t < node->first + node->count; ++t) ats_mesh_consider(tris, t, x, &h);
     } else if (top + 2 <= ATS_BVH_STACK) {
       /* the nearer child last, so that it is walked first and prunes more */
       const ats_real d0 = ats_bvh_box_distance2(nodes + node->first, x);
@@ -128,26 +164,41 @@ ATS_FN_NOINLINE ats_surface_distance ats_mesh_distance(ATS_GLOBAL const ats_coll
       stack[top++] = d0 < d1 ? node->first : node->first + 1;
     }
   }
+  return h;
+}
+
+/* The distance and world normal of the local point x from its hit h. */
+ATS_FN ats_surface_distance ats_mesh_result(ATS_GLOBAL const ats_collider_c* c, ats_vec3 x, ats_mesh_hit h,
+                                            ats_real reach) {
   ats_surface_distance s;
-  if (best < 0) {
+  if (h.t < 0) {
     s.phi = reach;
     s.n = ats_v3(0, 1, 0);
     return s;
   }
-  const ats_real dist = ATS_SQRT(best2);
-  const ats_vec3 e = ats_sub(x, best_point);
+  ATS_GLOBAL const ats_mesh_triangle* tris = ats_mesh_triangles(c);
+  const ats_real dist = ATS_SQRT(h.d2);
+  const ats_vec3 e = ats_sub(x, h.point);
   ats_vec3 n;
   if (c->mesh[2] > 0.5f) { /* closed: signed by the pseudo-normal */
-    const ats_vec3 pn = ats_feature_normal(tris + best, best_feature);
+    const ats_vec3 pn = ats_feature_normal(tris + h.t, h.feature);
     const ats_real sign = ats_dot(e, pn) < 0 ? (ats_real)-1 : (ats_real)1;
     s.phi = sign * dist;
     n = dist > (ats_real)1e-12 ? ats_scale(e, sign / dist) : pn;
   } else { /* open: unsigned, away from the nearest point */
     s.phi = dist;
-    n = dist > (ats_real)1e-12 ? ats_scale(e, (ats_real)1 / dist) : ats_mesh_float3(tris[best].n);
+    n = dist > (ats_real)1e-12 ? ats_scale(e, (ats_real)1 / dist) : ats_mesh_float3(tris[h.t].n);
   }
-  s.n = ats_add(ats_add(ats_scale(axis[0], n.x), ats_scale(axis[1], n.y)), ats_scale(axis[2], n.z));
+  s.n = ats_add(ats_add(ats_scale(ats_mesh_float3(c->axes), n.x), ats_scale(ats_mesh_float3(c->axes + 4), n.y)),
+                ats_scale(ats_mesh_float3(c->axes + 8), n.z));
   return s;
+}
+
+/* Distance to the mesh of collider c from the world point xw, within
+ * `reach` (no triangle nearer: phi = reach, normal up). */
+ATS_FN ats_surface_distance ats_mesh_distance(ATS_GLOBAL const ats_collider_c* c, ats_vec3 xw, ats_real reach) {
+  const ats_vec3 x = ats_mesh_local(c, xw);
+  return ats_mesh_result(c, x, ats_mesh_walk(c, x, reach), reach);
 }
 
 #endif

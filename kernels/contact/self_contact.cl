@@ -172,11 +172,12 @@ ATS_TASK void sc_near_edges(int e, __global const int2* edges, __global const in
  * 0.033, SOSD 0.26 -> 0.10 on those layers, both rising between
  * doublings; now 2e-6 and 6.5e-4 at k = 256, docs/accuracy.md). */
 #define ATS_COLLIDER_SLACK 0.005f
-static inline float4 sc_out_of_colliders(float4 p, __global const ats_collider_c* colliders, int count, int on) {
+static inline float4 sc_out_of_colliders(float4 p, __global const ats_collider_c* colliders, int count,
+                                         __global const ats_mesh_near* near, int on) {
   if (!on) return p;
   for (int c = 0; c < count; ++c) {
     if (ats_collider_clear(colliders + c, ats_v3(p.x, p.y, p.z))) continue;
-    const ats_surface_distance s = ats_collider_gap(colliders + c, ats_v3(p.x, p.y, p.z));
+    const ats_surface_distance s = ats_collider_gap_near(colliders + c, ats_v3(p.x, p.y, p.z), near);
     const float deepest = -ATS_COLLIDER_SLACK * colliders[c].thickness;
     if (s.phi < deepest) {
       const float push = deepest - s.phi;
@@ -213,19 +214,22 @@ static inline float sc_distance_moved(float4 a, float4 b) {
  * bound, which only limits how fast surfaces close on each other. */
 static inline float4 sc_clamped(int i, __global const float4* x, __global const float4* x_start,
                                 __global const float* bound, __global const ats_collider_c* colliders,
-                                int collider_count) {
-  return sc_out_of_colliders(sc_bounded(x[i], x_start[i], bound[i]), colliders, collider_count, 1);
+                                int collider_count, __global const ats_mesh_near* near) {
+  return sc_out_of_colliders(sc_bounded(x[i], x_start[i], bound[i]), colliders, collider_count,
+                             ats_near_of(colliders, collider_count, near, i), 1);
 }
 ATS_TASK void sc_clamp(int i, __global float4* x, __global const float4* x_start, __global const float* bound,
-                       __global const ats_collider_c* colliders, int collider_count) {
-  x[i] = sc_clamped(i, x, x_start, bound, colliders, collider_count);
+                       __global const ats_collider_c* colliders, int collider_count,
+                       __global const ats_mesh_near* near) {
+  x[i] = sc_clamped(i, x, x_start, bound, colliders, collider_count, near);
 }
 
 /* sc_clamp, then how far the vertex is from x_t (sc_moved_since) in the
  * same pass: XPBD's projection, which reads both. */
 ATS_TASK void sc_clamp_moved(int i, __global float4* x, __global const float4* x_start, __global const float* bound,
-                             __global const ats_collider_c* colliders, int collider_count, __global float* moved) {
-  const float4 a = sc_clamped(i, x, x_start, bound, colliders, collider_count);
+                             __global const ats_collider_c* colliders, int collider_count,
+                             __global const ats_mesh_near* near, __global float* moved) {
+  const float4 a = sc_clamped(i, x, x_start, bound, colliders, collider_count, near);
   x[i] = a;
   moved[i] = sc_distance_moved(a, x_start[i]);
 }

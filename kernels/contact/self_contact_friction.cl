@@ -5,9 +5,11 @@
  * file's near lists, SC_FOR_EACH_PAIR order, sc_still_apart and the
  * clamps). */
 ATS_TASK void sc_apply(int i, __global float4* x, __global const float4* x_out, __global const float4* x_start,
-                       __global const float* bound, __global const ats_collider_c* colliders, int collider_count) {
+                       __global const float* bound, __global const ats_collider_c* colliders, int collider_count,
+                       __global const ats_mesh_near* near) {
   const float4 q = sc_bounded(x_out[i], x_start[i], bound[i]);
-  x[i] = sc_out_of_colliders(q, colliders, collider_count, sc_moved(q, x[i]));
+  x[i] = sc_out_of_colliders(q, colliders, collider_count, ats_near_of(colliders, collider_count, near, i),
+                             sc_moved(q, x[i]));
 }
 
 /* Coulomb friction of every pair of vertex i in contact (d < 1.01 r), after

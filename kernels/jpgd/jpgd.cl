@@ -25,20 +25,21 @@ ATS_TASK void jpgd_step(int i, __global const float4* x, __global const float4* 
                         __global const ats_distance_c* stretch, __global const ats_bend_c* bend,
                         __global const ats_tet_c* tets, float inv_h2, float alpha, float omega, float beta,
                         int has_ground, float ground, __global const ats_collider_c* colliders, int collider_count,
-                        __global const float4* x_start, float inv_h, __global const int4* sc_tris,
-                        __global const int2* sc_edges, __global const int* sc_inc, __global const int* sc_vt,
-                        __global const int* sc_tv, __global const int* sc_ee, __global const float* sc_bound, int sc_n,
-                        float sc_k, float sc_r, int sc_on) {
+                        __global const ats_mesh_near* near, __global const float4* x_start, float inv_h,
+                        __global const int4* sc_tris, __global const int2* sc_edges, __global const int* sc_inc,
+                        __global const int* sc_vt, __global const int* sc_tv, __global const int* sc_ee,
+                        __global const float* sc_bound, int sc_n, float sc_k, float sc_r, int sc_on) {
   const float4 p = x[i];
   if (p.w == 0.0f) {
     x_next[i] = p;
     return;
   }
+  __global const ats_mesh_near* mine = ats_near_of(colliders, collider_count, near, i);
   const vertex_system s = add_self_contact_terms(
       add_contact_terms(
           add_spring_damping(gather_vertex_system(i, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend, tets), i, x,
                              x_start, inv_h, adj_offsets, adj, stretch),
-          vs_xyz(p), p.w, inv_h2, colliders, collider_count),
+          vs_xyz(p), p.w, inv_h2, colliders, collider_count, mine),
       i, x, sc_tris, sc_edges, sc_inc, sc_n, sc_vt, sc_tv, sc_ee, sc_k, sc_r, sc_on);
   const ats_solve3 d =
       sc_contact_step(s, i, x, 0, 0, sc_tris, sc_edges, sc_inc, sc_n, sc_vt, sc_tv, sc_ee, sc_k, sc_r, sc_on);
@@ -50,5 +51,5 @@ ATS_TASK void jpgd_step(int i, __global const float4* x, __global const float4* 
   const float3 stepped = (float3)(p.x + step.x, p.y + step.y, p.z + step.z);
   const float3 before = x_before[i].xyz;
   const float3 next = omega * (stepped - before) + before + beta * ((float3)(p.x, p.y, p.z) - before);
-  x_next[i] = sc_out_of_colliders((float4)(next, p.w), colliders, collider_count, sc_on);
+  x_next[i] = sc_out_of_colliders((float4)(next, p.w), colliders, collider_count, mine, sc_on);
 }

@@ -36,16 +36,17 @@ ATS_TASK void sosd_vertex_systems(int i, __global const float4* x, __global cons
                                   __global const ats_distance_c* stretch, __global const ats_bend_c* bend,
                                   __global const ats_tet_c* tets, __global float4* sys, float inv_h2,
                                   __global const ats_collider_c* colliders, int collider_count,
-                                  __global const float4* x_start, float inv_h, __global const int4* sc_tris,
-                                  __global const int2* sc_edges, __global const int* sc_inc, __global const int* sc_vt,
-                                  __global const int* sc_tv, __global const int* sc_ee, __global const float* sc_bound,
-                                  int sc_n, float sc_k, float sc_r, int sc_on) {
+                                  __global const ats_mesh_near* near, __global const float4* x_start, float inv_h,
+                                  __global const int4* sc_tris, __global const int2* sc_edges,
+                                  __global const int* sc_inc, __global const int* sc_vt, __global const int* sc_tv,
+                                  __global const int* sc_ee, __global const float* sc_bound, int sc_n, float sc_k,
+                                  float sc_r, int sc_on) {
   if (x[i].w == 0.0f) return; /* pinned: never read */
   const vertex_system s = add_self_contact_terms_spread(
       add_contact_terms(
           add_spring_damping(gather_vertex_system(i, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend, tets), i, x,
                              x_start, inv_h, adj_offsets, adj, stretch),
-          vs_xyz(x[i]), x[i].w, inv_h2, colliders, collider_count),
+          vs_xyz(x[i]), x[i].w, inv_h2, colliders, collider_count, ats_near_of(colliders, collider_count, near, i)),
       i, x, sc_tris, sc_edges, sc_inc, sc_n, sc_vt, sc_tv, sc_ee, sc_k, sc_r, sc_on);
   sys[4 * i] = (float4)(s.f.x, s.f.y, s.f.z, 0.0f);
   ATS_UNROLL for (int r = 0; r < 3; ++r) sys[4 * i + 1 + r] = (float4)(s.h.r[r].x, s.h.r[r].y, s.h.r[r].z, 0.0f);
@@ -194,7 +195,8 @@ ATS_TASK void sosd_combine(int i, __global float4* x, __global const int* adj_of
                            __global const float4* d_stretch, __global const float4* d_bend,
                            __global const float4* d_tet, __global const float4* sys, int main_kind, int main_first,
                            int main_end, float step, int has_ground, float ground,
-                           __global const ats_collider_c* colliders, int collider_count, int sc_on) {
+                           __global const ats_collider_c* colliders, int collider_count,
+                           __global const ats_mesh_near* near, int sc_on) {
   const float4 p = x[i];
   if (p.w == 0.0f) return;
   float4 sum = (float4)(0.0f);
@@ -223,5 +225,6 @@ ATS_TASK void sosd_combine(int i, __global float4* x, __global const int* adj_of
     const ats_vec3 s = ats_vertex_step_above_ground(h, f, free_step.x, p.y, ground);
     dx = (float4)(step * s.x, ground - p.y, step * s.z, 0.0f);
   }
-  x[i] = sc_out_of_colliders((float4)(p.x + dx.x, p.y + dx.y, p.z + dx.z, p.w), colliders, collider_count, sc_on);
+  x[i] = sc_out_of_colliders((float4)(p.x + dx.x, p.y + dx.y, p.z + dx.z, p.w), colliders, collider_count,
+                             ats_near_of(colliders, collider_count, near, i), sc_on);
 }

@@ -22,18 +22,19 @@ ATS_TASK void vbd_solve(int k, __global float4* x, __global const float4* x_tild
                         __global const int* adj, __global const ats_distance_c* stretch,
                         __global const ats_bend_c* bend, __global const ats_tet_c* tets, __global const int* order,
                         float inv_h2, int has_ground, float ground, __global const ats_collider_c* colliders,
-                        int collider_count, __global const float4* x_start, float inv_h, __global const int4* sc_tris,
-                        __global const int2* sc_edges, __global const int* sc_inc, __global const int* sc_vt,
-                        __global const int* sc_tv, __global const int* sc_ee, __global const float* sc_bound, int sc_n,
-                        float sc_k, float sc_r, int sc_on, __global const float4* sc_x_iter,
-                        __global const int* sc_color) {
+                        int collider_count, __global const ats_mesh_near* near, __global const float4* x_start,
+                        float inv_h, __global const int4* sc_tris, __global const int2* sc_edges,
+                        __global const int* sc_inc, __global const int* sc_vt, __global const int* sc_tv,
+                        __global const int* sc_ee, __global const float* sc_bound, int sc_n, float sc_k, float sc_r,
+                        int sc_on, __global const float4* sc_x_iter, __global const int* sc_color) {
   const int i = order[k];
   const float4 p = x[i];
+  __global const ats_mesh_near* mine = ats_near_of(colliders, collider_count, near, i);
   const vertex_system s = add_self_contact_terms_gs(
       add_contact_terms(
           add_spring_damping(gather_vertex_system(i, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend, tets), i, x,
                              x_start, inv_h, adj_offsets, adj, stretch),
-          vs_xyz(p), p.w, inv_h2, colliders, collider_count),
+          vs_xyz(p), p.w, inv_h2, colliders, collider_count, mine),
       i, x, sc_x_iter, sc_color, sc_tris, sc_edges, sc_inc, sc_n, sc_vt, sc_tv, sc_ee, sc_k, sc_r, sc_on);
   const ats_solve3 d = sc_contact_step(s, i, x, sc_x_iter, sc_color, sc_tris, sc_edges, sc_inc, sc_n, sc_vt, sc_tv,
                                        sc_ee, sc_k, sc_r, sc_on);
@@ -42,5 +43,5 @@ ATS_TASK void vbd_solve(int k, __global float4* x, __global const float4* x_tild
   if (has_ground && p.y + step.y < ground) step = ats_vertex_step_above_ground(s.h, s.f, step, p.y, ground);
   x[i] = sc_out_of_colliders(
       sc_bounded_step((float4)(p.x + step.x, p.y + step.y, p.z + step.z, p.w), i, x_start, sc_bound, sc_on), colliders,
-      collider_count, sc_on);
+      collider_count, mine, sc_on);
 }

@@ -66,7 +66,7 @@ sched::TaskId add_most_moved(plan::SubstepPlan& plan, sched::TaskId last, const 
 }  // namespace
 
 SelfContactBuffers add_self_contact_buffers(plan::SubstepPlan& plan, const SimLayout& layout,
-                                            plan::BufferId colliders) {
+                                            const ColliderBuffers& colliders) {
   const SelfContactLayout& s = layout.self_contact;
   using plan::BufferRole;
   SelfContactBuffers b;
@@ -94,7 +94,7 @@ SelfContactBuffers add_self_contact_buffers(plan::SubstepPlan& plan, const SimLa
   b.moved_blocks = plan.add_buffer("sc_moved_blocks", BufferRole::scratch, zeros(motion_blocks(n) * 4));
   b.most = plan.add_buffer("sc_most_moved", BufferRole::scratch, zeros(s.enabled ? 4 : 0));
   b.motion = plan.add_buffer("sc_motion", BufferRole::scratch, zeros(motion_blocks(n) * kMotionBytes));
-  b.colliders = colliders >= 0 || !s.enabled ? colliders : add_collider_buffer(plan, layout);
+  b.colliders = colliders.records >= 0 || !s.enabled ? colliders : add_collider_buffers(plan, layout);
   b.vt_d = plan.add_buffer("sc_vt_d", BufferRole::scratch, zeros(n * kListInts * 4));
   b.tv_d = plan.add_buffer("sc_tv_d", BufferRole::scratch, zeros(s.tris.size() * kListInts * 4));
   b.ee_d = plan.add_buffer("sc_ee_d", BufferRole::scratch, zeros(s.edges.size() * kListInts * 4));
@@ -250,12 +250,12 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
             Arg::of_buffer(b.ee_count), Arg::of_buffer(b.vt_listed), Arg::of_buffer(b.vt_near),
             Arg::of_buffer(b.vt_count), Arg::of_buffer(b.vt_total)},
            b.vt_near, {b.vt_count, b.vt_total}, b.vt_d);
-  return plan.add_task_after(last, plan::make_task("contact/first_guess", plan::TaskKind::collision),
-                             {"sc_clamp",
-                              {0, n},
-                              {Arg::of_buffer(positions), Arg::of_buffer(start), Arg::of_buffer(b.bound),
-                               Arg::of_buffer(b.colliders), Arg::of_int(layout.collider_count)},
-                              {particle_write(positions)}});
+  return plan.add_task_after(
+      last, plan::make_task("contact/first_guess", plan::TaskKind::collision),
+      {"sc_clamp",
+       {0, n},
+       with_colliders({Arg::of_buffer(positions), Arg::of_buffer(start), Arg::of_buffer(b.bound)}, layout, b.colliders),
+       {particle_write(positions)}});
 }
 
 std::vector<plan::KernelArg> self_contact_args(const SimLayout& layout, const SelfContactBuffers& b, double inertia_h) {
@@ -278,8 +278,8 @@ sched::TaskId add_self_contact_clamp(plan::SubstepPlan& plan, sched::TaskId last
                                      int iteration, plan::BufferId moved) {
   if (!layout.self_contact.enabled) return last;
   const int n = static_cast<int>(layout.x.size());
-  std::vector<Arg> args{Arg::of_buffer(positions), Arg::of_buffer(start), Arg::of_buffer(b.bound),
-                        Arg::of_buffer(b.colliders), Arg::of_int(layout.collider_count)};
+  std::vector<Arg> args =
+      with_colliders({Arg::of_buffer(positions), Arg::of_buffer(start), Arg::of_buffer(b.bound)}, layout, b.colliders);
   std::vector<WriteSpan> writes{particle_write(positions)};
   if (moved >= 0) {
     args.push_back(Arg::of_buffer(moved));
@@ -409,13 +409,13 @@ sched::TaskId add_self_contact_friction(plan::SubstepPlan& plan, sched::TaskId l
        {particle_write(b.x_out)}});
   plan.graph.add_edge(points, last);
   plan.graph.add_edge(triangles, last);
-  return plan.add_task_after(
-      last, plan::make_task("contact/friction_apply", plan::TaskKind::copy),
-      {"sc_apply",
-       {0, n},
-       {Arg::of_buffer(positions), Arg::of_buffer(b.x_out), Arg::of_buffer(start), Arg::of_buffer(b.bound),
-        Arg::of_buffer(b.colliders), Arg::of_int(layout.collider_count)},
-       {particle_write(positions)}});
+  return plan.add_task_after(last, plan::make_task("contact/friction_apply", plan::TaskKind::copy),
+                             {"sc_apply",
+                              {0, n},
+                              with_colliders({Arg::of_buffer(positions), Arg::of_buffer(b.x_out), Arg::of_buffer(start),
+                                              Arg::of_buffer(b.bound)},
+                                             layout, b.colliders),
+                              {particle_write(positions)}});
 }
 
 }  // namespace atssim::solver

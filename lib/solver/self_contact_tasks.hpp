@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "plan/substep_plan.hpp"
+#include "solver/collision_tasks.hpp"
 #include "solver/layout/sim_layout.hpp"
 
 namespace atssim::solver {
@@ -27,17 +28,18 @@ struct SelfContactBuffers {
       tv_count = -1, ee_count = -1, vt_count = -1,     // per list its near entries' count, packed (sc_near_vertex)
       vt_total = -1,                                   // per vertex the near entries it is in, packed
       vt_near = -1, tv_near = -1, ee_near = -1,        // the entries that can come within the thickness this substep
-      colliders = -1,  // the layout's colliders, which every clamp to the bound puts the positions back out of
       vt_l = -1, tv_l = -1,
                  ee_l = -1,  // per near-list entry the pair's normal, multiplier and weights (XPBD), or friction
       vt_k = -1, tv_k = -1, ee_k = -1,  // per list the count of its active entries (the projection, then friction)
       moved = -1,                       // per vertex how far it is from x_t (the near entries' skip, sc_still_apart)
       moved_blocks = -1, most = -1;     // the largest `moved` per block of vertices, then of all (sc_list_apart)
+  ColliderBuffers colliders;  // the layout's colliders, which every clamp to the bound puts the positions back out of
 };
 
-// `colliders`: the plan's collider buffer (solver/collision_tasks
-// add_collider_buffer), or -1 when it has none.
-SelfContactBuffers add_self_contact_buffers(plan::SubstepPlan& plan, const SimLayout& layout, plan::BufferId colliders);
+// `colliders`: the plan's collider buffers (solver/collision_tasks
+// add_collider_buffers), or none (records -1).
+SelfContactBuffers add_self_contact_buffers(plan::SubstepPlan& plan, const SimLayout& layout,
+                                            const ColliderBuffers& colliders);
 
 // After `last` (predict): detection on `start` (x_t), then `positions` (the
 // first guess) held within each vertex's bound of x_t. Returns the new last

@@ -103,6 +103,12 @@ ColliderBuffer collider_buffer(const std::vector<model::Collider>& colliders) {
   ColliderBuffer out;
   out.count = static_cast<int>(colliders.size());
   for (const model::Collider& c : colliders) out.records.push_back(collider_record(c));
+  // Each mesh's slot among a particle's near lists (common/mesh_near.h).
+  int slots = 0;
+  for (ats_collider_c& r : out.records) {
+    if (static_cast<int>(r.shape) == ATS_COLLIDER_MESH) r.near_slot = float(slots++);
+  }
+  for (ats_collider_c& r : out.records) r.near_slots = float(slots);
   for (int i = 0; i < out.count; ++i) {
     const model::Collider& c = colliders[i];
     if (!c.mesh) continue;

@@ -18,7 +18,8 @@ struct ColliderBuffer {
 // The colliders at rest (time 0, no motion).
 ColliderBuffer collider_buffer(const std::vector<model::Collider>& colliders);
 
-// One collider's record as placed (its mesh data offsets left at 0).
+// One collider's record as placed (its mesh data offsets and near-list
+// slots left at 0).
 ats_collider_c collider_record(const model::Collider& c);
 
 }  // namespace atssim::solver

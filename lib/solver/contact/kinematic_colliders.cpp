@@ -29,6 +29,8 @@ const std::vector<ats_collider_c>& KinematicColliders::records(double t0, double
     ats_collider_c r = collider_record(model::posed(c, to));
     for (int k = 0; k < 3; ++k) r.mesh[k] = buffer_.records[i].mesh[k];  // offsets and closedness stay
     r.mesh[3] = buffer_.records[i].mesh[3];
+    r.near_slot = buffer_.records[i].near_slot;
+    r.near_slots = buffer_.records[i].near_slots;
     const Eigen::AngleAxisd turn(to.rotation * from.rotation.transpose());
     put(r.move, to.pivot - from.pivot);
     put(r.turn, turn.angle() * turn.axis());

@@ -59,19 +59,12 @@ plan::SubstepPlan make_sosd_plan(const SimLayout& layout, double substep_dt, int
   last = add_self_contact_detection(plan, last, layout, sc, b.x_prev, b.x);
   const std::vector<Arg> sc_args = self_contact_args(layout, sc, hi);
   for (int it = 0; it < iterations; ++it) {
-    std::vector<Arg> system_args{Arg::of_buffer(b.x),
-                                 Arg::of_buffer(b.x_tilde),
-                                 Arg::of_buffer(b.adjacency_offsets),
-                                 Arg::of_buffer(b.adjacency),
-                                 Arg::of_buffer(b.stretch),
-                                 Arg::of_buffer(b.bend),
-                                 Arg::of_buffer(b.tets),
-                                 Arg::of_buffer(systems),
-                                 Arg::of_float(inv_h2),
-                                 Arg::of_buffer(b.colliders),
-                                 Arg::of_int(layout.collider_count),
-                                 damping[0],
-                                 damping[1]};
+    std::vector<Arg> system_args{
+        Arg::of_buffer(b.x),         Arg::of_buffer(b.x_tilde), Arg::of_buffer(b.adjacency_offsets),
+        Arg::of_buffer(b.adjacency), Arg::of_buffer(b.stretch), Arg::of_buffer(b.bend),
+        Arg::of_buffer(b.tets),      Arg::of_buffer(systems),   Arg::of_float(inv_h2)};
+    for (const Arg& a : vertex::collider_args(layout, b)) system_args.push_back(a);
+    system_args.insert(system_args.end(), damping.begin(), damping.end());
     system_args.insert(system_args.end(), sc_args.begin(), sc_args.end());
     const sched::TaskId systems_task = plan.add_task_after(
         last, plan::make_task(fmt::format("it{}/systems", it + 1), kSystems, it),
@@ -117,8 +110,9 @@ plan::SubstepPlan make_sosd_plan(const SimLayout& layout, double substep_dt, int
           {Arg::of_buffer(b.x), Arg::of_buffer(b.adjacency_offsets), Arg::of_buffer(b.adjacency), Arg::of_buffer(d[0]),
            Arg::of_buffer(d[1]), Arg::of_buffer(d[2]), Arg::of_buffer(systems), Arg::of_int(main.kind),
            Arg::of_int(main.first), Arg::of_int(main.end), Arg::of_float(static_cast<float>(step)),
-           Arg::of_int(layout.has_ground ? 1 : 0), Arg::of_float(layout.ground_y), Arg::of_buffer(b.colliders),
-           Arg::of_int(layout.collider_count), Arg::of_int(layout.self_contact.enabled ? 1 : 0)},
+           Arg::of_int(layout.has_ground ? 1 : 0), Arg::of_float(layout.ground_y), Arg::of_buffer(b.colliders.records),
+           Arg::of_int(layout.collider_count), Arg::of_buffer(b.colliders.near),
+           Arg::of_int(layout.self_contact.enabled ? 1 : 0)},
           {particle_write(b.x)}}});
     for (sched::TaskId t : stencil_tasks) plan.graph.add_edge(t, combine);
     if (stencil_tasks.empty()) plan.graph.add_edge(systems_task, combine);

@@ -25,10 +25,10 @@ sched::TaskId begin_vertex_plan(plan::SubstepPlan& plan, const SimLayout& layout
       plan.add_buffer("adjacency_offsets", BufferRole::topology, plan::bytes_of(vertices.adjacency_offsets));
   b.adjacency = plan.add_buffer("adjacency", BufferRole::topology, plan::bytes_of(vertices.adjacency));
   b.order = plan.add_buffer("vertex_order", BufferRole::topology, plan::bytes_of(vertices.colors.order));
-  b.colliders = add_collider_buffer(plan, layout);
+  b.colliders = add_collider_buffers(plan, layout);
   b.friction = add_friction_buffer(plan, layout);
   const float dt = static_cast<float>(substep_dt);
-  return plan.add_task(
+  const sched::TaskId predict = plan.add_task(
       plan::make_task("predict", plan::TaskKind::predict),
       {{"particles_predict",
         {0, n},
@@ -36,10 +36,11 @@ sched::TaskId begin_vertex_plan(plan::SubstepPlan& plan, const SimLayout& layout
          Arg::of_float(dt), Arg::of_float(layout.gravity.x), Arg::of_float(layout.gravity.y),
          Arg::of_float(layout.gravity.z), Arg::of_float(velocity_damping(layout, substep_dt))},
         {particle_write(b.x), particle_write(b.v), particle_write(b.x_prev), particle_write(b.x_tilde)}}});
+  return add_collider_near_task(plan, predict, layout, b.colliders, b.x);
 }
 
 std::vector<plan::KernelArg> collider_args(const SimLayout& layout, const VertexBuffers& b) {
-  return {Arg::of_buffer(b.colliders), Arg::of_int(layout.collider_count)};
+  return solver::collider_args(layout, b.colliders);
 }
 
 std::vector<plan::KernelArg> damping_args(const SimLayout& layout, const VertexBuffers& b, double substep_dt) {
@@ -59,11 +60,12 @@ void end_vertex_plan(plan::SubstepPlan& plan, const SimLayout& layout, sched::Ta
         last, plan::make_task("friction", plan::TaskKind::friction),
         {"vertex_friction",
          {0, n},
-         {Arg::of_buffer(b.x), Arg::of_buffer(out), Arg::of_buffer(b.x_prev), Arg::of_buffer(b.x_tilde),
-          Arg::of_buffer(b.adjacency_offsets), Arg::of_buffer(b.adjacency), Arg::of_buffer(b.stretch),
-          Arg::of_buffer(b.bend), Arg::of_buffer(b.tets), Arg::of_buffer(b.colliders),
-          Arg::of_int(layout.collider_count), Arg::of_float(static_cast<float>(1.0 / (substep_dt * substep_dt))),
-          Arg::of_buffer(b.friction)},
+         with_colliders(
+             {Arg::of_buffer(b.x), Arg::of_buffer(out), Arg::of_buffer(b.x_prev), Arg::of_buffer(b.x_tilde),
+              Arg::of_buffer(b.adjacency_offsets), Arg::of_buffer(b.adjacency), Arg::of_buffer(b.stretch),
+              Arg::of_buffer(b.bend), Arg::of_buffer(b.tets)},
+             layout, b.colliders,
+             {Arg::of_float(static_cast<float>(1.0 / (substep_dt * substep_dt))), Arg::of_buffer(b.friction)}),
          {particle_write(out)}});
     last = plan.add_task_after(
         last, plan::make_task("friction_copy", plan::TaskKind::copy),

@@ -121,7 +121,7 @@ plan::SubstepPlan make_xpbd_plan(const SimLayout& layout, const XpbdSettings& se
   // inertia as for inertia_dt (air drag, solver/layout/sim_layout.hpp).
   const float h = static_cast<float>(settings.substep_dt);
   const float dt = static_cast<float>(inertia_dt(layout, settings.substep_dt));
-  const plan::BufferId colliders = layout.colliders.empty() ? -1 : add_collider_buffer(plan, layout);
+  const ColliderBuffers colliders = layout.colliders.empty() ? ColliderBuffers{} : add_collider_buffers(plan, layout);
   sched::TaskId last =
       plan.add_task(plan::make_task("predict", plan::TaskKind::predict),
                     {{"xpbd_predict",
@@ -130,6 +130,7 @@ plan::SubstepPlan make_xpbd_plan(const SimLayout& layout, const XpbdSettings& se
                        Arg::of_float(layout.gravity.x), Arg::of_float(layout.gravity.y),
                        Arg::of_float(layout.gravity.z), Arg::of_float(velocity_damping(layout, settings.substep_dt))},
                       {particle_write(b.x), particle_write(b.v), particle_write(b.x_prev)}}});
+  last = add_collider_near_task(plan, last, layout, colliders, b.x);
   // Material damping along the springs (common/xpbd_distance.h): the start positions and 1/h, 0 = none.
   const std::vector<Arg> spring_damping{Arg::of_buffer(b.x_prev),
                                         Arg::of_float(has_spring_damping(layout) ? 1.0f / h : 0.0f)};

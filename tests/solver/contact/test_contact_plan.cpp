@@ -5,8 +5,10 @@
 #include <string>
 #include <vector>
 
+#include "common/mesh_near.h"
 #include "scene/scene_loader.hpp"
 #include "solver/method_registry.hpp"
+#include "support/obstacle_meshes.hpp"
 #include "support/scenes.hpp"
 
 using namespace atssim;
@@ -78,5 +80,39 @@ TEST_CASE("a method without contact is refused for a scene with colliders, namin
     const int line = s.colliders.front().source_line;
     CHECK_THROWS_WITH(solver::build_plan(s, *m), Catch::Contains(fmt::format("scene.yaml:{}", line)) &&
                                                      Catch::Contains("no contact with colliders"));
+  }
+}
+
+TEST_CASE("with a mesh collider every method keeps its near lists once a substep, after predict, per particle") {
+  scene::SceneDesc s = scene::parse_scene(
+      test::hanging_cloth_yaml(6) + "colliders:\n  - {type: sphere, center: [0, -1, 0], radius: 0.5}\n", "scene.yaml",
+      ".");
+  for (const solver::MethodDescription* m : solver::methods()) {
+    if (!m->colliders) continue;
+    INFO(m->name);
+    CHECK(tasks_named(solver::build_plan(s, *m), "collision/near_lists") == 0);  // a sphere needs none
+  }
+  const test::SimpleMesh sheet = test::sheet(1.0, 4);
+  s.colliders.front().shape = scene::ColliderShape::mesh;
+  s.colliders.front().mesh_vertices = sheet.vertices;
+  s.colliders.front().mesh_triangles = sheet.triangles;
+  for (const solver::MethodDescription* m : solver::methods()) {
+    if (!m->colliders) continue;
+    INFO(m->name);
+    const plan::SubstepPlan p = solver::build_plan(s, *m);
+    REQUIRE(tasks_named(p, "collision/near_lists") == 1);
+    sched::TaskId near = -1;
+    for (const sched::TaskId t : p.tasks_of(plan::TaskKind::collision)) {
+      if (p.graph.task(t).name.find("near_lists") != std::string::npos) near = t;
+    }
+    // right after predict, over every particle, writing only each particle's own list
+    const sched::TaskId predict = p.tasks_of(plan::TaskKind::predict).front();
+    bool follows = false;
+    for (const sched::Edge& e : p.graph.successors(predict)) follows = follows || e.to == near;
+    CHECK(follows);
+    REQUIRE(p.launches[near].size() == 1);
+    CHECK(p.launches[near][0].range.count == p.particle_count);
+    REQUIRE(p.launches[near][0].writes.size() == 1);
+    CHECK(p.launches[near][0].writes[0].element_bytes == sizeof(ats_mesh_near));
   }
 }
