@@ -3,7 +3,8 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
-#include <cstring>
+#include <bit>
+#include <cstdint>
 #include <random>
 #include <set>
 #include <vector>
@@ -32,7 +33,7 @@ scene::ColliderDesc mesh_desc(const test::SimpleMesh& m, const Vector3d& deg, co
 
 ats_vec3 v3(const Vector3d& p) { return ats_v3(float(p.x()), float(p.y()), float(p.z())); }
 
-bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+bool same_bits(float a, float b) { return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b); }
 
 // The world position of mesh vertex k of triangle t (in BVH leaf order, as the records hold them).
 Vector3d corner(const std::vector<ats_collider_c>& records, int t, int k) {
