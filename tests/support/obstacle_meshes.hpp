@@ -14,12 +14,29 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "scene/collider_desc.hpp"
+
 namespace atssim::test {
 
 struct SimpleMesh {
   std::vector<std::array<double, 3>> vertices;
   std::vector<std::array<int, 3>> triangles;
 };
+
+// A mesh collider of m as a scene places it: scaled, turned by `deg`
+// (about x, then y, then z), at `position`.
+inline scene::ColliderDesc mesh_collider(const SimpleMesh& m, const Eigen::Vector3d& scale, const Eigen::Vector3d& deg,
+                                         const Eigen::Vector3d& position, double thickness) {
+  scene::ColliderDesc d;
+  d.shape = scene::ColliderShape::mesh;
+  d.mesh_vertices = m.vertices;
+  d.mesh_triangles = m.triangles;
+  d.scale = {scale.x(), scale.y(), scale.z()};
+  d.rotate_deg = {deg.x(), deg.y(), deg.z()};
+  d.point = {position.x(), position.y(), position.z()};
+  d.thickness = thickness;
+  return d;
+}
 
 // (Not curved_meshes.hpp's icosphere: one name, two inline functions, would break the ODR.)
 // The icosahedron subdivided `levels` times, vertices on the sphere of

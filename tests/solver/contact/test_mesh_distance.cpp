@@ -55,15 +55,8 @@ bool inside_convex(const WorldMesh& m, const Vector3d& p) {
 
 std::vector<ats_collider_c> mesh_records(const test::SimpleMesh& m, const Vector3d& scale, const Vector3d& deg,
                                          const Vector3d& position, double thickness) {
-  scene::ColliderDesc d;
-  d.shape = scene::ColliderShape::mesh;
-  d.mesh_vertices = m.vertices;
-  d.mesh_triangles = m.triangles;
-  d.scale = {scale.x(), scale.y(), scale.z()};
-  d.rotate_deg = {deg.x(), deg.y(), deg.z()};
-  d.point = {position.x(), position.y(), position.z()};
-  d.thickness = thickness;
-  const solver::ColliderBuffer b = solver::collider_buffer(model::make_colliders({d}));
+  const solver::ColliderBuffer b =
+      solver::collider_buffer(model::make_colliders({test::mesh_collider(m, scale, deg, position, thickness)}));
   REQUIRE(b.count == 1);
   return b.records;
 }

@@ -21,14 +21,7 @@ namespace {
 
 scene::ColliderDesc mesh_desc(const test::SimpleMesh& m, const Vector3d& deg, const Vector3d& position,
                               double thickness) {
-  scene::ColliderDesc d;
-  d.shape = scene::ColliderShape::mesh;
-  d.mesh_vertices = m.vertices;
-  d.mesh_triangles = m.triangles;
-  d.rotate_deg = {deg.x(), deg.y(), deg.z()};
-  d.point = {position.x(), position.y(), position.z()};
-  d.thickness = thickness;
-  return d;
+  return test::mesh_collider(m, {1, 1, 1}, deg, position, thickness);
 }
 
 ats_vec3 v3(const Vector3d& p) { return ats_v3(float(p.x()), float(p.y()), float(p.z())); }
