@@ -107,12 +107,12 @@ plan::SubstepPlan make_sosd_plan(const SimLayout& layout, double substep_dt, int
         plan::make_task(fmt::format("it{}/combine", it + 1), kCombine, it),
         {{"sosd_combine",
           {0, n},
-          {Arg::of_buffer(b.x), Arg::of_buffer(b.adjacency_offsets), Arg::of_buffer(b.adjacency), Arg::of_buffer(d[0]),
-           Arg::of_buffer(d[1]), Arg::of_buffer(d[2]), Arg::of_buffer(systems), Arg::of_int(main.kind),
-           Arg::of_int(main.first), Arg::of_int(main.end), Arg::of_float(static_cast<float>(step)),
-           Arg::of_int(layout.has_ground ? 1 : 0), Arg::of_float(layout.ground_y), Arg::of_buffer(b.colliders.records),
-           Arg::of_int(layout.collider_count), Arg::of_buffer(b.colliders.near),
-           Arg::of_int(layout.self_contact.enabled ? 1 : 0)},
+          with_colliders({Arg::of_buffer(b.x), Arg::of_buffer(b.adjacency_offsets), Arg::of_buffer(b.adjacency),
+                          Arg::of_buffer(d[0]), Arg::of_buffer(d[1]), Arg::of_buffer(d[2]), Arg::of_buffer(systems),
+                          Arg::of_int(main.kind), Arg::of_int(main.first), Arg::of_int(main.end),
+                          Arg::of_float(static_cast<float>(step)), Arg::of_int(layout.has_ground ? 1 : 0),
+                          Arg::of_float(layout.ground_y)},
+                         layout, b.colliders, {Arg::of_int(layout.self_contact.enabled ? 1 : 0)}),
           {particle_write(b.x)}}});
     for (sched::TaskId t : stencil_tasks) plan.graph.add_edge(t, combine);
     if (stencil_tasks.empty()) plan.graph.add_edge(systems_task, combine);
