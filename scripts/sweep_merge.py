@@ -45,7 +45,7 @@ def final_state(path):
     try:
         with h5py.File(path, "r") as f:
             return float(f["frames/time"][-1]), f["frames/positions"][-1].astype(np.float64)
-    except (OSError, KeyError, IndexError):
+    except (OSError, KeyError, IndexError, RuntimeError):  # h5py raises RuntimeError for a broken header
         return None
 
 
