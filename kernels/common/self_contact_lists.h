@@ -9,33 +9,50 @@
 
 #include "common/self_contact_bvh.h"
 
-/* When the lists are rebuilt. The first substep detects (state[0] = 0), on
- * x_t with the radius R_det = r_max (contact.query_radius, 3 r by default),
- * and remembers x_t as x_det. Distances between primitives do not change when
- * every vertex moves by one common vector, so motion is measured relative
- * to one: with u_i = x_t - x_det (since the lists were made) and s_i = x~ -
- * x_t (this substep's predicted step) over the surface vertices, D and
- * delta are the half diagonals of the boxes holding every u_i and every s_i
- * (each u_i is within D of its box's centre, so any two differ by at most
- * 2 D). A later substep of the frame keeps the lists while they still hold
- * every pair it needs: a pair closer than R at x_t was closer than R + 2 D
- * at x_det, so the lists serve while R + 2 D <= R_det. R ties the
- * substep's need to its relative motion: VBD's bound keeps each vertex
- * within gamma R of x_t, so an unlisted pair stays at least (1 - 2 gamma) R
- * apart (no crossing, for any R); R >= 5 delta keeps the bound from slowing
- * the relative predicted step (it may double), R >= r + 2.5 delta keeps a
- * pair closing at the predicted speed from reaching the thickness r
- * unlisted, and R >= 1.5 r keeps touching pairs listed. A cloth falling or
- * carried as a whole keeps its lists, from one frame to the next too.
- * `state` is carried with the positions (and kept in a checkpoint, with
- * x_det); `in_memory` is cleared by a reset (resume, repeats, probes). A
- * substep that keeps lists no longer in memory makes them again at x_det,
- * which gives the lists it had, bit for bit.
- * state: [0] lists made (x_det and R_det hold), [1] make the lists in this
- * substep (at x_det), [2] R_det (float bits), [3] D (float bits), [4] times the
- * lists were made anew, [5] made anew in this substep (x_det = x_t first). */
+/* Which lists are made anew, per block of ATS_SC_BLOCK leaves (leaf
+ * order, so a block is a patch of surface) and its lists: its triangles',
+ * and those of the vertices and edges its leaves own
+ * (solver/layout/self_contact_layout). A block makes its lists on x_t with
+ * the radius R_det = r_max (contact.query_radius, 3 r by default); a
+ * list's horizon h (sc_list_store) says that every primitive it does not
+ * hold is at least h away. The block then keeps rho, the radius its lists
+ * still vouch for: R_det when made, less the erosion e, the most any of
+ * its primitives can have closed on another since x_det. x_det is where
+ * every block's rho was last taken stock of: x_t of the last substep in
+ * which some block made its lists (sc_decide_any; rho0 holds each block's
+ * rho there). With u_i = x_t - x_det over the surface vertices, U_A the box
+ * of u over block A's triangles' corners and X_A the box of those corners
+ * at x_t: the corners hold every vertex of the primitives whose lists A
+ * owns, and every primitive a list names is owned by some block's leaf, so
+ * lies in that block's boxes. A pair of A's and block c's primitives
+ * closed by at most the largest |u_a - u_c| over the two boxes
+ * (sc_boxes_most_apart), and one of a block c whose X_c is farther than
+ * rho0 from X_A is farther than rho0 at x_t already; so e is the largest of
+ * the former over the blocks within rho0 (A among them), rho = rho0 - e,
+ * and each list of A holds every primitive closer than its horizon less
+ * R_det - rho (sc_list_reach). Measured since x_det rather than summed
+ * substep by substep, a jitter back and forth does not add up. A block
+ * makes its lists anew when rho falls below R, the radius it needs in the
+ * substep (sc_needed_radius, from the largest relative predicted step
+ * delta between it and the blocks near it): VBD's bound keeps each vertex within gamma R of
+ * x_t, so an unlisted pair stays at least (1 - 2 gamma) R apart (no
+ * crossing, for any R); R >= 5 delta keeps the bound from slowing the
+ * relative predicted step (it may double), R >= r + 2.5 delta keeps a pair
+ * closing at the predicted speed from reaching the thickness r unlisted,
+ * and R >= 1.5 r keeps touching pairs listed. A block whose surface moves
+ * with its neighbours (a cloth falling, carried or at rest) keeps its
+ * lists, from one frame to the next too; only the patches where the
+ * surface moves against its neighbours make theirs anew (a cloth driven
+ * into a funnel: its layers in the spout's mouth, not on the rim).
+ * The lists, their packed counts, rho0, x_det and `state` are carried with
+ * the positions (and kept in a checkpoint), so a reset (resume, repeats,
+ * probes) goes on with the lists it had, bit for bit.
+ * state: [0] and [3] unused, [1] some block makes its lists in this
+ * substep (so the BVH is refitted and x_det taken), [2] R_det (float bits),
+ * [4] substeps that made lists, [5] blocks' lists made, in all. */
+#define ATS_SC_BLOCK 256
+#define ATS_SC_BLOCK_FLOATS 18
 #define ATS_SC_MOTION_BLOCK 256
-#define ATS_SC_MOTION_FLOATS 12
 #define ATS_SC_STATE_INTS 8
 
 ATS_FN void sc_box_add(sc_box* b, ats_vec3 p) {
@@ -65,20 +82,40 @@ ATS_FN sc_box sc_load_box(ATS_GLOBAL const float* in) {
 /* Half the diagonal of a box (0 for an empty one). */
 ATS_FN float sc_half_diagonal(sc_box b) { return b.hi.x < b.lo.x ? 0.0f : 0.5f * ats_length(ats_sub(b.hi, b.lo)); }
 
-/* Block b of ATS_SC_MOTION_BLOCK particles: block_max[12 b ..]: the box of
- * x_t - x_det, then the box of x~ - x_t, over its surface vertices. */
+/* The shortest distance between a point of box a and one of box b. */
+ATS_FN float sc_boxes_gap(sc_box a, sc_box b) {
+  const ats_vec3 g =
+      ats_v3(fmax(0.0f, fmax(a.lo.x - b.hi.x, b.lo.x - a.hi.x)), fmax(0.0f, fmax(a.lo.y - b.hi.y, b.lo.y - a.hi.y)),
+             fmax(0.0f, fmax(a.lo.z - b.hi.z, b.lo.z - a.hi.z)));
+  return ats_length(g);
+}
+/* The longest distance between a point of box a and one of box b. */
+ATS_FN float sc_boxes_most_apart(sc_box a, sc_box b) {
+  const ats_vec3 g = ats_v3(fmax(a.hi.x - b.lo.x, b.hi.x - a.lo.x), fmax(a.hi.y - b.lo.y, b.hi.y - a.lo.y),
+                            fmax(a.hi.z - b.lo.z, b.hi.z - a.lo.z));
+  return ats_length(g);
+}
+
+/* Block b (leaves [b B, b B + B), B = ATS_SC_BLOCK) over its triangles'
+ * corners: motion[18 b ..] the box of x_t, of x_t - x_det and of the
+ * predicted step x~ - x_t. */
 ATS_FN void sc_block_motion(int b, ATS_GLOBAL const ats_float4* x_det, ATS_GLOBAL const ats_float4* x_start,
-                            ATS_GLOBAL const ats_float4* x_guess, ATS_GLOBAL const int* inc, int n,
-                            ATS_GLOBAL float* block_max) {
-  sc_box moved = sc_box_empty(), step = sc_box_empty();
-  const int end = (b + 1) * ATS_SC_MOTION_BLOCK < n ? (b + 1) * ATS_SC_MOTION_BLOCK : n;
-  for (int i = b * ATS_SC_MOTION_BLOCK; i < end; ++i) {
-    if (!sc_is_surface(inc, i)) continue;
-    sc_box_add(&moved, ats_sub(sc_v(x_start[i]), sc_v(x_det[i])));
-    sc_box_add(&step, ats_sub(sc_v(x_guess[i]), sc_v(x_start[i])));
+                            ATS_GLOBAL const ats_float4* x_guess, ATS_GLOBAL const int* tris, int tri_count,
+                            ATS_GLOBAL float* motion) {
+  sc_box at = sc_box_empty(), moved = sc_box_empty(), step = sc_box_empty();
+  const int end = (b + 1) * ATS_SC_BLOCK < tri_count ? (b + 1) * ATS_SC_BLOCK : tri_count;
+  for (int t = b * ATS_SC_BLOCK; t < end; ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const int i = tris[4 * t + k];
+      const ats_vec3 p = sc_v(x_start[i]);
+      sc_box_add(&at, p);
+      sc_box_add(&moved, ats_sub(p, sc_v(x_det[i])));
+      sc_box_add(&step, ats_sub(sc_v(x_guess[i]), p));
+    }
   }
-  sc_store_box(block_max + ATS_SC_MOTION_FLOATS * b, moved);
-  sc_store_box(block_max + ATS_SC_MOTION_FLOATS * b + 6, step);
+  sc_store_box(motion + ATS_SC_BLOCK_FLOATS * b, at);
+  sc_store_box(motion + ATS_SC_BLOCK_FLOATS * b + 6, moved);
+  sc_store_box(motion + ATS_SC_BLOCK_FLOATS * b + 12, step);
 }
 
 /* The radius a substep needs for its largest relative predicted step delta. */
@@ -86,30 +123,47 @@ ATS_FN float sc_needed_radius(float delta, float r, float r_max) {
   return fmin(fmax(1.5f * r, fmax(r + 2.5f * delta, 5.0f * delta)), r_max);
 }
 
-ATS_FN void sc_decide(ATS_GLOBAL const float* block_max, int blocks, float r, float r_max, ATS_GLOBAL int* state,
-                      ATS_GLOBAL int* in_memory) {
-  sc_box moved_box = sc_box_empty(), step_box = sc_box_empty();
-  for (int b = 0; b < blocks; ++b) {
-    const sc_box m = sc_load_box(block_max + ATS_SC_MOTION_FLOATS * b);
-    const sc_box s = sc_load_box(block_max + ATS_SC_MOTION_FLOATS * b + 6);
-    moved_box.lo = sc_min3(moved_box.lo, m.lo);
-    moved_box.hi = sc_max3(moved_box.hi, m.hi);
-    step_box.lo = sc_min3(step_box.lo, s.lo);
-    step_box.hi = sc_max3(step_box.hi, s.hi);
+/* Whether block a makes its lists anew (make[a]), and its rho (rho0[a]: at
+ * x_det, 0 before its first lists). The radius it needs, R, is from its
+ * own relative predicted step delta: half the longest distance between
+ * its steps' box and that of a block within rho0 (itself among them). The
+ * gap is widened and the erosion grown by 1e-3, far above the rounding of
+ * either. */
+ATS_FN void sc_block_decide(int a, ATS_GLOBAL const float* motion, int blocks, float r, float r_max,
+                            ATS_GLOBAL const float* rho0, ATS_GLOBAL float* rho, ATS_GLOBAL int* make) {
+  const float start = rho0[a];
+  float now = 0.0f;
+  int anew = !(start > 0.0f);
+  if (!anew) {
+    ATS_GLOBAL const float* m = motion + ATS_SC_BLOCK_FLOATS * a;
+    const sc_box at = sc_load_box(m), moved = sc_load_box(m + 6), step = sc_load_box(m + 12);
+    float e = 0.0f, spread = 0.0f;
+    for (int c = 0; c < blocks; ++c) {
+      ATS_GLOBAL const float* o = motion + ATS_SC_BLOCK_FLOATS * c;
+      if (!(sc_boxes_gap(at, sc_load_box(o)) <= 1.001f * start)) continue;
+      e = fmax(e, sc_boxes_most_apart(moved, sc_load_box(o + 6)));
+      spread = fmax(spread, sc_boxes_most_apart(step, sc_load_box(o + 12)));
+    }
+    now = start - 1.001f * e;
+    anew = !(now >= sc_needed_radius(0.5f * spread, r, r_max));
   }
-  const float moved = sc_half_diagonal(moved_box), delta = sc_half_diagonal(step_box);
-  const int detect = state[0] == 0 || sc_needed_radius(delta, r, r_max) + 2.0f * moved > sc_bits_float(state[2]);
-  state[0] = 1;
-  state[1] = detect || in_memory[0] == 0;
-  state[5] = detect;
-  in_memory[0] = 1;
-  if (detect) {
-    state[2] = sc_float_bits(r_max);
-    state[3] = sc_float_bits(0.0f);
-    state[4] += 1;
-  } else {
-    state[3] = sc_float_bits(moved);
-  }
+  make[a] = anew;
+  rho[a] = anew ? r_max : now;
+}
+
+/* After every block's decision (one work-item): state[1], [2], [4] and
+ * [5]; where some block made its lists, x_det becomes x_t (sc_snap) and
+ * each block's rho there its rho0. */
+ATS_FN void sc_decide_any(ATS_GLOBAL const int* make, int blocks, float r_max, ATS_GLOBAL const float* rho,
+                          ATS_GLOBAL float* rho0, ATS_GLOBAL int* state) {
+  int count = 0;
+  for (int b = 0; b < blocks; ++b) count += make[b];
+  state[1] = count > 0;
+  state[2] = sc_float_bits(r_max);
+  if (count == 0) return;
+  state[4] += 1;
+  state[5] += count;
+  for (int b = 0; b < blocks; ++b) rho0[b] = rho[b];
 }
 
 /* The distances of a list's entries at x, once per substep: out[2 + m]
@@ -118,12 +172,12 @@ ATS_FN void sc_decide(ATS_GLOBAL const float* block_max, int blocks, float r, fl
  * here rather than by each of its vertices. Same layout as the lists. And
  * the list's reach, the nearest its primitive can be to any other, listed
  * (the smallest distance) or not (its horizon, which every primitive it
- * does not hold was at least at, less twice the displacement D since the
- * lists were made, state[3] of sc_decide), into reach[id]: one
+ * does not hold was at least at, less its block's erosion since the lists
+ * were made, R_det - rho of sc_block_decide), into reach[id]: one
  * float per list, so that the bound's gather over a vertex's lists reads
  * packed floats rather than a strided list each (sc_vertex_bound). */
-ATS_FN float sc_list_reach(float least, float horizon, float moved) { return fmin(least, horizon - 2.0f * moved); }
-ATS_FN void sc_store_distances(ATS_GLOBAL const int* list, const float* d, ATS_GLOBAL float* out, float moved,
+ATS_FN float sc_list_reach(float least, float horizon, float eroded) { return fmin(least, horizon - eroded); }
+ATS_FN void sc_store_distances(ATS_GLOBAL const int* list, const float* d, ATS_GLOBAL float* out, float eroded,
                                ATS_GLOBAL float* reach) {
   float least = 1e30f;
   for (int m = 0; m < list[0]; ++m) {
@@ -131,18 +185,18 @@ ATS_FN void sc_store_distances(ATS_GLOBAL const int* list, const float* d, ATS_G
     least = fmin(least, d[m]);
   }
   out[0] = least;
-  *reach = sc_list_reach(least, sc_bits_float(list[1]), moved);
+  *reach = sc_list_reach(least, sc_bits_float(list[1]), eroded);
 }
 /* An empty list's reach: its horizon is the radius it was made with
  * (sc_list_store), so it needs no read of the list (nor writes its
  * distances, which nothing reads for an empty list); `listed` packs each
- * list's count as the substep that made the lists found it, so that the
- * substeps that keep them read 4 bytes per list rather than a strided list
+ * list's count as the substep that made the list found it, so that the
+ * substeps that keep it read 4 bytes per list rather than a strided list
  * header each (most lists are empty). */
-ATS_FN float sc_empty_reach(float radius, float moved) { return sc_list_reach(1e30f, radius, moved); }
+ATS_FN float sc_empty_reach(float radius, float eroded) { return sc_list_reach(1e30f, radius, eroded); }
 
 ATS_FN void sc_vertex_distances(int i, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* tris,
-                                ATS_GLOBAL const int* vt, ATS_GLOBAL float* vt_d, float moved,
+                                ATS_GLOBAL const int* vt, ATS_GLOBAL float* vt_d, float eroded,
                                 ATS_GLOBAL float* reach) {
   ATS_GLOBAL const int* l = vt + i * ATS_SC_STRIDE;
   float d[ATS_SC_CAPACITY];
@@ -151,22 +205,22 @@ ATS_FN void sc_vertex_distances(int i, ATS_GLOBAL const ats_float4* x, ATS_GLOBA
     ATS_GLOBAL const int* f = tris + 4 * l[2 + m];
     d[m] = ats_point_triangle(p, sc_v(x[f[0]]), sc_v(x[f[1]]), sc_v(x[f[2]])).d;
   }
-  sc_store_distances(l, d, vt_d + i * ATS_SC_STRIDE, moved, reach + i);
+  sc_store_distances(l, d, vt_d + i * ATS_SC_STRIDE, eroded, reach + i);
 }
 
 ATS_FN void sc_triangle_distances(int t, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* tris,
-                                  ATS_GLOBAL const int* tv, ATS_GLOBAL float* tv_d, float moved,
+                                  ATS_GLOBAL const int* tv, ATS_GLOBAL float* tv_d, float eroded,
                                   ATS_GLOBAL float* reach) {
   ATS_GLOBAL const int* l = tv + t * ATS_SC_STRIDE;
   ATS_GLOBAL const int* f = tris + 4 * t;
   float d[ATS_SC_CAPACITY];
   const ats_vec3 a = sc_v(x[f[0]]), b = sc_v(x[f[1]]), c = sc_v(x[f[2]]);
   for (int m = 0; m < l[0]; ++m) d[m] = ats_point_triangle(sc_v(x[l[2 + m]]), a, b, c).d;
-  sc_store_distances(l, d, tv_d + t * ATS_SC_STRIDE, moved, reach + t);
+  sc_store_distances(l, d, tv_d + t * ATS_SC_STRIDE, eroded, reach + t);
 }
 
 ATS_FN void sc_edge_distances(int e, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* edges,
-                              ATS_GLOBAL const int* ee, ATS_GLOBAL float* ee_d, float moved, ATS_GLOBAL float* reach) {
+                              ATS_GLOBAL const int* ee, ATS_GLOBAL float* ee_d, float eroded, ATS_GLOBAL float* reach) {
   ATS_GLOBAL const int* l = ee + e * ATS_SC_STRIDE;
   float d[ATS_SC_CAPACITY];
   const ats_vec3 a = sc_v(x[edges[2 * e]]), b = sc_v(x[edges[2 * e + 1]]);
@@ -174,14 +228,14 @@ ATS_FN void sc_edge_distances(int e, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL 
     const int o = l[2 + m];
     d[m] = ats_edge_edge(a, b, sc_v(x[edges[2 * o]]), sc_v(x[edges[2 * o + 1]])).d;
   }
-  sc_store_distances(l, d, ee_d + e * ATS_SC_STRIDE, moved, reach + e);
+  sc_store_distances(l, d, ee_d + e * ATS_SC_STRIDE, eroded, reach + e);
 }
 
 /* VBD's conservative displacement bound of vertex i (§3.7): gamma times the
  * distance to the nearest primitive it could meet, on x_t: the reach of its
  * lists (sc_store_distances), as a point, through its triangles and through
- * its edges. The same as the smallest of the listed pairs' distances and of the
- * smallest horizon less 2 D, since fl(h - 2 D) grows with h. */
+ * its edges: the smallest of the listed pairs' distances and of the lists'
+ * horizons, each less its block's erosion. */
 ATS_FN float sc_vertex_bound(int i, ATS_GLOBAL const int* inc, int n, ATS_GLOBAL const float* vt_reach,
                              ATS_GLOBAL const float* tv_reach, ATS_GLOBAL const float* ee_reach, float gamma) {
   if (!sc_is_surface(inc, i)) return 1e30f;

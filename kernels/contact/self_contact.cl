@@ -1,16 +1,17 @@
 /* Contact between simulated surfaces (scene `contact: {self: true}`):
  * collision detection at the start of every substep, on x_t (Chen et al.
  * 2024, VBD §3.7), as tasks that range over independent elements:
- *   sc_motion, sc_decide_detection: whether the lists made earlier still
- *     serve (relative motion, common/self_contact_lists.h sc_decide);
+ *   sc_motion, sc_decide_*: per block of surface whether the lists it
+ *     made earlier still serve (its motion against its neighbours',
+ *     common/self_contact_lists.h sc_block_decide);
  *   sc_leaf_boxes, sc_refit_level, sc_refit_top: refit the BVH over the
  *     surface triangles (built once on the host, solver/layout/
  *     self_contact_layout), one task per level up to the small top levels;
  *   sc_query_groups: per vertex the triangles, per triangle the vertices and
  *     per edge the edges within the query radius (incident pairs
  *     excluded), the ATS_SC_CAPACITY nearest of each, for the primitives
- *     each leaf owns, one walk per group of leaves (these three only when the
- *     lists are rebuilt);
+ *     each leaf owns, one walk per group of leaves (these only where a
+ *     block makes its lists anew);
  *   sc_*_distances_task: every listed pair's distance at x_t, once;
  *   sc_bound: per vertex the conservative displacement bound of VBD:
  *     gamma times the distance to the nearest primitive it could meet
@@ -34,9 +35,9 @@
 #include "common/self_contact_lists.h"
 #include "common/task.h"
 
-/* state: the carried state of common/self_contact_lists.h (sc_decide); the
- * detection tasks do nothing in a substep that keeps the lists, and make
- * them at x_det in one that does not (x: x_det). */
+/* state: the carried state of common/self_contact_lists.h
+ * (sc_block_decide, sc_decide_any); the refit does nothing in a substep where no block
+ * makes its lists, and the walks only for the blocks that do (make). */
 ATS_TASK void sc_leaf_boxes(int t, __global const float4* x, __global const int4* tris, __global float4* nodes,
                             __global const int* state) {
   if (state[1]) sc_leaf_box(t, x, (__global const int*)tris, nodes);
@@ -54,31 +55,38 @@ ATS_TASK void sc_refit_top(int k, __global float4* nodes, __global const int* le
   if (k == 0 && state[1]) sc_refit_levels(nodes, levels, from, root);
 }
 
-/* Per block of ATS_SC_MOTION_BLOCK particles the boxes of the displacements
- * since the lists were made and of the predicted steps. */
+/* Per block of ATS_SC_BLOCK leaves the boxes of its corners at x_t, of
+ * their displacements since x_det and of their predicted steps. */
 ATS_TASK void sc_motion(int b, __global const float4* x_det, __global const float4* x_start,
-                        __global const float4* x_guess, __global const int* inc, int n, __global float* block_max) {
-  sc_block_motion(b, x_det, x_start, x_guess, inc, n, block_max);
+                        __global const float4* x_guess, __global const int4* tris, int tri_count,
+                        __global float* motion) {
+  sc_block_motion(b, x_det, x_start, x_guess, (__global const int*)tris, tri_count, motion);
 }
 
-/* Whether this substep makes the lists, and where (one work-item). */
-ATS_TASK void sc_decide_detection(int k, __global const float* block_max, int blocks, float r, float r_max,
-                                  __global int* state, __global int* in_memory) {
-  if (k == 0) sc_decide(block_max, blocks, r, r_max, state, in_memory);
+/* Whether block b makes its lists anew, and its rho. */
+ATS_TASK void sc_decide_block(int b, __global const float* motion, int blocks, float r, float r_max,
+                              __global const float* rho0, __global float* rho, __global int* make) {
+  sc_block_decide(b, motion, blocks, r, r_max, rho0, rho, make);
 }
 
-/* x_det: where the lists are made; x_t when they are made anew. */
+/* Whether any block does (one work-item). */
+ATS_TASK void sc_decide_blocks(int k, __global const int* make, int blocks, float r_max, __global const float* rho,
+                               __global float* rho0, __global int* state) {
+  if (k == 0) sc_decide_any(make, blocks, r_max, rho, rho0, state);
+}
+
+/* x_det = x_t where some block made its lists. */
 ATS_TASK void sc_snap(int i, __global const float4* x_start, __global float4* x_det, __global const int* state) {
-  if (state[5]) x_det[i] = x_start[i];
+  if (state[1]) x_det[i] = x_start[i];
 }
 
 /* The lists of the leaves of group g, one walk per group
- * (common/self_contact_bvh.h sc_query_group). */
+ * (common/self_contact_bvh.h sc_query_group), where its block makes them. */
 ATS_TASK void sc_query_groups(int g, __global const float4* x, __global const int* inc, __global const int4* tris,
                               __global const int2* edges, __global const int* leaves, __global const float4* nodes,
                               __global const int* levels, int root, int leaf_count, __global const int* state,
-                              __global int* vt, __global int* tv, __global int* ee) {
-  if (state[1])
+                              __global const int* make, __global int* vt, __global int* tv, __global int* ee) {
+  if (make[g * ATS_SC_GROUP / ATS_SC_BLOCK])
     sc_query_group(g, leaf_count, x, inc, (__global const int*)tris, (__global const int*)edges, leaves, nodes, levels,
                    root, as_float(state[2]), vt, tv, ee);
 }
@@ -86,40 +94,48 @@ ATS_TASK void sc_query_groups(int g, __global const float4* x, __global const in
 /* Once per substep, after the lists (common/self_contact_lists.h): every
  * listed pair's distance at x_t, per vertex, triangle and edge list; then
  * the bound (below) and the near lists the iterations and friction read. */
-/* state[3]: the displacement D since the lists were made (sc_decide);
- * state[2] the radius they were made with. listed: each list's count,
- * packed, written in the substep that made the lists (state[1]) and read
- * by those that keep them (sc_empty_reach). */
-static inline int sc_list_empty(int id, __global const int* list, __global const int* state, __global int* listed) {
-  if (state[1]) {
-    listed[id] = list[id * ATS_SC_STRIDE];
-    return 0;
-  }
+/* block: the block of each list's owner (a triangle's is t / ATS_SC_BLOCK);
+ * radius: each block's rho, so a list's erosion is R_det - rho
+ * (state[2]: R_det). listed: each list's count, packed, written in the
+ * substep that made the list (make) and read by those that keep it
+ * (sc_empty_reach). */
+static inline int sc_list_empty(int id, int block, __global const int* list, __global const int* make,
+                                __global int* listed) {
+  if (make[block]) listed[id] = list[id * ATS_SC_STRIDE];
   return listed[id] == 0;
 }
+static inline float sc_eroded(int block, __global const int* state, __global const float* radius) {
+  return as_float(state[2]) - radius[block];
+}
 ATS_TASK void sc_vertex_distances_task(int i, __global const float4* x, __global const int4* tris,
-                                       __global const int* vt, __global const int* state, __global float* vt_d,
+                                       __global const int* vt, __global const int* state, __global const int* block,
+                                       __global const float* radius, __global const int* make, __global float* vt_d,
                                        __global float* vt_reach, __global int* listed) {
-  if (sc_list_empty(i, vt, state, listed))
-    vt_reach[i] = sc_empty_reach(as_float(state[2]), as_float(state[3]));
+  const float eroded = sc_eroded(block[i], state, radius);
+  if (sc_list_empty(i, block[i], vt, make, listed))
+    vt_reach[i] = sc_empty_reach(as_float(state[2]), eroded);
   else
-    sc_vertex_distances(i, x, (__global const int*)tris, vt, vt_d, as_float(state[3]), vt_reach);
+    sc_vertex_distances(i, x, (__global const int*)tris, vt, vt_d, eroded, vt_reach);
 }
 ATS_TASK void sc_triangle_distances_task(int t, __global const float4* x, __global const int4* tris,
-                                         __global const int* tv, __global const int* state, __global float* tv_d,
+                                         __global const int* tv, __global const int* state,
+                                         __global const float* radius, __global const int* make, __global float* tv_d,
                                          __global float* tv_reach, __global int* listed) {
-  if (sc_list_empty(t, tv, state, listed))
-    tv_reach[t] = sc_empty_reach(as_float(state[2]), as_float(state[3]));
+  const float eroded = sc_eroded(t / ATS_SC_BLOCK, state, radius);
+  if (sc_list_empty(t, t / ATS_SC_BLOCK, tv, make, listed))
+    tv_reach[t] = sc_empty_reach(as_float(state[2]), eroded);
   else
-    sc_triangle_distances(t, x, (__global const int*)tris, tv, tv_d, as_float(state[3]), tv_reach);
+    sc_triangle_distances(t, x, (__global const int*)tris, tv, tv_d, eroded, tv_reach);
 }
 ATS_TASK void sc_edge_distances_task(int e, __global const float4* x, __global const int2* edges,
-                                     __global const int* ee, __global const int* state, __global float* ee_d,
+                                     __global const int* ee, __global const int* state, __global const int* block,
+                                     __global const float* radius, __global const int* make, __global float* ee_d,
                                      __global float* ee_reach, __global int* listed) {
-  if (sc_list_empty(e, ee, state, listed))
-    ee_reach[e] = sc_empty_reach(as_float(state[2]), as_float(state[3]));
+  const float eroded = sc_eroded(block[e], state, radius);
+  if (sc_list_empty(e, block[e], ee, make, listed))
+    ee_reach[e] = sc_empty_reach(as_float(state[2]), eroded);
   else
-    sc_edge_distances(e, x, (__global const int*)edges, ee, ee_d, as_float(state[3]), ee_reach);
+    sc_edge_distances(e, x, (__global const int*)edges, ee, ee_d, eroded, ee_reach);
 }
 /* The near lists (listed: as above): an empty list has an empty near list,
  * its count written (its horizon, [1], is read by nothing), and vertex

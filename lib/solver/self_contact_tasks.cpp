@@ -24,11 +24,25 @@ constexpr int kListInts = ATS_SC_STRIDE;
 constexpr int kNodeBytes = 32;       // two float4 per node
 constexpr int kTopLevelNodes = 256;  // levels this small are refitted by one work-item
 constexpr int kMotionBlock = ATS_SC_MOTION_BLOCK;
-constexpr int kMotionBytes = ATS_SC_MOTION_FLOATS * 4;
+constexpr int kBlockMotionBytes = ATS_SC_BLOCK_FLOATS * 4;
 constexpr int kStateInts = ATS_SC_STATE_INTS;
 constexpr int kEntryBytes = 32;  // a near-list entry's pair in XPBD's projection: two float4
 
 std::size_t motion_blocks(std::size_t n) { return (n + kMotionBlock - 1) / kMotionBlock; }
+
+// The blocks of ATS_SC_BLOCK leaves that keep or remake their lists
+// (common/self_contact_lists.h sc_block_decide).
+std::size_t surface_blocks(std::size_t tris) { return (tris + ATS_SC_BLOCK - 1) / ATS_SC_BLOCK; }
+
+// Per vertex (part 0) or edge (part 4) the block of the leaf that owns it
+// (0 where none does: its lists stay empty).
+std::vector<std::int32_t> owner_blocks(const SelfContactLayout& s, std::size_t count, int part) {
+  std::vector<std::int32_t> block(count, 0);
+  for (std::size_t u = 0; u < s.leaves.size(); ++u)
+    for (int k = 0; k < 3; ++k)
+      if (const int id = s.leaves[u][part + k]; id >= 0) block[std::size_t(id)] = std::int32_t(u / ATS_SC_BLOCK);
+  return block;
+}
 
 std::vector<std::byte> zeros(std::size_t bytes) { return std::vector<std::byte>(bytes); }
 
@@ -76,24 +90,33 @@ SelfContactBuffers add_self_contact_buffers(plan::SubstepPlan& plan, const SimLa
   b.leaves = plan.add_buffer("sc_leaves", BufferRole::topology, plan::bytes_of(s.leaves));
   b.levels = plan.add_buffer("sc_levels", BufferRole::topology, plan::bytes_of(s.levels));
   b.incidence = plan.add_buffer("sc_incidence", BufferRole::topology, plan::bytes_of(s.incidence));
-  // The tree and the lists are kept from one substep and frame to the next
-  // while sc_state says they serve; where they were made (x_det) and sc_state
-  // are carried with the positions (and kept in a checkpoint), so that after a
-  // reset, which clears sc_in_memory, the next substep remakes them at x_det
-  // as they were.
+  // The lists are kept from one substep and frame to the next, per block of
+  // leaves, while its motion against its neighbours allows
+  // (common/self_contact_lists.h); they, each block's rho at x_det, x_det
+  // and sc_state are carried with the positions (and kept in a checkpoint),
+  // so that a reset goes on with the lists it had. The tree is refitted
+  // whenever a block makes its lists.
+  const std::size_t blocks = s.enabled ? surface_blocks(s.tris.size()) : 0;
   b.nodes = plan.add_buffer("sc_nodes", BufferRole::cache, zeros(std::size_t(s.node_count()) * kNodeBytes));
-  b.vt = plan.add_buffer("sc_vt", BufferRole::cache, zeros(n * kListInts * 4));
-  b.tv = plan.add_buffer("sc_tv", BufferRole::cache, zeros(s.tris.size() * kListInts * 4));
-  b.ee = plan.add_buffer("sc_ee", BufferRole::cache, zeros(s.edges.size() * kListInts * 4));
+  b.vt = plan.add_buffer("sc_vt", BufferRole::carried, zeros(n * kListInts * 4));
+  b.tv = plan.add_buffer("sc_tv", BufferRole::carried, zeros(s.tris.size() * kListInts * 4));
+  b.ee = plan.add_buffer("sc_ee", BufferRole::carried, zeros(s.edges.size() * kListInts * 4));
   b.x_det = plan.add_buffer("sc_x_det", BufferRole::carried, zeros(n * kParticleBytes));
   b.state = plan.add_buffer("sc_state", BufferRole::carried, zeros(s.enabled ? kStateInts * 4 : 0));
-  b.in_memory = plan.add_buffer("sc_in_memory", BufferRole::cache_state, zeros(s.enabled ? 4 : 0));
+  b.block_rho0 = plan.add_buffer("sc_block_rho0", BufferRole::carried, zeros(blocks * 4));
+  b.block_rho = plan.add_buffer("sc_block_rho", BufferRole::scratch, zeros(blocks * 4));
+  b.block_make = plan.add_buffer("sc_block_make", BufferRole::scratch, zeros(blocks * 4));
+  b.vertex_block = plan.add_buffer("sc_vertex_block", BufferRole::topology,
+                                   plan::bytes_of(s.enabled ? owner_blocks(s, n, 0) : std::vector<std::int32_t>{}));
+  b.edge_block =
+      plan.add_buffer("sc_edge_block", BufferRole::topology,
+                      plan::bytes_of(s.enabled ? owner_blocks(s, s.edges.size(), 4) : std::vector<std::int32_t>{}));
   b.bound = plan.add_buffer("sc_bound", BufferRole::scratch, zeros(n * 4));
   b.x_out = plan.add_buffer("sc_x_out", BufferRole::scratch, zeros(n * kParticleBytes));
   b.moved = plan.add_buffer("sc_moved", BufferRole::scratch, zeros(n * 4));
   b.moved_blocks = plan.add_buffer("sc_moved_blocks", BufferRole::scratch, zeros(motion_blocks(n) * 4));
   b.most = plan.add_buffer("sc_most_moved", BufferRole::scratch, zeros(s.enabled ? 4 : 0));
-  b.motion = plan.add_buffer("sc_motion", BufferRole::scratch, zeros(motion_blocks(n) * kMotionBytes));
+  b.motion = plan.add_buffer("sc_motion", BufferRole::scratch, zeros(blocks * kBlockMotionBytes));
   b.colliders = colliders.records >= 0 || !s.enabled ? colliders : add_collider_buffers(plan, layout);
   b.vt_d = plan.add_buffer("sc_vt_d", BufferRole::scratch, zeros(n * kListInts * 4));
   b.tv_d = plan.add_buffer("sc_tv_d", BufferRole::scratch, zeros(s.tris.size() * kListInts * 4));
@@ -101,9 +124,9 @@ SelfContactBuffers add_self_contact_buffers(plan::SubstepPlan& plan, const SimLa
   b.vt_reach = plan.add_buffer("sc_vt_reach", BufferRole::scratch, zeros(n * 4));
   b.tv_reach = plan.add_buffer("sc_tv_reach", BufferRole::scratch, zeros(s.tris.size() * 4));
   b.ee_reach = plan.add_buffer("sc_ee_reach", BufferRole::scratch, zeros(s.edges.size() * 4));
-  b.vt_listed = plan.add_buffer("sc_vt_listed", BufferRole::cache, zeros(n * 4));
-  b.tv_listed = plan.add_buffer("sc_tv_listed", BufferRole::cache, zeros(s.tris.size() * 4));
-  b.ee_listed = plan.add_buffer("sc_ee_listed", BufferRole::cache, zeros(s.edges.size() * 4));
+  b.vt_listed = plan.add_buffer("sc_vt_listed", BufferRole::carried, zeros(n * 4));
+  b.tv_listed = plan.add_buffer("sc_tv_listed", BufferRole::carried, zeros(s.tris.size() * 4));
+  b.ee_listed = plan.add_buffer("sc_ee_listed", BufferRole::carried, zeros(s.edges.size() * 4));
   b.tv_count = plan.add_buffer("sc_tv_count", BufferRole::scratch, zeros(s.tris.size() * 4));
   b.ee_count = plan.add_buffer("sc_ee_count", BufferRole::scratch, zeros(s.edges.size() * 4));
   b.vt_count = plan.add_buffer("sc_vt_count", BufferRole::scratch, zeros(n * 4));
@@ -121,37 +144,44 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
   const int n = static_cast<int>(layout.x.size());
   const int tris = static_cast<int>(s.tris.size());
   const auto detect = [](const std::string& name) { return plan::make_task(name, plan::TaskKind::detection); };
-  // Whether this substep rebuilds the lists (common/self_contact_lists.h
-  // sc_decide): the displacement since they were made and the predicted
-  // step, per block, then one work-item decides; the rebuild's tasks do
-  // nothing in a substep that keeps them.
-  const int blocks = static_cast<int>(motion_blocks(static_cast<std::size_t>(n)));
+  // Per block of leaves whether it makes its lists anew this substep
+  // (common/self_contact_lists.h sc_block_decide): the boxes of its corners,
+  // their displacements since x_det and their predicted steps; each block's
+  // erosion and radius needed against the blocks near it; whether any makes
+  // them. The refit and the walks do nothing where none does.
+  const int blocks = static_cast<int>(surface_blocks(std::size_t(tris)));
   const sched::TaskId motion =
       plan.add_task_after(last, detect("detect/motion"),
                           {"sc_motion",
                            {0, blocks},
                            {Arg::of_buffer(b.x_det), Arg::of_buffer(start), Arg::of_buffer(positions),
-                            Arg::of_buffer(b.incidence), Arg::of_int(n), Arg::of_buffer(b.motion)},
-                           {WriteSpan::per_element(b.motion, kMotionBytes)}});
-  const sched::TaskId decide =
-      plan.add_task_after(motion, detect("detect/decide"),
-                          {"sc_decide_detection",
-                           {0, 1},
-                           {Arg::of_buffer(b.motion), Arg::of_int(blocks), Arg::of_float(s.thickness),
-                            Arg::of_float(s.query_radius), Arg::of_buffer(b.state), Arg::of_buffer(b.in_memory)},
-                           {WriteSpan::whole_buffer(b.state), WriteSpan::whole_buffer(b.in_memory)}});
+                            Arg::of_buffer(b.tris), Arg::of_int(tris), Arg::of_buffer(b.motion)},
+                           {WriteSpan::per_element(b.motion, kBlockMotionBytes)}});
+  last = plan.add_task_after(motion, detect("detect/decide_blocks"),
+                             {"sc_decide_block",
+                              {0, blocks},
+                              {Arg::of_buffer(b.motion), Arg::of_int(blocks), Arg::of_float(s.thickness),
+                               Arg::of_float(s.query_radius), Arg::of_buffer(b.block_rho0), Arg::of_buffer(b.block_rho),
+                               Arg::of_buffer(b.block_make)},
+                              {WriteSpan::per_element(b.block_rho, 4), WriteSpan::per_element(b.block_make, 4)}});
+  last = plan.add_task_after(last, detect("detect/decide_any"),
+                             {"sc_decide_blocks",
+                              {0, 1},
+                              {Arg::of_buffer(b.block_make), Arg::of_int(blocks), Arg::of_float(s.query_radius),
+                               Arg::of_buffer(b.block_rho), Arg::of_buffer(b.block_rho0), Arg::of_buffer(b.state)},
+                              {WriteSpan::whole_buffer(b.block_rho0), WriteSpan::whole_buffer(b.state)}});
   const sched::TaskId snap =
-      plan.add_task_after(decide, detect("detect/snap"),
+      plan.add_task_after(last, detect("detect/snap"),
                           {"sc_snap",
                            {0, n},
                            {Arg::of_buffer(start), Arg::of_buffer(b.x_det), Arg::of_buffer(b.state)},
                            {particle_write(b.x_det)}});
-  // BVH refit at x_det, bottom up (He et al. 2025 Fig. 2: "BVH updates").
+  // BVH refit at x_t, bottom up (He et al. 2025 Fig. 2: "BVH updates").
   last = plan.add_task_after(
       snap, detect("detect/leaves"),
       {"sc_leaf_boxes",
        {0, tris},
-       {Arg::of_buffer(b.x_det), Arg::of_buffer(b.tris), Arg::of_buffer(b.nodes), Arg::of_buffer(b.state)},
+       {Arg::of_buffer(start), Arg::of_buffer(b.tris), Arg::of_buffer(b.nodes), Arg::of_buffer(b.state)},
        {WriteSpan::per_element(b.nodes, kNodeBytes)}});
   const int root = s.root();
   int level = 1;
@@ -190,9 +220,10 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
       refit, detect("detect/pairs"),
       {"sc_query_groups",
        {0, groups},
-       {Arg::of_buffer(b.x_det), Arg::of_buffer(b.incidence), Arg::of_buffer(b.tris), Arg::of_buffer(b.edges),
+       {Arg::of_buffer(start), Arg::of_buffer(b.incidence), Arg::of_buffer(b.tris), Arg::of_buffer(b.edges),
         Arg::of_buffer(b.leaves), Arg::of_buffer(b.nodes), Arg::of_buffer(b.levels), Arg::of_int(root),
-        Arg::of_int(tris), Arg::of_buffer(b.state), Arg::of_buffer(b.vt), Arg::of_buffer(b.tv), Arg::of_buffer(b.ee)},
+        Arg::of_int(tris), Arg::of_buffer(b.state), Arg::of_buffer(b.block_make), Arg::of_buffer(b.vt),
+        Arg::of_buffer(b.tv), Arg::of_buffer(b.ee)},
        {WriteSpan::per_index(b.vt, kListInts * 4, 3 * ATS_SC_GROUP, owned(0, 3)),
         WriteSpan::per_index(b.tv, kListInts * 4, ATS_SC_GROUP, owned(-1, 1)),
         WriteSpan::per_index(b.ee, kListInts * 4, 3 * ATS_SC_GROUP, owned(4, 3))}});
@@ -216,14 +247,17 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
   last = pairs;
   per_list("detect/distances_vertices", "sc_vertex_distances_task", n,
            {Arg::of_buffer(start), Arg::of_buffer(b.tris), Arg::of_buffer(b.vt), Arg::of_buffer(b.state),
+            Arg::of_buffer(b.vertex_block), Arg::of_buffer(b.block_rho), Arg::of_buffer(b.block_make),
             Arg::of_buffer(b.vt_d), Arg::of_buffer(b.vt_reach), Arg::of_buffer(b.vt_listed)},
            b.vt_d, {b.vt_reach, b.vt_listed});
   per_list("detect/distances_triangles", "sc_triangle_distances_task", tris,
            {Arg::of_buffer(start), Arg::of_buffer(b.tris), Arg::of_buffer(b.tv), Arg::of_buffer(b.state),
-            Arg::of_buffer(b.tv_d), Arg::of_buffer(b.tv_reach), Arg::of_buffer(b.tv_listed)},
+            Arg::of_buffer(b.block_rho), Arg::of_buffer(b.block_make), Arg::of_buffer(b.tv_d),
+            Arg::of_buffer(b.tv_reach), Arg::of_buffer(b.tv_listed)},
            b.tv_d, {b.tv_reach, b.tv_listed});
   per_list("detect/distances_edges", "sc_edge_distances_task", edges,
            {Arg::of_buffer(start), Arg::of_buffer(b.edges), Arg::of_buffer(b.ee), Arg::of_buffer(b.state),
+            Arg::of_buffer(b.edge_block), Arg::of_buffer(b.block_rho), Arg::of_buffer(b.block_make),
             Arg::of_buffer(b.ee_d), Arg::of_buffer(b.ee_reach), Arg::of_buffer(b.ee_listed)},
            b.ee_d, {b.ee_reach, b.ee_listed});
   const sched::TaskId bound = plan.add_task_after(

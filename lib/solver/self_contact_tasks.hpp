@@ -19,9 +19,11 @@ namespace atssim::solver {
 struct SelfContactBuffers {
   plan::BufferId tris = -1, edges = -1, leaves = -1, nodes = -1, levels = -1, incidence = -1, vt = -1, tv = -1, ee = -1,
                  bound = -1, x_out = -1,  // x_out: friction's scratch copy
-      motion = -1,             // per block the boxes of the displacements since x_det and of the predicted steps
-      x_det = -1, state = -1,  // where the lists were made; whether they serve (common/self_contact_lists.h)
-      in_memory = -1,          // whether the lists are in memory (0 after a reset: remade at x_det)
+      motion = -1,  // per block of leaves the boxes of x_t, of the displacements since x_det and of the predicted steps
+      x_det = -1, state = -1,  // where the blocks last took stock; the lists' state (common/self_contact_lists.h)
+      block_rho0 = -1, block_rho = -1,                 // per block of leaves its rho at x_det and in this substep
+      block_make = -1,                                 // per block whether it makes its lists in this substep
+      vertex_block = -1, edge_block = -1,              // per vertex and edge the block of the leaf that owns it
       vt_d = -1, tv_d = -1, ee_d = -1,                 // the listed pairs' distances at x_t
       vt_reach = -1, tv_reach = -1, ee_reach = -1,     // per list the nearest its primitive can be (sc_store_distances)
       vt_listed = -1, tv_listed = -1, ee_listed = -1,  // per list its count, packed when the lists are made

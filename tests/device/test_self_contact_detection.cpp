@@ -399,48 +399,51 @@ TEST_CASE("two layers falling as a whole keep their lists, and fall freely", "[s
   CHECK(layout.x[0].y - x[0].y > 0.015);  // 1.5 / 3600 * 36 m
 }
 
-TEST_CASE("a run restored from its own state at every substep remakes its lists where they were made, bit for bit",
-          "[self]") {
+TEST_CASE("a run restored from its own state at every substep goes on with the lists it had, bit for bit", "[self]") {
   // The sliding upper layer of the scene above, twice: one executor runs
   // on, the other is reset from its own state (positions, velocities and the
-  // carried x_det and decision state, as a checkpoint holds them) before
-  // every substep, which clears its lists from memory. A substep that keeps
-  // the lists must remake them at x_det (state[1] = 1, state[5] = 0), and
-  // both runs must stay equal, bit for bit. Restored from positions and
-  // velocities alone, the lists are made at x_t instead.
+  // carried lists, x_det, each block's rho there and the decision state, as
+  // a checkpoint holds them)
+  // before every substep. Both must stay equal, bit for bit, lists, state
+  // and positions. Restored from positions and velocities alone, every
+  // block makes its lists anew.
   const model::Model m = sliding_layers();
   const solver::SimLayout layout = solver::make_sim_layout(m);
+  const solver::SelfContactLayout& s = layout.self_contact;
   const plan::SubstepPlan plan = solver::vbd::make_vbd_plan(layout, 1.0 / 60.0, 2);
   const auto devices = device::DeviceSet::open("cpu");
   device::PlanExecutor on(devices, plan, {}), restored(devices, plan, {}), fresh(devices, plan, {});
-  REQUIRE(on.carried_bytes() == layout.x.size() * 16 + 8 * 4);  // x_det (float4s) and sc_state (8 ints)
-  int remade = 0, anew = 0;
+  const std::size_t n = layout.x.size(), tris = s.tris.size(), edges = s.edges.size();
+  const std::size_t blocks = on.read(buffer_named(plan, "sc_block_rho0")).size() / 4;
+  REQUIRE(blocks >= 1);
+  // the lists and their packed counts, x_det (float4s), sc_state (8 ints), each block's rho0
+  REQUIRE(on.carried_bytes() == (n + tris + edges) * (kStride + 1) * 4 + n * 16 + 8 * 4 + blocks * 4);
+  int kept = 0, made = 0;
   for (int k = 0; k < 16; ++k) {
     on.run_substeps(1);
     const plan::PlanState state = restored.read_state();
     REQUIRE(state.carried.size() == restored.carried_bytes());
     restored.reset(state);
     restored.run_substeps(1);
-    const std::vector<int> s = ints_of(restored.read(buffer_named(plan, "sc_state")));
+    const std::vector<int> st = ints_of(restored.read(buffer_named(plan, "sc_state")));
     INFO("substep " << k);
-    CHECK(s[1] == 1);  // made, at x_det or anew
-    if (s[5] == 0) ++remade;
-    if (s[5] == 1) ++anew;
+    (st[1] == 0 ? kept : made) += 1;
     CHECK(ints_of(on.read(buffer_named(plan, "sc_vt"))) == ints_of(restored.read(buffer_named(plan, "sc_vt"))));
     CHECK(ints_of(on.read(buffer_named(plan, "sc_ee"))) == ints_of(restored.read(buffer_named(plan, "sc_ee"))));
     CHECK(on.read(buffer_named(plan, "x")) == restored.read(buffer_named(plan, "x")));
-    std::vector<int> kept = s;
-    kept[1] = s[5];  // (the one without a reset made its lists only where they were made anew)
-    CHECK(ints_of(on.read(buffer_named(plan, "sc_state"))) == kept);
+    CHECK(ints_of(on.read(buffer_named(plan, "sc_state"))) == st);
+    CHECK(on.read(buffer_named(plan, "sc_block_rho0")) == restored.read(buffer_named(plan, "sc_block_rho0")));
     if (k == 5) {
-      // From positions and velocities alone: made anew at x_t.
+      // From positions and velocities alone: every block makes its lists.
       plan::PlanState bare = on.read_state();
       bare.carried.clear();
       fresh.reset(bare);
       fresh.run_substeps(1);
-      CHECK(ints_of(fresh.read(buffer_named(plan, "sc_state")))[5] == 1);
+      const std::vector<int> f = ints_of(fresh.read(buffer_named(plan, "sc_state")));
+      CHECK(f[1] == 1);
+      CHECK(f[5] == static_cast<int>(blocks));
     }
   }
-  CHECK(remade >= 2);  // the kept lists were remade at x_det
-  CHECK(anew >= 2);    // and the motion made new ones
+  CHECK(kept >= 2);  // substeps that kept every list, restored from the state
+  CHECK(made >= 2);  // and the motion made some anew
 }

@@ -4,6 +4,7 @@
 // the query radius.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <random>
 
 #include "broad_phase/bvh_pairs.hpp"
@@ -96,76 +97,143 @@ TEST_CASE("the radius a substep needs follows its largest predicted step, betwee
   CHECK(sc_needed_radius(0.002f, r, cap) == Approx(0.003));     // the cap
 }
 
-// One motion block (common/self_contact_lists.h sc_block_motion): the box of the
-// displacements since the lists were made, then the box of the predicted steps.
+TEST_CASE("the gap and the longest distance between two boxes", "[solver][contact][broad_phase]") {
+  const auto box = [](ats_vec3 lo, ats_vec3 hi) {
+    sc_box b;
+    b.lo = lo;
+    b.hi = hi;
+    return b;
+  };
+  const sc_box a = box(ats_v3(0, 0, 0), ats_v3(1, 1, 1));
+  CHECK(sc_boxes_gap(a, box(ats_v3(0.5f, 0.5f, 0.5f), ats_v3(2, 2, 2))) == 0.0f);  // overlapping
+  CHECK(sc_boxes_gap(a, box(ats_v3(4, 5, 0), ats_v3(6, 6, 1))) == Approx(5.0));    // (3, 4, 0) apart
+  CHECK(sc_boxes_gap(box(ats_v3(4, 5, 0), ats_v3(6, 6, 1)), a) == Approx(5.0));
+  // the farthest corners: (0, 0, 0) and (6, 6, 1)
+  CHECK(sc_boxes_most_apart(a, box(ats_v3(4, 5, 0), ats_v3(6, 6, 1))) == Approx(std::sqrt(73.0)));
+  CHECK(sc_boxes_most_apart(a, a) == Approx(std::sqrt(3.0)));  // a box against itself: its diagonal
+  const sc_box p = box(ats_v3(1, 2, 3), ats_v3(1, 2, 3));
+  CHECK(sc_boxes_most_apart(p, p) == 0.0f);  // one point: every vertex moved alike
+}
+
+TEST_CASE("a block's motion is the box of its triangles' corners, their displacements and their steps",
+          "[solver][contact][broad_phase]") {
+  // Two triangles in a block (leaves 0 and 1) over four vertices; vertex 4
+  // belongs to no triangle and moves far.
+  const std::vector<Float4> prev{{0, 0, 0, 1}, {1, 0, 0, 1}, {0, 1, 0, 1}, {1, 1, 0, 1}, {5, 5, 5, 1}};
+  std::vector<Float4> start = prev, guess;
+  start[1].x += 0.0003f;  // moved since the substep before: (0.3, 0, 0) mm
+  start[3].y -= 0.0001f;  // (0, -0.1, 0) mm
+  start[4].z += 0.9f;
+  guess = start;
+  guess[2].z += 0.0004f;  // the predicted steps: (0, 0, 0.4) mm
+  const std::vector<int> tris{0, 1, 2, -1, 1, 3, 2, -1};
+  std::vector<float> out(ATS_SC_BLOCK_FLOATS);
+  sc_block_motion(0, prev.data(), start.data(), guess.data(), tris.data(), 2, out.data());
+  CHECK(out[0] == 0.0f);  // x_t: [0, 1.0003] x [0, 1] x [0, 0]
+  CHECK(out[3] == Approx(1.0003));
+  CHECK(out[4] == Approx(1.0));
+  CHECK((out[2] == 0.0f && out[5] == 0.0f));     // vertex 4's 0.9 m is in no box
+  CHECK(out[6] == 0.0f);                         // displacements: [0, 0.3] x [-0.1, 0] x 0 mm
+  CHECK(out[9] == Approx(0.0003).margin(1e-7));  // (1.0003 - 1 in float)
+  CHECK(out[7] == Approx(-0.0001).margin(1e-7));
+  CHECK((out[10] == 0.0f && out[8] == 0.0f && out[11] == 0.0f));
+  CHECK((out[12] == 0.0f && out[13] == 0.0f && out[14] == 0.0f && out[15] == 0.0f && out[16] == 0.0f));
+  CHECK(out[17] == Approx(0.0004));  // steps: 0 to 0.4 mm in z
+}
+
 namespace {
-std::vector<float> block(ats_vec3 moved_lo, ats_vec3 moved_hi, ats_vec3 step_lo, ats_vec3 step_hi) {
-  return {moved_lo.x, moved_lo.y, moved_lo.z, moved_hi.x, moved_hi.y, moved_hi.z,
-          step_lo.x,  step_lo.y,  step_lo.z,  step_hi.x,  step_hi.y,  step_hi.z};
+// Block motion records (sc_block_motion's layout) from the boxes of x_t, of
+// the displacements and of the steps.
+struct BlockMotion {
+  ats_vec3 lo, hi, moved_lo, moved_hi, step_lo, step_hi;
+};
+std::vector<float> motion_of(const std::vector<BlockMotion>& blocks) {
+  std::vector<float> out;
+  for (const BlockMotion& b : blocks)
+    for (const ats_vec3& v : {b.lo, b.hi, b.moved_lo, b.moved_hi, b.step_lo, b.step_hi})
+      out.insert(out.end(), {v.x, v.y, v.z});
+  return out;
 }
 }  // namespace
 
 TEST_CASE(
-    "the lists are made at the start and when the relative motion since outgrows them, else kept or remade as they "
-    "were",
+    "a block keeps its lists while its motion against the blocks near it leaves them the radius the substep needs, "
+    "and only it remakes them",
     "[solver][contact][broad_phase]") {
+  // r = 1 mm, R_det = 3 mm; at rest the substep needs R = 1.5 mm. Blocks A
+  // and B are 1 mm apart, C is 1 m away. The motions are since x_det, which
+  // moves to x_t when some block makes its lists.
   const float r = 0.001f, cap = 0.003f;
   const ats_vec3 o = ats_v3(0, 0, 0);
-  std::vector<int> state(ATS_SC_STATE_INTS, 0);  // as a run starts
-  int in_memory = 0;
-  const auto decide = [&](const std::vector<float>& blocks) {
-    sc_decide(blocks.data(), static_cast<int>(blocks.size() / ATS_SC_MOTION_FLOATS), r, cap, state.data(), &in_memory);
-    CHECK(state[1] == state[5]);  // (the lists stay in memory here: made anew or kept)
-    return state[1];
+  std::vector<int> state(ATS_SC_STATE_INTS, 0);
+  std::vector<float> rho0(3, 0.0f), rho(3, 0.0f);  // as a run starts: no lists
+  std::vector<int> make(3, 0);
+  const auto decide = [&](const std::vector<BlockMotion>& blocks) {
+    const std::vector<float> m = motion_of(blocks);
+    const int n = static_cast<int>(blocks.size());
+    for (int b = 0; b < n; ++b) sc_block_decide(b, m.data(), n, r, cap, rho0.data(), rho.data(), make.data());
+    sc_decide_any(make.data(), n, cap, rho.data(), rho0.data(), state.data());
+    return make;
   };
-  CHECK(decide(block(o, o, o, o)) == 1);  // a frame's first substep detects, at the cap
-  CHECK(sc_bits_float(state[2]) == Approx(cap));
-  // kept while need + 2 D <= 3 mm: need 1.5 mm (at rest), D (half the box's
-  // diagonal) up to 0.75 mm
-  CHECK(decide(block(o, ats_v3(0.0014f, 0, 0), o, o)) == 0);
-  CHECK(sc_bits_float(state[3]) == Approx(0.0007));           // D
-  CHECK(decide(block(o, ats_v3(0.0016f, 0, 0), o, o)) == 1);  // 1.5 + 1.6 mm > 3 mm
-  CHECK(sc_bits_float(state[3]) == 0.0f);                     // made here
-  // Two blocks: their boxes join (D = half of |(1.2, 0.9, 0) mm| = 0.75 mm).
-  std::vector<float> two = block(o, ats_v3(0.0012f, 0, 0), o, o);
-  const std::vector<float> other = block(ats_v3(0, 0.0009f, 0), ats_v3(0, 0.0009f, 0), o, o);
-  two.insert(two.end(), other.begin(), other.end());
-  CHECK(decide(two) == 0);
-  CHECK(sc_bits_float(state[3]) == Approx(0.00075));
-  // Everything moved 1 m and steps 2 cm down: no relative motion, kept.
-  const ats_vec3 far = ats_v3(1, 0, 0), down = ats_v3(0, -0.02f, 0);
-  CHECK(decide(block(far, far, down, down)) == 0);
-  CHECK(sc_bits_float(state[3]) == 0.0f);
-  // Steps spread over 0.6 mm: delta 0.3 mm, need r + 2.5 delta = 1.75 mm.
-  CHECK(decide(block(o, ats_v3(0.0002f, 0, 0), ats_v3(0, -0.0006f, 0), o)) == 0);  // 1.75 + 0.2 mm
-  CHECK(decide(block(o, ats_v3(0.0002f, 0, 0), ats_v3(0, -0.0012f, 0), o)) == 1);  // need 3 mm (5 delta)
-  CHECK(state[4] == 3);                                                            // made anew three times
-  // A reset clears in_memory: the lists kept are made again where they were
-  // made (state[1], not state[5]), and the decision is the same.
-  in_memory = 0;
-  sc_decide(block(o, ats_v3(0.0002f, 0, 0), ats_v3(0, -0.0006f, 0), o).data(), 1, r, cap, state.data(), &in_memory);
+  const BlockMotion a{o, ats_v3(0.1f, 0.1f, 0), o, o, o, o};
+  const BlockMotion b{ats_v3(0.101f, 0, 0), ats_v3(0.2f, 0.1f, 0), o, o, o, o};
+  const BlockMotion c{ats_v3(1.2f, 0, 0), ats_v3(1.3f, 0.1f, 0), o, o, o, o};
+  CHECK(decide({a, b, c}) == std::vector<int>{1, 1, 1});  // the first substep makes every block's lists
   CHECK(state[1] == 1);
-  CHECK(state[5] == 0);
-  CHECK(sc_bits_float(state[3]) == Approx(0.0001));  // D still since x_det
-  CHECK(state[4] == 3);
-  CHECK(in_memory == 1);
-}
-
-TEST_CASE("a block's motion is the box of its surface vertices' displacements and steps",
-          "[solver][contact][broad_phase]") {
-  const std::vector<Float4> det{{0, 0, 0, 1}, {0, 0, 0, 1}, {0, 0, 0, 1}};
-  const std::vector<Float4> start{{0.0003f, 0, 0, 1}, {0, 0.0001f, 0, 1}, {0, 0, 0.9f, 1}};
-  const std::vector<Float4> guess{{0.0003f, 0, 0, 1}, {0, 0.0005f, 0, 1}, {0, 0, 0.0f, 1}};
-  const std::vector<int> inc{0, 1, 2, 2};  // particle 2 has no triangle (the first n + 1 offsets)
-  std::vector<float> out(ATS_SC_MOTION_FLOATS);
-  sc_block_motion(0, det.data(), start.data(), guess.data(), inc.data(), 3, out.data());
-  // since the lists were made: (0.3, 0, 0) and (0, 0.1, 0) mm
-  CHECK(out[0] == 0.0f);
-  CHECK(out[3] == Approx(0.0003));
-  CHECK(out[4] == Approx(0.0001));
-  CHECK((out[2] == 0.0f && out[5] == 0.0f));  // particle 2's 0.9 m is not a surface's
-  // the predicted steps: (0, 0, 0) and (0, 0.4, 0) mm
-  CHECK((out[6] == 0.0f && out[7] == 0.0f && out[9] == 0.0f));
-  CHECK(out[10] == Approx(0.0004));
-  CHECK((out[8] == 0.0f && out[11] == 0.0f));
+  CHECK(sc_bits_float(state[2]) == cap);
+  CHECK(rho == std::vector<float>{cap, cap, cap});
+  CHECK(rho0 == rho);
+  // B moved 0.8 mm towards A, every vertex alike: A and B each lose 0.8 mm
+  // (A's erosion against B, B's against A), C, 1 m away, nothing.
+  BlockMotion b2 = b;
+  b2.moved_lo = b2.moved_hi = ats_v3(-0.0008f, 0, 0);
+  CHECK(decide({a, b2, c}) == std::vector<int>{0, 0, 0});
+  CHECK(state[1] == 0);
+  CHECK(rho[0] == Approx(0.0022).epsilon(1e-3));
+  CHECK(rho[1] == Approx(0.0022).epsilon(1e-3));
+  CHECK(rho[2] == cap);
+  CHECK(rho0 == std::vector<float>{cap, cap, cap});  // no block made lists: x_det stays
+  // B back where it was: measured since x_det, the motion there and back
+  // does not add up.
+  CHECK(decide({a, b, c}) == std::vector<int>{0, 0, 0});
+  CHECK(rho == std::vector<float>{cap, cap, cap});
+  // B at 0.8 mm again, and C turns (its corners spread 1 cm): only C's lists
+  // go and are remade; A and B, far from it, are kept, and their rho at the
+  // new x_det is 2.2 mm.
+  BlockMotion c2 = c;
+  c2.moved_hi = ats_v3(0.01f, 0, 0);
+  CHECK(decide({a, b2, c2}) == std::vector<int>{0, 0, 1});
+  CHECK(state[1] == 1);
+  CHECK(rho[2] == cap);
+  CHECK(rho0[0] == Approx(0.0022).epsilon(1e-3));
+  CHECK(rho0[1] == Approx(0.0022).epsilon(1e-3));
+  CHECK(rho0[2] == cap);
+  // Everything moves 2 cm down, with the same steps: no relative motion, kept.
+  const ats_vec3 down = ats_v3(0, -0.02f, 0);
+  std::vector<BlockMotion> falling{a, b, c};
+  for (BlockMotion& m : falling) m.moved_lo = m.moved_hi = m.step_lo = m.step_hi = down;
+  CHECK(decide(falling) == std::vector<int>{0, 0, 0});
+  CHECK(rho == rho0);
+  // B closes on A by another 0.8 mm since: 2.2 - 0.8 = 1.4 mm < 1.5 mm,
+  // both remake; C is kept.
+  CHECK(decide({a, b2, c}) == std::vector<int>{1, 1, 0});
+  CHECK(rho == std::vector<float>{cap, cap, cap});
+  // A's steps spread over 1.2 mm (delta 0.6 mm): A and B, which is near
+  // it, need 5 delta = 3 mm, the whole of R_det, so any motion at all
+  // remakes their lists; C, far from A, needs 1.5 mm still and keeps its.
+  BlockMotion a3 = a;
+  a3.step_lo = ats_v3(0, -0.0012f, 0);
+  a3.moved_hi = ats_v3(1e-6f, 0, 0);
+  CHECK(decide({a3, b, c}) == std::vector<int>{1, 1, 0});
+  // Now C's steps spread over 1.2 mm and it moved 1 um, while B closed on A
+  // by 0.8 mm: C needs 3 mm and remakes, A and B need 1.5 mm still (C is far
+  // from them) and keep theirs at 2.2 mm. With the whole surface's fastest
+  // step deciding for all, they would have remade theirs too.
+  BlockMotion c3 = c;
+  c3.step_lo = ats_v3(0, -0.0012f, 0);
+  c3.moved_hi = ats_v3(1e-6f, 0, 0);
+  CHECK(decide({a, b2, c3}) == std::vector<int>{0, 0, 1});
+  CHECK(rho0[0] == Approx(0.0022).epsilon(1e-3));
+  CHECK(state[4] == 5);  // substeps that made lists
+  CHECK(state[5] == 9);  // blocks' lists made: 3 + 1 + 2 + 2 + 1
 }
