@@ -157,13 +157,13 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
                            {Arg::of_buffer(b.x_det), Arg::of_buffer(start), Arg::of_buffer(positions),
                             Arg::of_buffer(b.tris), Arg::of_int(tris), Arg::of_buffer(b.motion)},
                            {WriteSpan::per_element(b.motion, kBlockMotionBytes)}});
-  last = plan.add_task_after(motion, detect("detect/decide_blocks"),
-                             {"sc_decide_block",
-                              {0, blocks},
-                              {Arg::of_buffer(b.motion), Arg::of_int(blocks), Arg::of_float(s.thickness),
-                               Arg::of_float(s.query_radius), Arg::of_buffer(b.block_rho0), Arg::of_buffer(b.block_rho),
-                               Arg::of_buffer(b.block_make)},
-                              {WriteSpan::per_element(b.block_rho, 4), WriteSpan::per_element(b.block_make, 4)}});
+  last = plan.add_task_after(
+      motion, detect("detect/decide_blocks"),
+      {"sc_decide_block",
+       {0, blocks},
+       {Arg::of_buffer(b.motion), Arg::of_int(blocks), Arg::of_float(s.thickness), Arg::of_float(s.query_radius),
+        Arg::of_buffer(b.block_rho0), Arg::of_buffer(b.block_rho), Arg::of_buffer(b.block_make)},
+       {WriteSpan::per_element(b.block_rho, 4), WriteSpan::per_element(b.block_make, 4)}});
   last = plan.add_task_after(last, detect("detect/decide_any"),
                              {"sc_decide_blocks",
                               {0, 1},
