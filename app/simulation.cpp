@@ -442,7 +442,7 @@ void run_simulation(const RunOptions& options, RunResult& result,
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - schedule_start).count();
       std::optional<std::string> why = find_blow_up(before, xyz, bounds, frame * sim.frame_dt, 1);
       if (!why && energy_check.enabled()) {
-        state = executor->read_state();
+        executor->read_state(state);
         EnergyGrowthCheck::Energy now = energy_check.energy(xyz, xyz_of(state.velocities));
         why = energy_check.check(energy, before, now, xyz);
         energy = std::move(now);
@@ -461,7 +461,7 @@ void run_simulation(const RunOptions& options, RunResult& result,
           const plan::PlanState now = executor->read_state();
           if (const auto next = tuning->recheck(frame, now)) {
             switch_to(*next, now);
-            state = executor->read_state();  // (the checkpoint's carried state is the new plan's)
+            executor->read_state(state);  // (the checkpoint's carried state is the new plan's)
           }
           write_decisions();
         }
@@ -475,7 +475,7 @@ void run_simulation(const RunOptions& options, RunResult& result,
       result.mean_frame_ms = total_ms / done;
       if (written) {
         record_schedule(writer, frame, {used, used_waits, used_merge, used_unmerged_ms}, measured);
-        if (!energy_check.enabled()) state = executor->read_state();
+        if (!energy_check.enabled()) executor->read_state(state);
         writer.set_checkpoint(frame, state.positions, state.velocities, state.carried);
         const io::ContactFrame contact = contact_frame(colliders, xyz, surface_measurement.get());
         // The host's own work on the frame since it ended, less the

@@ -166,7 +166,8 @@ struct PlanExecutor::Impl {
   // Runs `substeps` substeps on each device alone and reports each one's
   // timings; what they cost is the observer's to decide.
   void profile(int substeps, sched::TimingObserver& observer, int min_substeps, double budget_ms) {
-    const plan::PlanState snapshot = read_state();
+    plan::PlanState snapshot;
+    read_state(snapshot);
     const std::vector<Step> kept = steps;
     // Fused without a task clock: per-task events, whose launch gap the
     // observer is told about.
@@ -203,11 +204,19 @@ struct PlanExecutor::Impl {
   // After finish() every memory holds the whole state (the last substep's
   // copies included): read the home device's.
   std::vector<std::byte> read(plan::BufferId id) {
-    finish();
-    std::vector<std::byte> out(resources.sizes.at(id));
-    const std::size_t m = set.memory_of[options.device];
-    arenas[m]->read(set.queues[options.device], resources.buffers[m].at(id), out.data(), out.size());
+    std::vector<std::byte> out;
+    read_into(id, out, 0);
     return out;
+  }
+
+  // Buffer `id`'s bytes into out[at, at + size), out grown to hold them
+  // (its storage kept when it already does).
+  void read_into(plan::BufferId id, std::vector<std::byte>& out, std::size_t at) {
+    finish();
+    const std::size_t size = resources.sizes.at(id);
+    if (out.size() < at + size) out.resize(at + size);
+    const std::size_t m = set.memory_of[options.device];
+    arenas[m]->read(set.queues[options.device], resources.buffers[m].at(id), out.data() + at, size);
   }
 
   void write(plan::BufferId id, std::span<const std::byte> bytes) {
@@ -218,15 +227,20 @@ struct PlanExecutor::Impl {
     }
   }
 
-  plan::PlanState read_state() {
-    plan::PlanState state;
-    state.positions = read(plan.buffer(plan::BufferRole::positions));
-    if (const plan::BufferId v = plan.find_buffer(plan::BufferRole::velocities); v >= 0) state.velocities = read(v);
+  // Into `state`'s storage where it has the sizes already (a frame's state
+  // read into the last one's: no fresh pages for a large carried state).
+  void read_state(plan::PlanState& state) {
+    state.positions.clear();
+    read_into(plan.buffer(plan::BufferRole::positions), state.positions, 0);
+    state.velocities.clear();
+    if (const plan::BufferId v = plan.find_buffer(plan::BufferRole::velocities); v >= 0)
+      read_into(v, state.velocities, 0);
+    state.carried.resize(carried_bytes());
+    std::size_t at = 0;
     for (const auto& [id, initial] : carried) {
-      const std::vector<std::byte> bytes = read(id);
-      state.carried.insert(state.carried.end(), bytes.begin(), bytes.end());
+      read_into(id, state.carried, at);
+      at += initial.size();
     }
-    return state;
   }
 
   std::size_t carried_bytes() const {
@@ -333,7 +347,12 @@ double PlanExecutor::measure_latency_ms(std::size_t from, std::size_t to, int re
 
 void PlanExecutor::finish() { impl_->finish(); }
 
-plan::PlanState PlanExecutor::read_state() { return impl_->read_state(); }
+plan::PlanState PlanExecutor::read_state() {
+  plan::PlanState state;
+  impl_->read_state(state);
+  return state;
+}
+void PlanExecutor::read_state(plan::PlanState& into) { impl_->read_state(into); }
 void PlanExecutor::reset(const plan::PlanState& state) { impl_->reset(state); }
 std::size_t PlanExecutor::carried_bytes() const { return impl_->carried_bytes(); }
 std::vector<std::byte> PlanExecutor::read(plan::BufferId id) { return impl_->read(id); }

@@ -112,6 +112,8 @@ class PlanExecutor {
 
   // The state carried between substeps (waits first).
   plan::PlanState read_state();
+  // The same into `into`, whose storage is reused where it has the sizes.
+  void read_state(plan::PlanState& into);
   // Restores the state (the carried buffers to their initial contents when
   // it holds none) and every cache_state buffer: the caches those guard are
   // remade in the next substep from the carried buffers, as they were, so a

@@ -354,12 +354,14 @@ const std::vector<DecisionRecord>& ResultWriter::decisions() const { return deci
 
 void ResultWriter::set_checkpoint(long long frame, std::span<const std::byte> positions,
                                   std::span<const std::byte> velocities, std::span<const std::byte> carried) {
-  Checkpoint c;
+  // Copied into the storage of the last one (of the same sizes), so that a
+  // large carried state costs a copy a frame, not fresh pages.
+  Checkpoint& c = pending_;
   c.frame = frame;
   c.positions.assign(positions.begin(), positions.end());
   c.velocities.assign(velocities.begin(), velocities.end());
   c.carried.assign(carried.begin(), carried.end());
-  pending_ = std::move(c);
+  checkpoint_due_ = true;
 }
 
 void ResultWriter::append_frame(double time, std::span<const float> xyz, double frame_ms, double schedule_ms,
@@ -369,7 +371,7 @@ void ResultWriter::append_frame(double time, std::span<const float> xyz, double 
   }
   if (broken_) throw runtime_error(fmt::format("output '{}': an earlier write failed", writing_));
   const std::size_t state_bytes =
-      pending_ ? pending_->positions.size() + pending_->velocities.size() + pending_->carried.size() : 0;
+      checkpoint_due_ ? pending_.positions.size() + pending_.velocities.size() + pending_.carried.size() : 0;
   check_output_health(writing_, opened_, xyz.size() * sizeof(float) + state_bytes);
   try {
     const hsize_t size[3] = {static_cast<hsize_t>(frames_ + 1), particles_, 3};
@@ -391,19 +393,19 @@ void ResultWriter::append_frame(double time, std::span<const float> xyz, double 
     append_series_rows<std::int32_t>(surface_pairs_, pairs, H5T_NATIVE_INT32, static_cast<hsize_t>(frames_));
     append_scalar(surface_max_penetration_, contact.surface_max_penetration);
     append_series_rows<std::int32_t>(surface_crossings_, crossings, H5T_NATIVE_INT32, static_cast<hsize_t>(frames_));
-    if (pending_) {
-      pending_->frames_written = frames_ + 1;
-      pending_->schedule_rows = static_cast<long long>(sched_rows_);
-      pending_->wait_rows = static_cast<long long>(wait_rows_);
-      pending_->makespan_rows = static_cast<long long>(makespan_rows_);
+    if (checkpoint_due_) {
+      pending_.frames_written = frames_ + 1;
+      pending_.schedule_rows = static_cast<long long>(sched_rows_);
+      pending_.wait_rows = static_cast<long long>(wait_rows_);
+      pending_.makespan_rows = static_cast<long long>(makespan_rows_);
       // (A file resumed from an atssim that kept no carried state goes on without it.)
-      if (checkpoint_.valid() && checkpoint_.carried_bytes() == 0) pending_->carried.clear();
+      if (checkpoint_.valid() && checkpoint_.carried_bytes() == 0) pending_.carried.clear();
       if (!checkpoint_.valid()) {
-        checkpoint_ = CheckpointSlots::create(file_, pending_->positions.size(), pending_->velocities.size(),
-                                              pending_->carried.size());
+        checkpoint_ = CheckpointSlots::create(file_, pending_.positions.size(), pending_.velocities.size(),
+                                              pending_.carried.size());
       }
-      checkpoint_.write(*pending_);
-      pending_.reset();
+      checkpoint_.write(pending_);
+      checkpoint_due_ = false;
     }
     flush();
     ++frames_;

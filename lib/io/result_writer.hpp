@@ -137,7 +137,8 @@ class ResultWriter {
   std::string path_, writing_;
   OutputIdentity opened_;  // writing_, to notice it vanish
   bool broken_ = false;    // an HDF5 write failed: write nothing more
-  std::optional<Checkpoint> pending_;
+  Checkpoint pending_;     // the state set_checkpoint gave, written with the next frame
+  bool checkpoint_due_ = false;
   CheckpointSlots checkpoint_;
   XdmfStream xdmf_;
   std::vector<std::string> object_names_;  // for the XDMF sidecar
