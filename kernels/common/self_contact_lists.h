@@ -52,6 +52,7 @@
  * [4] substeps that made lists, [5] blocks' lists made, in all. */
 #define ATS_SC_BLOCK 256
 #define ATS_SC_BLOCK_FLOATS 18
+#define ATS_SC_CLUSTER 32
 #define ATS_SC_MOTION_BLOCK 256
 #define ATS_SC_STATE_INTS 8
 
@@ -97,25 +98,42 @@ ATS_FN float sc_boxes_most_apart(sc_box a, sc_box b) {
 }
 
 /* Block b (leaves [b B, b B + B), B = ATS_SC_BLOCK) over its triangles'
- * corners: motion[18 b ..] the box of x_t, of x_t - x_det and of the
+ * corners, each once (corners[corner_start[b] .. corner_start[b + 1]),
+ * made on the host: a third to a fifth of the 3 B corners its triangles
+ * name): motion[18 b ..] the box of x_t, of x_t - x_det and of the
  * predicted step x~ - x_t. */
 ATS_FN void sc_block_motion(int b, ATS_GLOBAL const ats_float4* x_det, ATS_GLOBAL const ats_float4* x_start,
-                            ATS_GLOBAL const ats_float4* x_guess, ATS_GLOBAL const int* tris, int tri_count,
-                            ATS_GLOBAL float* motion) {
+                            ATS_GLOBAL const ats_float4* x_guess, ATS_GLOBAL const int* corner_start,
+                            ATS_GLOBAL const int* corners, ATS_GLOBAL float* motion) {
   sc_box at = sc_box_empty(), moved = sc_box_empty(), step = sc_box_empty();
-  const int end = (b + 1) * ATS_SC_BLOCK < tri_count ? (b + 1) * ATS_SC_BLOCK : tri_count;
-  for (int t = b * ATS_SC_BLOCK; t < end; ++t) {
-    for (int k = 0; k < 3; ++k) {
-      const int i = tris[4 * t + k];
-      const ats_vec3 p = sc_v(x_start[i]);
-      sc_box_add(&at, p);
-      sc_box_add(&moved, ats_sub(p, sc_v(x_det[i])));
-      sc_box_add(&step, ats_sub(sc_v(x_guess[i]), p));
-    }
+  for (int j = corner_start[b]; j < corner_start[b + 1]; ++j) {
+    const int i = corners[j];
+    const ats_vec3 p = sc_v(x_start[i]);
+    sc_box_add(&at, p);
+    sc_box_add(&moved, ats_sub(p, sc_v(x_det[i])));
+    sc_box_add(&step, ats_sub(sc_v(x_guess[i]), p));
   }
   sc_store_box(motion + ATS_SC_BLOCK_FLOATS * b, at);
   sc_store_box(motion + ATS_SC_BLOCK_FLOATS * b + 6, moved);
   sc_store_box(motion + ATS_SC_BLOCK_FLOATS * b + 12, step);
+}
+
+/* Cluster k of ATS_SC_CLUSTER blocks (consecutive, so a patch of patches):
+ * the box of its blocks' x_t boxes, clusters[6 k ..]. sc_block_decide
+ * passes over a cluster farther than its rho0 whole: no block of it can be
+ * nearer (the union's gap is at most each member's, in floats too, as min,
+ * max and a rounded difference are monotone), so the decision is that of
+ * every block against every block, at about 1/ATS_SC_CLUSTER of its cost
+ * (2,048 blocks at 262K vertices: 4 M box pairs a substep before). */
+ATS_FN void sc_cluster_box(int k, ATS_GLOBAL const float* motion, int blocks, ATS_GLOBAL float* clusters) {
+  sc_box u = sc_box_empty();
+  const int end = (k + 1) * ATS_SC_CLUSTER < blocks ? (k + 1) * ATS_SC_CLUSTER : blocks;
+  for (int c = k * ATS_SC_CLUSTER; c < end; ++c) {
+    const sc_box o = sc_load_box(motion + ATS_SC_BLOCK_FLOATS * c);
+    u.lo = sc_min3(u.lo, o.lo);
+    u.hi = sc_max3(u.hi, o.hi);
+  }
+  sc_store_box(clusters + 6 * k, u);
 }
 
 /* The radius a substep needs for its largest relative predicted step delta. */
@@ -129,8 +147,9 @@ ATS_FN float sc_needed_radius(float delta, float r, float r_max) {
  * its steps' box and that of a block within rho0 (itself among them). The
  * gap is widened and the erosion grown by 1e-3, far above the rounding of
  * either. */
-ATS_FN void sc_block_decide(int a, ATS_GLOBAL const float* motion, int blocks, float r, float r_max,
-                            ATS_GLOBAL const float* rho0, ATS_GLOBAL float* rho, ATS_GLOBAL int* make) {
+ATS_FN void sc_block_decide(int a, ATS_GLOBAL const float* motion, ATS_GLOBAL const float* clusters, int blocks,
+                            float r, float r_max, ATS_GLOBAL const float* rho0, ATS_GLOBAL float* rho,
+                            ATS_GLOBAL int* make) {
   const float start = rho0[a];
   float now = 0.0f;
   int anew = !(start > 0.0f);
@@ -138,11 +157,16 @@ ATS_FN void sc_block_decide(int a, ATS_GLOBAL const float* motion, int blocks, f
     ATS_GLOBAL const float* m = motion + ATS_SC_BLOCK_FLOATS * a;
     const sc_box at = sc_load_box(m), moved = sc_load_box(m + 6), step = sc_load_box(m + 12);
     float e = 0.0f, spread = 0.0f;
-    for (int c = 0; c < blocks; ++c) {
-      ATS_GLOBAL const float* o = motion + ATS_SC_BLOCK_FLOATS * c;
-      if (!(sc_boxes_gap(at, sc_load_box(o)) <= 1.001f * start)) continue;
-      e = fmax(e, sc_boxes_most_apart(moved, sc_load_box(o + 6)));
-      spread = fmax(spread, sc_boxes_most_apart(step, sc_load_box(o + 12)));
+    const int cluster_count = (blocks + ATS_SC_CLUSTER - 1) / ATS_SC_CLUSTER;
+    for (int k = 0; k < cluster_count; ++k) {
+      if (!(sc_boxes_gap(at, sc_load_box(clusters + 6 * k)) <= 1.001f * start)) continue;
+      const int end = (k + 1) * ATS_SC_CLUSTER < blocks ? (k + 1) * ATS_SC_CLUSTER : blocks;
+      for (int c = k * ATS_SC_CLUSTER; c < end; ++c) {
+        ATS_GLOBAL const float* o = motion + ATS_SC_BLOCK_FLOATS * c;
+        if (!(sc_boxes_gap(at, sc_load_box(o)) <= 1.001f * start)) continue;
+        e = fmax(e, sc_boxes_most_apart(moved, sc_load_box(o + 6)));
+        spread = fmax(spread, sc_boxes_most_apart(step, sc_load_box(o + 12)));
+      }
     }
     now = start - 1.001f * e;
     anew = !(now >= sc_needed_radius(0.5f * spread, r, r_max));

@@ -1,7 +1,7 @@
 /* Contact between simulated surfaces (scene `contact: {self: true}`):
  * collision detection at the start of every substep, on x_t (Chen et al.
  * 2024, VBD §3.7), as tasks that range over independent elements:
- *   sc_motion, sc_decide_*: per block of surface whether the lists it
+ *   sc_motion, sc_clusters, sc_decide_*: per block of surface whether the lists it
  *     made earlier still serve (its motion against its neighbours',
  *     common/self_contact_lists.h sc_block_decide);
  *   sc_leaf_boxes, sc_refit_level, sc_refit_top: refit the BVH over the
@@ -58,15 +58,20 @@ ATS_TASK void sc_refit_top(int k, __global float4* nodes, __global const int* le
 /* Per block of ATS_SC_BLOCK leaves the boxes of its corners at x_t, of
  * their displacements since x_det and of their predicted steps. */
 ATS_TASK void sc_motion(int b, __global const float4* x_det, __global const float4* x_start,
-                        __global const float4* x_guess, __global const int4* tris, int tri_count,
+                        __global const float4* x_guess, __global const int* corner_start, __global const int* corners,
                         __global float* motion) {
-  sc_block_motion(b, x_det, x_start, x_guess, (__global const int*)tris, tri_count, motion);
+  sc_block_motion(b, x_det, x_start, x_guess, corner_start, corners, motion);
+}
+
+/* Cluster k's box at x_t, for the decision's first cut. */
+ATS_TASK void sc_clusters(int k, __global const float* motion, int blocks, __global float* clusters) {
+  sc_cluster_box(k, motion, blocks, clusters);
 }
 
 /* Whether block b makes its lists anew, and its rho. */
-ATS_TASK void sc_decide_block(int b, __global const float* motion, int blocks, float r, float r_max,
-                              __global const float* rho0, __global float* rho, __global int* make) {
-  sc_block_decide(b, motion, blocks, r, r_max, rho0, rho, make);
+ATS_TASK void sc_decide_block(int b, __global const float* motion, __global const float* clusters, int blocks, float r,
+                              float r_max, __global const float* rho0, __global float* rho, __global int* make) {
+  sc_block_decide(b, motion, clusters, blocks, r, r_max, rho0, rho, make);
 }
 
 /* Whether any block does (one work-item). */

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -33,6 +34,25 @@ std::size_t motion_blocks(std::size_t n) { return (n + kMotionBlock - 1) / kMoti
 // The blocks of ATS_SC_BLOCK leaves that keep or remake their lists
 // (common/self_contact_lists.h sc_block_decide).
 std::size_t surface_blocks(std::size_t tris) { return (tris + ATS_SC_BLOCK - 1) / ATS_SC_BLOCK; }
+
+std::size_t block_clusters(std::size_t blocks) { return (blocks + ATS_SC_CLUSTER - 1) / ATS_SC_CLUSTER; }
+
+// Per block of leaves its triangles' corners, each once, in ascending order
+// (sc_block_motion): start (blocks + 1) and the vertex ids.
+std::pair<std::vector<std::int32_t>, std::vector<std::int32_t>> block_corners(const SelfContactLayout& s) {
+  std::vector<std::int32_t> start{0}, corners;
+  for (std::size_t first = 0; first < s.tris.size(); first += ATS_SC_BLOCK) {
+    const std::size_t end = std::min(s.tris.size(), first + ATS_SC_BLOCK);
+    std::vector<std::int32_t> block;
+    for (std::size_t t = first; t < end; ++t)
+      for (int k = 0; k < 3; ++k) block.push_back(std::int32_t(s.tris[t][k]));
+    std::sort(block.begin(), block.end());
+    block.erase(std::unique(block.begin(), block.end()), block.end());
+    corners.insert(corners.end(), block.begin(), block.end());
+    start.push_back(std::int32_t(corners.size()));
+  }
+  return {std::move(start), std::move(corners)};
+}
 
 // Per vertex (part 0) or edge (part 4) the block of the leaf that owns it
 // (0 where none does: its lists stay empty).
@@ -117,6 +137,11 @@ SelfContactBuffers add_self_contact_buffers(plan::SubstepPlan& plan, const SimLa
   b.moved_blocks = plan.add_buffer("sc_moved_blocks", BufferRole::scratch, zeros(motion_blocks(n) * 4));
   b.most = plan.add_buffer("sc_most_moved", BufferRole::scratch, zeros(s.enabled ? 4 : 0));
   b.motion = plan.add_buffer("sc_motion", BufferRole::scratch, zeros(blocks * kBlockMotionBytes));
+  const auto [corner_start, corners] =
+      s.enabled ? block_corners(s) : std::pair<std::vector<std::int32_t>, std::vector<std::int32_t>>{};
+  b.corner_start = plan.add_buffer("sc_corner_start", BufferRole::topology, plan::bytes_of(corner_start));
+  b.corners = plan.add_buffer("sc_corners", BufferRole::topology, plan::bytes_of(corners));
+  b.clusters = plan.add_buffer("sc_clusters", BufferRole::scratch, zeros(block_clusters(blocks) * 6 * 4));
   b.colliders = colliders.records >= 0 || !s.enabled ? colliders : add_collider_buffers(plan, layout);
   b.vt_d = plan.add_buffer("sc_vt_d", BufferRole::scratch, zeros(n * kListInts * 4));
   b.tv_d = plan.add_buffer("sc_tv_d", BufferRole::scratch, zeros(s.tris.size() * kListInts * 4));
@@ -155,15 +180,21 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
                           {"sc_motion",
                            {0, blocks},
                            {Arg::of_buffer(b.x_det), Arg::of_buffer(start), Arg::of_buffer(positions),
-                            Arg::of_buffer(b.tris), Arg::of_int(tris), Arg::of_buffer(b.motion)},
+                            Arg::of_buffer(b.corner_start), Arg::of_buffer(b.corners), Arg::of_buffer(b.motion)},
                            {WriteSpan::per_element(b.motion, kBlockMotionBytes)}});
-  last = plan.add_task_after(
-      motion, detect("detect/decide_blocks"),
-      {"sc_decide_block",
-       {0, blocks},
-       {Arg::of_buffer(b.motion), Arg::of_int(blocks), Arg::of_float(s.thickness), Arg::of_float(s.query_radius),
-        Arg::of_buffer(b.block_rho0), Arg::of_buffer(b.block_rho), Arg::of_buffer(b.block_make)},
-       {WriteSpan::per_element(b.block_rho, 4), WriteSpan::per_element(b.block_make, 4)}});
+  const int clusters = static_cast<int>(block_clusters(std::size_t(blocks)));
+  last = plan.add_task_after(motion, detect("detect/clusters"),
+                             {"sc_clusters",
+                              {0, clusters},
+                              {Arg::of_buffer(b.motion), Arg::of_int(blocks), Arg::of_buffer(b.clusters)},
+                              {WriteSpan::per_element(b.clusters, 6 * 4)}});
+  last = plan.add_task_after(last, detect("detect/decide_blocks"),
+                             {"sc_decide_block",
+                              {0, blocks},
+                              {Arg::of_buffer(b.motion), Arg::of_buffer(b.clusters), Arg::of_int(blocks),
+                               Arg::of_float(s.thickness), Arg::of_float(s.query_radius), Arg::of_buffer(b.block_rho0),
+                               Arg::of_buffer(b.block_rho), Arg::of_buffer(b.block_make)},
+                              {WriteSpan::per_element(b.block_rho, 4), WriteSpan::per_element(b.block_make, 4)}});
   last = plan.add_task_after(last, detect("detect/decide_any"),
                              {"sc_decide_blocks",
                               {0, 1},

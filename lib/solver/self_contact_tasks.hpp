@@ -20,6 +20,8 @@ struct SelfContactBuffers {
   plan::BufferId tris = -1, edges = -1, leaves = -1, nodes = -1, levels = -1, incidence = -1, vt = -1, tv = -1, ee = -1,
                  bound = -1, x_out = -1,  // x_out: friction's scratch copy
       motion = -1,  // per block of leaves the boxes of x_t, of the displacements since x_det and of the predicted steps
+      corner_start = -1, corners = -1,  // per block of leaves its triangles' corners, each once (CSR)
+      clusters = -1,                    // per cluster of blocks the box of their x_t boxes
       x_det = -1, state = -1,  // where the blocks last took stock; the lists' state (common/self_contact_lists.h)
       block_rho0 = -1, block_rho = -1,                 // per block of leaves its rho at x_det and in this substep
       block_make = -1,                                 // per block whether it makes its lists in this substep

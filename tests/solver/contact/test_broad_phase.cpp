@@ -126,9 +126,10 @@ TEST_CASE("a block's motion is the box of its triangles' corners, their displace
   start[4].z += 0.9f;
   guess = start;
   guess[2].z += 0.0004f;  // the predicted steps: (0, 0, 0.4) mm
-  const std::vector<int> tris{0, 1, 2, -1, 1, 3, 2, -1};
+  // The block's corners, each once: triangles (0, 1, 2) and (1, 3, 2).
+  const std::vector<int> corner_start{0, 4}, corners{0, 1, 2, 3};
   std::vector<float> out(ATS_SC_BLOCK_FLOATS);
-  sc_block_motion(0, prev.data(), start.data(), guess.data(), tris.data(), 2, out.data());
+  sc_block_motion(0, prev.data(), start.data(), guess.data(), corner_start.data(), corners.data(), out.data());
   CHECK(out[0] == 0.0f);  // x_t: [0, 1.0003] x [0, 1] x [0, 0]
   CHECK(out[3] == Approx(1.0003));
   CHECK(out[4] == Approx(1.0));
@@ -171,7 +172,10 @@ TEST_CASE(
   const auto decide = [&](const std::vector<BlockMotion>& blocks) {
     const std::vector<float> m = motion_of(blocks);
     const int n = static_cast<int>(blocks.size());
-    for (int b = 0; b < n; ++b) sc_block_decide(b, m.data(), n, r, cap, rho0.data(), rho.data(), make.data());
+    std::vector<float> clusters(6);
+    sc_cluster_box(0, m.data(), n, clusters.data());
+    for (int b = 0; b < n; ++b)
+      sc_block_decide(b, m.data(), clusters.data(), n, r, cap, rho0.data(), rho.data(), make.data());
     sc_decide_any(make.data(), n, cap, rho.data(), rho0.data(), state.data());
     return make;
   };
@@ -236,4 +240,69 @@ TEST_CASE(
   CHECK(rho0[0] == Approx(0.0022).epsilon(1e-3));
   CHECK(state[4] == 5);  // substeps that made lists
   CHECK(state[5] == 9);  // blocks' lists made: 3 + 1 + 2 + 2 + 1
+}
+
+TEST_CASE(
+    "the decision passed over clusters of blocks far away is the decision of every block against every block, bit "
+    "for bit",
+    "[solver][contact][broad_phase]") {
+  // 200 blocks (7 clusters, the last short) scattered over a 0.3 m cube in
+  // patches, with random displacements of up to 0.3 mm and steps; against a
+  // plain loop over every pair of blocks, written here after
+  // self_contact_lists.h's rule (rho = rho0 - 1.001 e over the blocks whose
+  // x_t box is within 1.001 rho0; make where rho < the radius needed).
+  const int n = 200;
+  const float r = 0.001f, cap = 0.003f;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> where(0.0f, 0.3f), size(0.0f, 0.02f), move(-0.0003f, 0.0003f);
+  std::vector<BlockMotion> blocks(n);
+  for (BlockMotion& m : blocks) {
+    m.lo = ats_v3(where(rng), where(rng), where(rng));
+    m.hi = ats_add(m.lo, ats_v3(size(rng), size(rng), size(rng)));
+    m.moved_lo = ats_v3(move(rng), move(rng), move(rng));
+    m.moved_hi = ats_add(m.moved_lo, ats_v3(0.01f * size(rng), 0.01f * size(rng), 0.01f * size(rng)));
+    m.step_lo = ats_scale(m.moved_lo, 0.1f);
+    m.step_hi = ats_scale(m.moved_hi, 0.1f);
+  }
+  const std::vector<float> m = motion_of(blocks);
+  std::vector<float> clusters(6 * ((n + ATS_SC_CLUSTER - 1) / ATS_SC_CLUSTER));
+  for (int k = 0; k * ATS_SC_CLUSTER < n; ++k) sc_cluster_box(k, m.data(), n, clusters.data());
+  // Cluster 6 holds blocks 192..199: its box is theirs.
+  float lo_x = 1e30f;
+  for (int c = 192; c < n; ++c) lo_x = std::min(lo_x, m[ATS_SC_BLOCK_FLOATS * c]);
+  CHECK(clusters[36] == lo_x);
+  std::vector<float> rho0(n), rho(n);
+  std::vector<int> make(n);
+  for (int b = 0; b < n; ++b) rho0[b] = b % 10 == 0 ? 0.0f : cap * (0.5f + 0.5f * float(b % 7) / 6.0f);
+  for (int b = 0; b < n; ++b)
+    sc_block_decide(b, m.data(), clusters.data(), n, r, cap, rho0.data(), rho.data(), make.data());
+  int kept = 0, skipped_some = 0;
+  for (int a = 0; a < n; ++a) {
+    const BlockMotion& A = blocks[a];
+    const sc_box at{A.lo, A.hi}, moved{A.moved_lo, A.moved_hi}, step{A.step_lo, A.step_hi};
+    bool want_make = !(rho0[a] > 0.0f);
+    float want_rho = cap;
+    if (!want_make) {
+      float e = 0.0f, spread = 0.0f;
+      int near = 0;
+      for (int c = 0; c < n; ++c) {
+        const BlockMotion& C = blocks[c];
+        if (!(sc_boxes_gap(at, sc_box{C.lo, C.hi}) <= 1.001f * rho0[a])) continue;
+        ++near;
+        e = std::max(e, sc_boxes_most_apart(moved, sc_box{C.moved_lo, C.moved_hi}));
+        spread = std::max(spread, sc_boxes_most_apart(step, sc_box{C.step_lo, C.step_hi}));
+      }
+      skipped_some += near < n;
+      const float now = rho0[a] - 1.001f * e;
+      want_make = !(now >= sc_needed_radius(0.5f * spread, r, cap));
+      if (!want_make) want_rho = now;
+    }
+    CHECK(make[a] == int(want_make));
+    CHECK(rho[a] == want_rho);
+    kept += !want_make;
+  }
+  // Both outcomes occur, and blocks far apart are passed over.
+  CHECK(kept > 10);
+  CHECK(kept < n - 10);
+  CHECK(skipped_some > 100);
 }
