@@ -9,9 +9,11 @@
 #include "app/commands.hpp"
 #include "io/h5_errors.hpp"
 #include "util/error.hpp"
+#include "util/freed_memory.hpp"
 
 int main(int argc, char** argv) {
   atssim::io::init_hdf5_for_command_line();
+  atssim::util::keep_freed_memory();  // (a refusal only costs speed)
   std::string command_line;
   for (int i = 0; i < argc; ++i) command_line += (i ? " " : "") + std::string(argv[i]);
 

@@ -3,7 +3,7 @@
 // crossing check) on the folded, crumpled sheet of the broad-phase
 // benchmark (broad_phase/crumpled_sheet.hpp), on 1 and on N TBB threads.
 //
-//   bench_surface_contacts [--sizes 64,128,256] [--threads 1,2] [--rounds 5]
+//   bench_surface_contacts [--sizes 64,128,256] [--threads 1,2] [--rounds 5] [--both-memory]
 //
 // Prints per size and thread count the median wall ms of one measure() call
 // (the float state as the run hands it over), the median process CPU ms
@@ -20,6 +20,7 @@
 
 #include "broad_phase/crumpled_sheet.hpp"
 #include "solver/contact/surface_contacts.hpp"
+#include "util/freed_memory.hpp"
 
 using namespace atssim;
 using Clock = std::chrono::steady_clock;
@@ -40,30 +41,37 @@ int main(int argc, char** argv) {
   cli.add_option("--sizes", sizes, "grid vertices per side")->delimiter(',');
   cli.add_option("--threads", threads, "TBB thread counts")->delimiter(',');
   cli.add_option("--rounds", rounds, "timed calls per case (median)")->check(CLI::PositiveNumber);
+  bool both = false;
+  cli.add_flag("--both-memory", both,
+               "every case with glibc's default handling of freed memory first, then kept as atssim run keeps it "
+               "(util/freed_memory.hpp; it cannot be undone, so that order)");
   CLI11_PARSE(cli, argc, argv);
-  fmt::print("{:>8} {:>7} {:>9} {:>9} {:>9} {:>9} {:>11}\n", "vertices", "threads", "wall_ms", "cpu_ms", "pairs",
-             "crossings", "depth_m");
-  for (int n : sizes) {
-    const model::Model m = bench::crumpled_sheet(n);
-    std::vector<float> xyz;
-    for (const auto& p : m.particles.position) {
-      for (int k = 0; k < 3; ++k) xyz.push_back(static_cast<float>(p[k]));
-    }
-    const solver::SurfaceContactCheck check(m.contact_surface->triangles, m.contact_surface->thickness);
-    for (int t : threads) {
-      tbb::task_arena arena(t);
-      std::vector<double> ms, cpu;
-      solver::SurfaceContacts found;
-      for (int r = 0; r < rounds + 1; ++r) {
-        const auto start = Clock::now();
-        const std::clock_t cpu_start = std::clock();
-        arena.execute([&] { found = check.measure(xyz); });
-        if (r == 0) continue;  // warm-up
-        ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
-        cpu.push_back(1000.0 * double(std::clock() - cpu_start) / CLOCKS_PER_SEC);
+  fmt::print("{:>8} {:>7} {:>9} {:>9} {:>9} {:>9} {:>11} {:>8}\n", "vertices", "threads", "wall_ms", "cpu_ms", "pairs",
+             "crossings", "depth_m", "memory");
+  for (const bool kept : both ? std::vector<bool>{false, true} : std::vector<bool>{true}) {
+    if (kept && !util::keep_freed_memory()) fmt::print("(the C library refused to keep freed memory)\n");
+    for (int n : sizes) {
+      const model::Model m = bench::crumpled_sheet(n);
+      std::vector<float> xyz;
+      for (const auto& p : m.particles.position) {
+        for (int k = 0; k < 3; ++k) xyz.push_back(static_cast<float>(p[k]));
       }
-      fmt::print("{:>8} {:>7} {:>9.1f} {:>9.1f} {:>9} {:>9} {:>11.3g}\n", n * n, t, median(ms), median(cpu),
-                 found.pairs(), found.crossings, found.max_penetration);
+      const solver::SurfaceContactCheck check(m.contact_surface->triangles, m.contact_surface->thickness);
+      for (int t : threads) {
+        tbb::task_arena arena(t);
+        std::vector<double> ms, cpu;
+        solver::SurfaceContacts found;
+        for (int r = 0; r < rounds + 1; ++r) {
+          const auto start = Clock::now();
+          const std::clock_t cpu_start = std::clock();
+          arena.execute([&] { found = check.measure(xyz); });
+          if (r == 0) continue;  // warm-up
+          ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+          cpu.push_back(1000.0 * double(std::clock() - cpu_start) / CLOCKS_PER_SEC);
+        }
+        fmt::print("{:>8} {:>7} {:>9.1f} {:>9.1f} {:>9} {:>9} {:>11.3g} {:>8}\n", n * n, t, median(ms), median(cpu),
+                   found.pairs(), found.crossings, found.max_penetration, kept ? "kept" : "default");
+      }
     }
   }
   return 0;

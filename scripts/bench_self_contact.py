@@ -17,7 +17,7 @@ surface record, /contact/surface_*) comes after it and before the next
 frame, so the last column, (frame + host) on over off, is what a frame of
 wall time costs.
 
-usage: scripts/bench_self_contact.py [--sizes 128,256] [--frames 4] [--skip 2] [--methods vbd,xpbd]
+usage: scripts/bench_self_contact.py [--sizes 128,256] [--frames 4] [--skip 2] [--methods vbd,xpbd] [--rounds 1]
                                      [--query-radius K]   (contact.query_radius = K thicknesses; unset: 3)
                                      [--bin PATH]         (the atssim binary; default build/release/atssim)
 Build first (cmake --build --preset release). Prints one Markdown table.
@@ -113,6 +113,8 @@ def main() -> int:
     ap.add_argument("--iterations", type=int, default=4)
     ap.add_argument("--methods", default="vbd,xpbd")
     ap.add_argument("--devices", default="cpu")
+    ap.add_argument("--rounds", type=int, default=1,
+                    help="off/on pairs per size, alternated; the median ratio is printed with its range")
     ap.add_argument("--query-radius", type=float, default=None,
                     help="contact.query_radius in thicknesses (unset: the scene default, 3)")
     ap.add_argument("--bin", default=BIN,
@@ -133,13 +135,29 @@ def main() -> int:
         for method in args.methods.split(","):
             points = []
             for n in sizes:
-                off, host_off, _, _, _ = run(tmp, n, method, False, args)
-                on, host_on, contact, substep, by_name = run(tmp, n, method, True, args)
+                # Off and on alternated, round by round, in turn first; each
+                # round's ratio from its own pair, their median printed with
+                # their range (a noisy VM moves single runs by 30 %).
+                rounds = []
+                for r in range(args.rounds):
+                    pair = {}
+                    for self_on in ((False, True) if r % 2 == 0 else (True, False)):
+                        pair[self_on] = run(tmp, n, method, self_on, args)
+                    rounds.append(pair)
+                med = lambda xs: float(np.median(xs))
+                off = med([p[False][0] for p in rounds])
+                host_off = med([p[False][1] for p in rounds])
+                on = med([p[True][0] for p in rounds])
+                host_on = med([p[True][1] for p in rounds])
+                ratios = [p[True][0] / p[False][0] for p in rounds]
+                ratios_host = [(p[True][0] + p[True][1]) / (p[False][0] + p[False][1]) for p in rounds]
+                _, _, contact, substep, by_name = rounds[-1][True]
                 breakdown.append((method, n * n, by_name))
                 points.append((n * n, on - off))
-                print(f"| {method} | {n * n} | {off:.1f} | {on:.1f} | {on / off:.2f} | {on - off:.2f} | "
-                      f"{100 * contact / substep:.0f} % | {host_off:.1f} | {host_on:.1f} | "
-                      f"{(on + host_on) / (off + host_off):.2f} |", flush=True)
+                spread = lambda xs: f" ({min(xs):.2f}–{max(xs):.2f})" if len(xs) > 1 else ""
+                print(f"| {method} | {n * n} | {off:.1f} | {on:.1f} | {med(ratios):.2f}{spread(ratios)} | "
+                      f"{on - off:.2f} | {100 * contact / substep:.0f} % | {host_off:.1f} | {host_on:.1f} | "
+                      f"{med(ratios_host):.2f}{spread(ratios_host)} |", flush=True)
                 if method in ("xpbd", "vbd") and os.path.exists(NATIVE):
                     print(f"| native {method} (host reference, 2 threads, no contact) | {n * n} | "
                           f"{native_ms(tmp, n, method, args):.1f} | – | – | – | – | – | – | – |", flush=True)
@@ -147,6 +165,9 @@ def main() -> int:
                 (v0, c0), (v1, c1) = points[0], points[-1]
                 print(f"| {method} | log-log slope of the contact time, {v0} → {v1} vertices: "
                       f"{math.log(c1 / c0) / math.log(v1 / v0):.2f} | | | | | |", flush=True)
+            elif len(points) >= 2:
+                print(f"| {method} | no slope: a contact time (on - off) is not positive, the noise is larger "
+                      f"than it; use more --rounds | | | | | |", flush=True)
     print("\nThe last substep's four largest contact tasks by name (ms, times the substeps):\n")
     print("| method | vertices | tasks |")
     print("|---|---|---|")
