@@ -343,12 +343,15 @@ sched::TaskId add_self_contact_clamp(plan::SubstepPlan& plan, sched::TaskId last
                                      int iteration, plan::BufferId moved) {
   if (!layout.self_contact.enabled) return last;
   const int n = static_cast<int>(layout.x.size());
-  std::vector<Arg> args =
-      with_colliders({Arg::of_buffer(positions), Arg::of_buffer(start), Arg::of_buffer(b.bound)}, layout, b.colliders);
+  // With `moved` (XPBD, whose iteration ends with its collider task): not
+  // out of the colliders here (contact/self_contact.cl sc_clamp_moved).
+  std::vector<Arg> args{Arg::of_buffer(positions), Arg::of_buffer(start), Arg::of_buffer(b.bound)};
   std::vector<WriteSpan> writes{particle_write(positions)};
   if (moved >= 0) {
     args.push_back(Arg::of_buffer(moved));
     writes.push_back(WriteSpan::per_element(moved, 4));
+  } else {
+    args = with_colliders(std::move(args), layout, b.colliders);
   }
   return plan.add_task_after(
       last,

@@ -58,9 +58,11 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
 std::vector<plan::KernelArg> self_contact_args(const SimLayout& layout, const SelfContactBuffers& b, double inertia_h);
 
 // After `last`: `positions` held within each vertex's bound of `start`
-// (JPGD and SOSD after each iteration; XPBD before its projection, which
-// passes `moved` to have each vertex's distance from `start` measured in the
-// same pass). Returns the new last task, or `last`.
+// and put back out of the colliders (JPGD and SOSD after each iteration;
+// XPBD before its projection, which passes `moved` to have each vertex's
+// distance from `start` measured in the same pass, and whose iteration
+// ends with the colliders' task: no colliders then). Returns the new last
+// task, or `last`.
 sched::TaskId add_self_contact_clamp(plan::SubstepPlan& plan, sched::TaskId last, const SimLayout& layout,
                                      const SelfContactBuffers& b, plan::BufferId start, plan::BufferId positions,
                                      int iteration, plan::BufferId moved = -1);
