@@ -230,11 +230,14 @@ struct PlanExecutor::Impl {
   // Into `state`'s storage where it has the sizes already (a frame's state
   // read into the last one's: no fresh pages for a large carried state).
   void read_state(plan::PlanState& state) {
-    state.positions.clear();
-    read_into(plan.buffer(plan::BufferRole::positions), state.positions, 0);
-    state.velocities.clear();
-    if (const plan::BufferId v = plan.find_buffer(plan::BufferRole::velocities); v >= 0)
-      read_into(v, state.velocities, 0);
+    // Sized exactly first (a no-op for the last frame's state: clearing
+    // and growing it would zero every byte again).
+    const plan::BufferId x = plan.buffer(plan::BufferRole::positions);
+    state.positions.resize(resources.sizes.at(x));
+    read_into(x, state.positions, 0);
+    const plan::BufferId v = plan.find_buffer(plan::BufferRole::velocities);
+    state.velocities.resize(v >= 0 ? resources.sizes.at(v) : 0);
+    if (v >= 0) read_into(v, state.velocities, 0);
     state.carried.resize(carried_bytes());
     std::size_t at = 0;
     for (const auto& [id, initial] : carried) {
