@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 namespace atssim::solver {
 
@@ -38,16 +39,21 @@ std::int32_t BoxGrid::coordinate(double v) const {
   return static_cast<std::int32_t>(std::clamp(std::floor(v * inv_cell_), -1.0e9, 1.0e9));
 }
 
-BoxGrid::BoxGrid(std::vector<Box> boxes) : boxes_(std::move(boxes)) {
-  cell_ = cell_side(boxes_);
+BoxGrid::BoxGrid(std::vector<Box> boxes, double margin) : boxes_(std::move(boxes)), margin_(std::max(margin, 0.0)) {
+  const double side = cell_side(boxes_);
+  // A little over: a box's reach then stays strictly inside the 27 cells
+  // of for_each_near, rounding of the cell coordinates included.
+  cell_ = (side + 2.0 * margin_) * (1.0 + 0x1p-20);
   inv_cell_ = 1.0 / cell_;
   const int n = size();
   std::vector<Entry> entry(n);
   for (int i = 0; i < n; ++i) {
     const Box& b = boxes_[i];
     if (!finite(b)) continue;
-    if (b.sizes().maxCoeff() > cell_) {
+    if (b.sizes().maxCoeff() > side) {
       large_.push_back(i);
+      large_bounds_.push_back({rounded(b.min()[0], true), rounded(b.min()[1], true), rounded(b.min()[2], true),
+                               rounded(b.max()[0], false), rounded(b.max()[1], false), rounded(b.max()[2], false)});
       continue;
     }
     gridded_.push_back(i);
@@ -69,6 +75,16 @@ BoxGrid::BoxGrid(std::vector<Box> boxes) : boxes_(std::move(boxes)) {
   entries_.resize(gridded_.size());
   std::vector<int> cursor(start_.begin(), start_.end() - 1);
   for (int i : gridded_) entries_[cursor[bucket(entry[i].cell[0], entry[i].cell[1], entry[i].cell[2])]++] = entry[i];
+  // Within a bucket (ids ascending so far), the cells apart: a cell's boxes
+  // side by side, still ascending.
+  const auto by_cell = [](const Entry& a, const Entry& b) {
+    return std::tie(a.cell[0], a.cell[1], a.cell[2]) < std::tie(b.cell[0], b.cell[1], b.cell[2]);
+  };
+  for (std::uint32_t h = 0; h < table_; ++h)
+    if (start_[h + 1] - start_[h] > 1)
+      std::stable_sort(entries_.begin() + start_[h], entries_.begin() + start_[h + 1], by_cell);
+  slot_.assign(boxes_.size(), -1);
+  for (std::size_t k = 0; k < entries_.size(); ++k) slot_[entries_[k].id] = static_cast<int>(k);
 }
 
 }  // namespace atssim::solver

@@ -11,6 +11,14 @@
 // elsewhere, and every overlapping box is reported once. Boxes longer than
 // the cell (a stretched or blown-up triangle) are kept aside and tested
 // against every query; non-finite boxes are never reported.
+//
+// With a margin m, the cell is m twice longer and the boxes longer than the
+// cell less 2m are kept aside: a query box within m of a gridded box j then
+// meets only boxes whose centres lie in the 27 cells around j's, which
+// for_each_near lists. The boxes of one cell share those 27 cells, so their
+// queries can take one list of candidates (leads, for_each_cellmate): the
+// table is visited once per cell rather than once per box.
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -24,11 +32,26 @@ class BoxGrid {
   static constexpr double kMaxSpread = 4.0;
   static constexpr std::int64_t kMaxQueryCells = 4096;  // beyond: a query scans every box
 
-  explicit BoxGrid(std::vector<Box> boxes);
+  explicit BoxGrid(std::vector<Box> boxes, double margin = 0.0);
 
   // Calls hit(j) once for every box j that overlaps q (borders included).
   template <typename Hit>
   void query(const Box& q, Hit&& hit) const;
+
+  // Whether box j is in the grid (finite, not longer than the cell less 2m).
+  bool gridded(int j) const { return slot_[j] >= 0; }
+  // Whether box j is the first (lowest id) of the boxes in its cell; a box
+  // not in the grid is alone in its.
+  bool leads(int j) const;
+  // Calls f(k) for every box k in box j's cell, j among them, ids ascending.
+  template <typename F>
+  void for_each_cellmate(int j, F&& f) const;
+  // For a gridded box j, calls near(k, lo, hi) for every box k that a query
+  // within the margin of j, or of any box in j's cell, can meet: the gridded
+  // boxes of the 27 cells around j's and the boxes kept aside, with lo and
+  // hi its bounds in float rounded outward (to test before the exact box).
+  template <typename Near>
+  void for_each_near(int j, Near&& near) const;
 
   int size() const { return static_cast<int>(boxes_.size()); }
   const Box& box(int j) const { return boxes_[j]; }
@@ -51,15 +74,58 @@ class BoxGrid {
     return static_cast<std::uint32_t>((std::uint64_t(h) * 0x9E3779B97F4A7C15ull) >> (64 - bits_));
   }
 
-  double cell_ = 1.0, inv_cell_ = 1.0;
   int bits_ = 1;
   std::uint32_t table_ = 2;  // 2^bits_
   std::vector<Box> boxes_;
+  double margin_ = 0.0, cell_ = 1.0, inv_cell_ = 1.0;
   std::vector<int> large_;      // boxes longer than a cell
   std::vector<int> gridded_;    // the other finite ones
   std::vector<int> start_;      // per bucket, its first entry; table_ + 1
-  std::vector<Entry> entries_;  // bucket by bucket
+  std::vector<Entry> entries_;  // bucket by bucket, in a bucket cell by cell, in a cell ids ascending
+  std::vector<int> slot_;       // per box, its entry; -1: not in the grid
+  std::vector<std::array<float, 6>> large_bounds_;  // large_'s bounds in float, rounded outward
+
+  static bool same_cell(const Entry& a, const Entry& b) {
+    return a.cell[0] == b.cell[0] && a.cell[1] == b.cell[1] && a.cell[2] == b.cell[2];
+  }
+  std::uint32_t bucket_of(const Entry& e) const { return bucket(e.cell[0], e.cell[1], e.cell[2]); }
 };
+
+inline bool BoxGrid::leads(int j) const {
+  const int s = slot_[j];
+  if (s < 0) return true;
+  return s == start_[bucket_of(entries_[s])] || !same_cell(entries_[s - 1], entries_[s]);
+}
+
+template <typename F>
+void BoxGrid::for_each_cellmate(int j, F&& f) const {
+  const int s = slot_[j];
+  if (s < 0) {
+    f(j);
+    return;
+  }
+  const std::uint32_t h = bucket_of(entries_[s]);
+  int first = s;
+  while (first > start_[h] && same_cell(entries_[first - 1], entries_[s])) --first;
+  for (int k = first; k < start_[h + 1] && same_cell(entries_[k], entries_[s]); ++k) f(entries_[k].id);
+}
+
+template <typename Near>
+void BoxGrid::for_each_near(int j, Near&& near) const {
+  const Entry& own = entries_[slot_[j]];
+  for (std::int32_t z = own.cell[2] - 1; z <= own.cell[2] + 1; ++z) {
+    for (std::int32_t y = own.cell[1] - 1; y <= own.cell[1] + 1; ++y) {
+      for (std::int32_t x = own.cell[0] - 1; x <= own.cell[0] + 1; ++x) {
+        const std::uint32_t h = bucket(x, y, z);
+        for (int k = start_[h]; k < start_[h + 1]; ++k) {
+          const Entry& e = entries_[k];
+          if (e.cell[0] == x && e.cell[1] == y && e.cell[2] == z) near(e.id, e.lo, e.hi);
+        }
+      }
+    }
+  }
+  for (std::size_t k = 0; k < large_.size(); ++k) near(large_[k], large_bounds_[k].data(), large_bounds_[k].data() + 3);
+}
 
 template <typename Hit>
 void BoxGrid::query(const Box& q, Hit&& hit) const {

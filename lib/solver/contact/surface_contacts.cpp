@@ -69,17 +69,6 @@ bool crosses(const Vector3d& p, const Vector3d& q, const Vector3d& a, const Vect
   return (s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0);
 }
 
-template <typename Body>
-Tally reduce(int count, Body&& body) {
-  return tbb::parallel_reduce(
-      tbb::blocked_range<int>(0, count, 256), Tally{},
-      [&](const tbb::blocked_range<int>& r, Tally t) {
-        for (int i = r.begin(); i != r.end(); ++i) body(i, t);
-        return t;
-      },
-      joined);
-}
-
 }  // namespace
 
 SurfaceContactCheck::SurfaceContactCheck(std::vector<std::array<int, 3>> triangles, double thickness)
@@ -131,61 +120,130 @@ SurfaceContacts SurfaceContactCheck::measure(std::span<const float> xyz) const {
     for (int e : own_edges_[t])
       if (e >= 0 && finite(edge_boxes[e])) tri_boxes[t].extend(edge_boxes[e]);
   }
-  const BoxGrid triangles(std::move(tri_boxes));
-
   // Per triangle u, its owned vertices against every triangle, its owned
   // edges against every edge (each pair once: from the lower edge id) and
-  // against every triangle for a crossing.
-  const Tally all = reduce(static_cast<int>(tris_.size()), [&](int u, Tally& t) {
+  // against every triangle for a crossing: the triangles that overlap u's
+  // query box, what it owns widened by r (within r of u's own box).
+  const BoxGrid triangles(std::move(tri_boxes), r);
+  struct Query {
+    Box box;                  // the finite owned primitives, widened by r
+    std::array<Box, 3> wide;  // each owned edge's box widened by r
+    float lo[3], hi[3];       // box in float, rounded outward
+  };
+  const auto query_of = [&](int u) {
+    Query q;
+    for (int v : own_vertices_[u])
+      if (v >= 0 && x[v].allFinite()) q.box.extend(x[v]);
+    for (int k = 0; k < 3; ++k) {
+      const int e = own_edges_[u][k];
+      if (e < 0) continue;
+      if (finite(edge_boxes[e])) q.box.extend(edge_boxes[e]);
+      q.wide[k] = edge_boxes[e];
+      q.wide[k].min().array() -= r;
+      q.wide[k].max().array() += r;
+    }
+    if (!q.box.isEmpty()) {
+      q.box.min().array() -= r;
+      q.box.max().array() += r;
+      for (int k = 0; k < 3; ++k) {
+        q.lo[k] = std::nextafter(static_cast<float>(q.box.min()[k]), -INFINITY);
+        q.hi[k] = std::nextafter(static_cast<float>(q.box.max()[k]), INFINITY);
+      }
+    }
+    return q;
+  };
+  // Triangle u's owned primitives against triangle o, whose box overlaps u's query.
+  const auto visit = [&](int u, const Query& q, int o, Tally& t) {
     const auto& own_v = own_vertices_[u];
     const auto& own_e = own_edges_[u];
-    Box query;                // the finite owned primitives, widened by r
-    std::array<Box, 3> wide;  // each owned edge's box widened by r
-    for (int v : own_v)
-      if (v >= 0 && x[v].allFinite()) query.extend(x[v]);
+    const auto& f = tris_[o];
+    const Box& ob = triangles.box(o);
+    for (int v : own_v) {
+      if (v < 0 || v == f[0] || v == f[1] || v == f[2] || (ob.squaredExteriorDistance(x[v]) > r * r)) continue;
+      const f64::ats_pair_geometry g = f64::ats_point_triangle(v3(x[v]), v3(x[f[0]]), v3(x[f[1]]), v3(x[f[2]]));
+      const double d = g.d;
+      if (d < r && !sheet_.vertex_triangle(v, f, {g.diff.x, g.diff.y, g.diff.z}, at)) {
+        ++t.vertex_triangle;
+        t.closest = std::min(t.closest, d);
+      }
+    }
     for (int k = 0; k < 3; ++k) {
       const int e = own_e[k];
-      if (e < 0) continue;
-      if (finite(edge_boxes[e])) query.extend(edge_boxes[e]);
-      wide[k] = edge_boxes[e];
-      wide[k].min().array() -= r;
-      wide[k].max().array() += r;
-    }
-    if (query.isEmpty()) return;
-    query.min().array() -= r;
-    query.max().array() += r;
-    triangles.query(query, [&](int o) {
-      const auto& f = tris_[o];
-      const Box& ob = triangles.box(o);
-      for (int v : own_v) {
-        if (v < 0 || v == f[0] || v == f[1] || v == f[2] || (ob.exteriorDistance(x[v]) > r)) continue;
-        const f64::ats_pair_geometry g = f64::ats_point_triangle(v3(x[v]), v3(x[f[0]]), v3(x[f[1]]), v3(x[f[2]]));
+      if (e < 0 || !q.wide[k].intersects(ob)) continue;
+      const auto& a = edges_[e];
+      for (int h : own_edges_[o]) {
+        if (h <= e) continue;  // each pair once
+        const auto& b = edges_[h];
+        if (b[0] == a[0] || b[0] == a[1] || b[1] == a[0] || b[1] == a[1] || !q.wide[k].intersects(edge_boxes[h]))
+          continue;
+        const f64::ats_pair_geometry g = f64::ats_edge_edge(v3(x[a[0]]), v3(x[a[1]]), v3(x[b[0]]), v3(x[b[1]]));
         const double d = g.d;
-        if (d < r && !sheet_.vertex_triangle(v, f, {g.diff.x, g.diff.y, g.diff.z}, at)) {
-          ++t.vertex_triangle;
+        if (d < r && !sheet_.edge_edge(a, b, {g.diff.x, g.diff.y, g.diff.z}, at)) {
+          ++t.edge_edge;
           t.closest = std::min(t.closest, d);
         }
       }
-      for (int k = 0; k < 3; ++k) {
-        const int e = own_e[k];
-        if (e < 0 || !wide[k].intersects(ob)) continue;
-        const auto& a = edges_[e];
-        for (int h : own_edges_[o]) {
-          if (h <= e) continue;  // each pair once
-          const auto& b = edges_[h];
-          if (b[0] == a[0] || b[0] == a[1] || b[1] == a[0] || b[1] == a[1] || !wide[k].intersects(edge_boxes[h]))
+      if (!shares_vertex(a, f) && crosses(x[a[0]], x[a[1]], x[f[0]], x[f[1]], x[f[2]], normal[o])) ++t.crossings;
+    }
+  };
+  // The triangles of one grid cell together: the boxes near their cell
+  // listed once, and each triangle's query tested against that list (it
+  // meets the same triangles as a query of the grid of its own would).
+  const Tally all = tbb::parallel_reduce(
+      tbb::blocked_range<int>(0, static_cast<int>(tris_.size()), 256), Tally{},
+      [&](const tbb::blocked_range<int>& range, Tally t) {
+        struct Candidate {
+          float lo[3], hi[3];
+          int id;
+        };
+        std::vector<int> mates;
+        std::vector<Query> queries;
+        std::vector<Candidate> near;
+        for (int u = range.begin(); u != range.end(); ++u) {
+          if (!triangles.gridded(u)) {  // stretched or not finite: a query of its own
+            const Query q = query_of(u);
+            triangles.query(q.box, [&](int o) {
+              if (o != u) visit(u, q, o, t);
+            });
             continue;
-          const f64::ats_pair_geometry g = f64::ats_edge_edge(v3(x[a[0]]), v3(x[a[1]]), v3(x[b[0]]), v3(x[b[1]]));
-          const double d = g.d;
-          if (d < r && !sheet_.edge_edge(a, b, {g.diff.x, g.diff.y, g.diff.z}, at)) {
-            ++t.edge_edge;
-            t.closest = std::min(t.closest, d);
+          }
+          if (!triangles.leads(u)) continue;  // its cell's first triangle takes it
+          mates.clear();
+          queries.clear();
+          float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+          triangles.for_each_cellmate(u, [&](int m) {
+            const Query& q = queries.emplace_back(query_of(m));
+            if (q.box.isEmpty()) {
+              queries.pop_back();
+              return;
+            }
+            mates.push_back(m);
+            for (int k = 0; k < 3; ++k) {
+              lo[k] = std::min(lo[k], q.lo[k]);
+              hi[k] = std::max(hi[k], q.hi[k]);
+            }
+          });
+          near.clear();
+          triangles.for_each_near(u, [&](int o, const float* olo, const float* ohi) {
+            if (olo[0] > hi[0] || olo[1] > hi[1] || olo[2] > hi[2] || ohi[0] < lo[0] || ohi[1] < lo[1] ||
+                ohi[2] < lo[2])
+              return;
+            near.push_back({{olo[0], olo[1], olo[2]}, {ohi[0], ohi[1], ohi[2]}, o});
+          });
+          for (std::size_t m = 0; m < mates.size(); ++m) {
+            const Query& q = queries[m];
+            for (const Candidate& c : near) {
+              if (c.id == mates[m]) continue;  // its own triangle: every pair shares a vertex
+              if (c.lo[0] > q.hi[0] || c.lo[1] > q.hi[1] || c.lo[2] > q.hi[2] || c.hi[0] < q.lo[0] ||
+                  c.hi[1] < q.lo[1] || c.hi[2] < q.lo[2] || !triangles.box(c.id).intersects(q.box))
+                continue;
+              visit(mates[m], q, c.id, t);
+            }
           }
         }
-        if (!shares_vertex(a, f) && crosses(x[a[0]], x[a[1]], x[f[0]], x[f[1]], x[f[2]], normal[o])) ++t.crossings;
-      }
-    });
-  });
+        return t;
+      },
+      joined);
   out.vertex_triangle = all.vertex_triangle;
   out.edge_edge = all.edge_edge;
   out.crossings = all.crossings;

@@ -9,9 +9,11 @@
 // sheet_neighbours) excluded, through the kernels' narrow phase
 // (common/self_contact.h), and every surface edge against every surface
 // triangle it does not touch, for a crossing. Broad phase: solver/contact/
-// box_grid (a uniform hashed grid rebuilt per call) over the triangles, one
-// query per triangle for the vertices and edges it owns (each is owned by
-// the first triangle that names it), so that a pair is found in one walk.
+// box_grid (a uniform hashed grid rebuilt per call, its cell widened by the
+// thickness) over the triangles, one query per triangle for the vertices
+// and edges it owns (each is owned by the first triangle that names it), so
+// that a pair is found in one walk; the triangles of one cell take their
+// candidates from one list of the triangles near that cell.
 #include <array>
 #include <span>
 #include <vector>

@@ -4,6 +4,7 @@
 // non-finite boxes among them.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -76,4 +77,43 @@ TEST_CASE("the box grid holds boxes that all hash into one cell and boxes of zer
   for (int i = 0; i < 100; ++i) points.emplace_back(Eigen::Vector3d(0.01 * i, 0, 0), Eigen::Vector3d(0.01 * i, 0, 0));
   const BoxGrid point_grid(points);
   for (const Box& q : points) check_query(point_grid, points, q);
+}
+
+TEST_CASE("with a margin, the boxes near a box's cell hold every box that a query within the margin meets",
+          "[contact][box_grid]") {
+  // Random boxes, stretched and non-finite ones among them; every query is
+  // a gridded box widened by the margin, or a box inside that.
+  std::vector<Box> boxes = random_boxes(3000, 5);
+  boxes.emplace_back(Eigen::Vector3d(-1, -0.1, -1), Eigen::Vector3d(1, 0.1, 1));  // kept aside
+  boxes.emplace_back(Eigen::Vector3d(NAN, 0, 0), Eigen::Vector3d(0, 0, 0));       // never listed
+  const double margin = 0.02;
+  const BoxGrid grid(boxes, margin);
+  std::vector<int> led(boxes.size(), 0);
+  int gridded = 0;
+  for (std::size_t j = 0; j < boxes.size(); ++j) {
+    const int id = static_cast<int>(j);
+    if (grid.leads(id)) grid.for_each_cellmate(id, [&](int k) { ++led[k]; });
+    if (!grid.gridded(id)) continue;
+    ++gridded;
+    std::vector<int> near(boxes.size(), 0);
+    bool bounds_hold = true;
+    grid.for_each_near(id, [&](int k, const float* lo, const float* hi) {
+      ++near[k];
+      for (int a = 0; a < 3; ++a) bounds_hold = bounds_hold && lo[a] <= boxes[k].min()[a] && hi[a] >= boxes[k].max()[a];
+    });
+    CHECK(bounds_hold);
+    Box q = boxes[j];
+    q.min().array() -= margin;
+    q.max().array() += margin;
+    int missed = 0, twice = 0;
+    for (std::size_t k = 0; k < boxes.size(); ++k) {
+      twice += near[k] > 1;
+      if (finite(boxes[k]) && boxes[k].intersects(q) && near[k] == 0) ++missed;
+    }
+    CHECK(missed == 0);
+    CHECK(twice == 0);
+  }
+  CHECK(gridded == 3000);  // the stretched box and the NaN one are not in the grid
+  // Every box is in exactly one cell's group (each box out of the grid alone in its).
+  CHECK(std::count(led.begin(), led.end(), 1) == static_cast<long>(boxes.size()));
 }
