@@ -6,7 +6,8 @@ on and off side by side. Per size: frame time on and off, their ratio, the
 contact time per frame (on - off: detection, XPBD's projections, the
 contact energy inside VBD's and JPGD's vertex solves, which is no task of
 its own), and the share of the last recorded substep the contact tasks
-took; then the log-log slope of the contact time over the sizes. The last
+took; then the log-log slope of the contact time over the sizes (each
+round's own on - off, the median of those). The last
 substep is a frame's last, which often keeps the pair lists (detection
 rebuilds them when the motion since they were made outgrows them; they are
 kept across frames), so its breakdown by task shows a kept substep; a
@@ -153,10 +154,13 @@ def main() -> int:
                 ratios_host = [(p[True][0] + p[True][1]) / (p[False][0] + p[False][1]) for p in rounds]
                 _, _, contact, substep, by_name = rounds[-1][True]
                 breakdown.append((method, n * n, by_name))
-                points.append((n * n, on - off))
+                # The contact time from each round's own pair (on - off),
+                # then the median: a sitting's drift cancels within a pair.
+                paired = med([p[True][0] - p[False][0] for p in rounds])
+                points.append((n * n, paired))
                 spread = lambda xs: f" ({min(xs):.2f}–{max(xs):.2f})" if len(xs) > 1 else ""
                 print(f"| {method} | {n * n} | {off:.1f} | {on:.1f} | {med(ratios):.2f}{spread(ratios)} | "
-                      f"{on - off:.2f} | {100 * contact / substep:.0f} % | {host_off:.1f} | {host_on:.1f} | "
+                      f"{paired:.2f} | {100 * contact / substep:.0f} % | {host_off:.1f} | {host_on:.1f} | "
                       f"{med(ratios_host):.2f}{spread(ratios_host)} |", flush=True)
                 if method in ("xpbd", "vbd") and os.path.exists(NATIVE):
                     print(f"| native {method} (host reference, 2 threads, no contact) | {n * n} | "
