@@ -75,14 +75,14 @@ BoxGrid::BoxGrid(std::vector<Box> boxes, double margin) : boxes_(std::move(boxes
   entries_.resize(gridded_.size());
   std::vector<int> cursor(start_.begin(), start_.end() - 1);
   for (int i : gridded_) entries_[cursor[bucket(entry[i].cell[0], entry[i].cell[1], entry[i].cell[2])]++] = entry[i];
-  // Within a bucket (ids ascending so far), the cells apart: a cell's boxes
-  // side by side, still ascending.
+  // Within a bucket, the cells apart: a cell's boxes side by side, ids
+  // ascending.
   const auto by_cell = [](const Entry& a, const Entry& b) {
-    return std::tie(a.cell[0], a.cell[1], a.cell[2]) < std::tie(b.cell[0], b.cell[1], b.cell[2]);
+    return std::tie(a.cell[0], a.cell[1], a.cell[2], a.id) < std::tie(b.cell[0], b.cell[1], b.cell[2], b.id);
   };
   for (std::uint32_t h = 0; h < table_; ++h)
     if (start_[h + 1] - start_[h] > 1)
-      std::stable_sort(entries_.begin() + start_[h], entries_.begin() + start_[h + 1], by_cell);
+      std::sort(entries_.begin() + start_[h], entries_.begin() + start_[h + 1], by_cell);
   slot_.assign(boxes_.size(), -1);
   for (std::size_t k = 0; k < entries_.size(); ++k) slot_[entries_[k].id] = static_cast<int>(k);
 }

@@ -12,8 +12,8 @@
 // the cell (a stretched or blown-up triangle) are kept aside and tested
 // against every query; non-finite boxes are never reported.
 //
-// With a margin m, the cell is m twice longer and the boxes longer than the
-// cell less 2m are kept aside: a query box within m of a gridded box j then
+// With a margin m, the cell is 2m longer and the boxes longer than the cell
+// less 2m are kept aside: a query box within m of a gridded box j then
 // meets only boxes whose centres lie in the 27 cells around j's, which
 // for_each_near lists. The boxes of one cell share those 27 cells, so their
 // queries can take one list of candidates (leads, for_each_cellmate): the
@@ -78,7 +78,7 @@ class BoxGrid {
   std::uint32_t table_ = 2;  // 2^bits_
   std::vector<Box> boxes_;
   double margin_ = 0.0, cell_ = 1.0, inv_cell_ = 1.0;
-  std::vector<int> large_;      // boxes longer than a cell
+  std::vector<int> large_;      // boxes longer than the cell less 2m
   std::vector<int> gridded_;    // the other finite ones
   std::vector<int> start_;      // per bucket, its first entry; table_ + 1
   std::vector<Entry> entries_;  // bucket by bucket, in a bucket cell by cell, in a cell ids ascending
