@@ -34,6 +34,15 @@ double cell_side(const std::vector<BoxGrid::Box>& boxes) {
 
 }  // namespace
 
+BoxGrid::FloatBox BoxGrid::FloatBox::outward(const Box& b) {
+  FloatBox f;
+  for (int k = 0; k < 3; ++k) {
+    f.lo[k] = rounded(b.min()[k], true);
+    f.hi[k] = rounded(b.max()[k], false);
+  }
+  return f;
+}
+
 // A cell coordinate, clamped so that a far box still has one.
 std::int32_t BoxGrid::coordinate(double v) const {
   return static_cast<std::int32_t>(std::clamp(std::floor(v * inv_cell_), -1.0e9, 1.0e9));
@@ -52,8 +61,7 @@ BoxGrid::BoxGrid(std::vector<Box> boxes, double margin) : boxes_(std::move(boxes
     if (!finite(b)) continue;
     if (b.sizes().maxCoeff() > side) {
       large_.push_back(i);
-      large_bounds_.push_back({rounded(b.min()[0], true), rounded(b.min()[1], true), rounded(b.min()[2], true),
-                               rounded(b.max()[0], false), rounded(b.max()[1], false), rounded(b.max()[2], false)});
+      large_bounds_.push_back(FloatBox::outward(b));
       continue;
     }
     gridded_.push_back(i);
@@ -61,9 +69,8 @@ BoxGrid::BoxGrid(std::vector<Box> boxes, double margin) : boxes_(std::move(boxes
     const Eigen::Vector3d centre = b.center();
     for (int k = 0; k < 3; ++k) {
       e.cell[k] = coordinate(centre[k]);
-      e.lo[k] = rounded(b.min()[k], true);
-      e.hi[k] = rounded(b.max()[k], false);
     }
+    e.bounds = FloatBox::outward(b);
     e.id = i;
   }
   bits_ = 1;

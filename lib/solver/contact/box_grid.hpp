@@ -18,7 +18,6 @@
 // for_each_near lists. The boxes of one cell share those 27 cells, so their
 // queries can take one list of candidates (leads, for_each_cellmate): the
 // table is visited once per cell rather than once per box.
-#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -31,6 +30,17 @@ class BoxGrid {
   using Box = Eigen::AlignedBox3d;
   static constexpr double kMaxSpread = 4.0;
   static constexpr std::int64_t kMaxQueryCells = 4096;  // beyond: a query scans every box
+
+  // A box's bounds in float, rounded outward (it holds the exact box): a
+  // first cut before the exact test.
+  struct FloatBox {
+    float lo[3], hi[3];
+    static FloatBox outward(const Box& b);
+    bool overlaps(const FloatBox& o) const {
+      return !(lo[0] > o.hi[0] || lo[1] > o.hi[1] || lo[2] > o.hi[2] || hi[0] < o.lo[0] || hi[1] < o.lo[1] ||
+               hi[2] < o.lo[2]);
+    }
+  };
 
   explicit BoxGrid(std::vector<Box> boxes, double margin = 0.0);
 
@@ -46,10 +56,10 @@ class BoxGrid {
   // Calls f(k) for every box k in box j's cell, j among them, ids ascending.
   template <typename F>
   void for_each_cellmate(int j, F&& f) const;
-  // For a gridded box j, calls near(k, lo, hi) for every box k that a query
+  // For a gridded box j, calls near(k, bounds) for every box k that a query
   // within the margin of j, or of any box in j's cell, can meet: the gridded
-  // boxes of the 27 cells around j's and the boxes kept aside, with lo and
-  // hi its bounds in float rounded outward (to test before the exact box).
+  // boxes of the 27 cells around j's and the boxes kept aside, with k's
+  // FloatBox.
   template <typename Near>
   void for_each_near(int j, Near&& near) const;
 
@@ -58,11 +68,10 @@ class BoxGrid {
   double cell() const { return cell_; }
 
  private:
-  // A box in a bucket: its cell, its bounds in float rounded outward (a
-  // first cut before the exact test) and its id.
+  // A box in a bucket: its cell, its FloatBox and its id.
   struct Entry {
     std::int32_t cell[3];
-    float lo[3], hi[3];
+    FloatBox bounds;
     int id;
   };
   std::int32_t coordinate(double v) const;
@@ -78,12 +87,12 @@ class BoxGrid {
   std::uint32_t table_ = 2;  // 2^bits_
   std::vector<Box> boxes_;
   double margin_ = 0.0, cell_ = 1.0, inv_cell_ = 1.0;
-  std::vector<int> large_;      // boxes longer than the cell less 2m
-  std::vector<int> gridded_;    // the other finite ones
-  std::vector<int> start_;      // per bucket, its first entry; table_ + 1
-  std::vector<Entry> entries_;  // bucket by bucket, in a bucket cell by cell, in a cell ids ascending
-  std::vector<int> slot_;       // per box, its entry; -1: not in the grid
-  std::vector<std::array<float, 6>> large_bounds_;  // large_'s bounds in float, rounded outward
+  std::vector<int> large_;              // boxes longer than the cell less 2m
+  std::vector<int> gridded_;            // the other finite ones
+  std::vector<int> start_;              // per bucket, its first entry; table_ + 1
+  std::vector<Entry> entries_;          // bucket by bucket, in a bucket cell by cell, in a cell ids ascending
+  std::vector<int> slot_;               // per box, its entry; -1: not in the grid
+  std::vector<FloatBox> large_bounds_;  // large_'s
 
   static bool same_cell(const Entry& a, const Entry& b) {
     return a.cell[0] == b.cell[0] && a.cell[1] == b.cell[1] && a.cell[2] == b.cell[2];
@@ -119,12 +128,12 @@ void BoxGrid::for_each_near(int j, Near&& near) const {
         const std::uint32_t h = bucket(x, y, z);
         for (int k = start_[h]; k < start_[h + 1]; ++k) {
           const Entry& e = entries_[k];
-          if (e.cell[0] == x && e.cell[1] == y && e.cell[2] == z) near(e.id, e.lo, e.hi);
+          if (e.cell[0] == x && e.cell[1] == y && e.cell[2] == z) near(e.id, e.bounds);
         }
       }
     }
   }
-  for (std::size_t k = 0; k < large_.size(); ++k) near(large_[k], large_bounds_[k].data(), large_bounds_[k].data() + 3);
+  for (std::size_t k = 0; k < large_.size(); ++k) near(large_[k], large_bounds_[k]);
 }
 
 template <typename Hit>
@@ -141,8 +150,7 @@ void BoxGrid::query(const Box& q, Hit&& hit) const {
     for (int j : gridded_)
       if (boxes_[j].intersects(q)) hit(j);
   } else {
-    const float qlo[3] = {float(q.min()[0]), float(q.min()[1]), float(q.min()[2])};
-    const float qhi[3] = {float(q.max()[0]), float(q.max()[1]), float(q.max()[2])};
+    const FloatBox qb = FloatBox::outward(q);
     for (std::int32_t z = lo[2]; z <= hi[2]; ++z) {
       for (std::int32_t y = lo[1]; y <= hi[1]; ++y) {
         for (std::int32_t x = lo[0]; x <= hi[0]; ++x) {
@@ -150,10 +158,7 @@ void BoxGrid::query(const Box& q, Hit&& hit) const {
           for (int k = start_[h]; k < start_[h + 1]; ++k) {
             const Entry& e = entries_[k];
             if (e.cell[0] != x || e.cell[1] != y || e.cell[2] != z) continue;  // another cell, same bucket
-            if (e.lo[0] > qhi[0] || e.lo[1] > qhi[1] || e.lo[2] > qhi[2] || e.hi[0] < qlo[0] || e.hi[1] < qlo[1] ||
-                e.hi[2] < qlo[2])
-              continue;
-            if (boxes_[e.id].intersects(q)) hit(e.id);
+            if (e.bounds.overlaps(qb) && boxes_[e.id].intersects(q)) hit(e.id);
           }
         }
       }

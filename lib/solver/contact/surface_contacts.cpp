@@ -126,9 +126,9 @@ SurfaceContacts SurfaceContactCheck::measure(std::span<const float> xyz) const {
   // query box, what it owns widened by r (within r of u's own box).
   const BoxGrid triangles(std::move(tri_boxes), r);
   struct Query {
-    Box box;                  // the finite owned primitives, widened by r
-    std::array<Box, 3> wide;  // each owned edge's box widened by r
-    float lo[3], hi[3];       // box in float, rounded outward
+    Box box;                   // the finite owned primitives, widened by r
+    std::array<Box, 3> wide;   // each owned edge's box widened by r
+    BoxGrid::FloatBox bounds;  // box's
   };
   const auto query_of = [&](int u) {
     Query q;
@@ -145,10 +145,7 @@ SurfaceContacts SurfaceContactCheck::measure(std::span<const float> xyz) const {
     if (!q.box.isEmpty()) {
       q.box.min().array() -= r;
       q.box.max().array() += r;
-      for (int k = 0; k < 3; ++k) {
-        q.lo[k] = std::nextafter(static_cast<float>(q.box.min()[k]), -INFINITY);
-        q.hi[k] = std::nextafter(static_cast<float>(q.box.max()[k]), INFINITY);
-      }
+      q.bounds = BoxGrid::FloatBox::outward(q.box);
     }
     return q;
   };
@@ -193,7 +190,7 @@ SurfaceContacts SurfaceContactCheck::measure(std::span<const float> xyz) const {
       tbb::blocked_range<int>(0, static_cast<int>(tris_.size()), 256), Tally{},
       [&](const tbb::blocked_range<int>& range, Tally t) {
         struct Candidate {
-          float lo[3], hi[3];
+          BoxGrid::FloatBox bounds;
           int id;
         };
         std::vector<int> mates;
@@ -210,7 +207,7 @@ SurfaceContacts SurfaceContactCheck::measure(std::span<const float> xyz) const {
           if (!triangles.leads(u)) continue;  // its cell's first triangle takes it
           mates.clear();
           queries.clear();
-          float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+          BoxGrid::FloatBox all_queries{{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
           triangles.for_each_cellmate(u, [&](int m) {
             const Query& q = queries.emplace_back(query_of(m));
             if (q.box.isEmpty()) {
@@ -219,25 +216,19 @@ SurfaceContacts SurfaceContactCheck::measure(std::span<const float> xyz) const {
             }
             mates.push_back(m);
             for (int k = 0; k < 3; ++k) {
-              lo[k] = std::min(lo[k], q.lo[k]);
-              hi[k] = std::max(hi[k], q.hi[k]);
+              all_queries.lo[k] = std::min(all_queries.lo[k], q.bounds.lo[k]);
+              all_queries.hi[k] = std::max(all_queries.hi[k], q.bounds.hi[k]);
             }
           });
           near.clear();
-          triangles.for_each_near(u, [&](int o, const float* olo, const float* ohi) {
-            if (olo[0] > hi[0] || olo[1] > hi[1] || olo[2] > hi[2] || ohi[0] < lo[0] || ohi[1] < lo[1] ||
-                ohi[2] < lo[2])
-              return;
-            near.push_back({{olo[0], olo[1], olo[2]}, {ohi[0], ohi[1], ohi[2]}, o});
+          triangles.for_each_near(u, [&](int o, const BoxGrid::FloatBox& b) {
+            if (b.overlaps(all_queries)) near.push_back({b, o});
           });
           for (std::size_t m = 0; m < mates.size(); ++m) {
             const Query& q = queries[m];
             for (const Candidate& c : near) {
               if (c.id == mates[m]) continue;  // its own triangle: every pair shares a vertex
-              if (c.lo[0] > q.hi[0] || c.lo[1] > q.hi[1] || c.lo[2] > q.hi[2] || c.hi[0] < q.lo[0] ||
-                  c.hi[1] < q.lo[1] || c.hi[2] < q.lo[2] || !triangles.box(c.id).intersects(q.box))
-                continue;
-              visit(mates[m], q, c.id, t);
+              if (c.bounds.overlaps(q.bounds) && triangles.box(c.id).intersects(q.box)) visit(mates[m], q, c.id, t);
             }
           }
         }

@@ -97,9 +97,10 @@ TEST_CASE("with a margin, the boxes near a box's cell hold every box that a quer
     ++gridded;
     std::vector<int> near(boxes.size(), 0);
     bool bounds_hold = true;
-    grid.for_each_near(id, [&](int k, const float* lo, const float* hi) {
+    grid.for_each_near(id, [&](int k, const BoxGrid::FloatBox& b) {
       ++near[k];
-      for (int a = 0; a < 3; ++a) bounds_hold = bounds_hold && lo[a] <= boxes[k].min()[a] && hi[a] >= boxes[k].max()[a];
+      for (int a = 0; a < 3; ++a)
+        bounds_hold = bounds_hold && b.lo[a] <= boxes[k].min()[a] && b.hi[a] >= boxes[k].max()[a];
     });
     CHECK(bounds_hold);
     Box q = boxes[j];
