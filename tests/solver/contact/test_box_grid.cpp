@@ -74,6 +74,7 @@ TEST_CASE("the box grid holds boxes that all hash into one cell and boxes of zer
   CHECK(hits == 50);
   // Points only (every side 0): each found by its own query alone.
   std::vector<Box> points;
+  points.reserve(100);
   for (int i = 0; i < 100; ++i) points.emplace_back(Eigen::Vector3d(0.01 * i, 0, 0), Eigen::Vector3d(0.01 * i, 0, 0));
   const BoxGrid point_grid(points);
   for (const Box& q : points) check_query(point_grid, points, q);
