@@ -2,9 +2,7 @@
  * per device runs `substeps` substeps of that device's slots in schedule
  * order. Before a slot it waits for the completion counters the schedule
  * names (acquire); it runs the slot's launches with all its work-groups, each
- * taking one contiguous share of the range, or, for a launch with a chunk
- * (work that varies widely per element: contact), chunks of the range in
- * turn from the task's grab counter; every work-group then counts the
+ * taking one contiguous share of the range; every work-group then counts the
  * launch done on the task's counter (release). A wait also watches the
  * host's abort flag, so a device that never answers ends the launch instead
  * of hanging it. Launched with one work-item per work-group: a spinning
@@ -46,41 +44,10 @@ static inline void ats_give_up(__global int* mine, int task, int waited_for) {
   }
 }
 
-/* The grabs a launch's chunks take in one substep: one per chunk, and the
- * one of each work-group that finds none left. */
-static inline int ats_grabs(ats_launch run, int groups) {
-  return run.chunk > 0 ? (run.count + run.chunk - 1) / run.chunk + groups : 0;
-}
-
-/* Launch l of a slot in chunks. A task's grab counter only grows: the
- * launches of a task run one after another (all work-groups end launch l
- * before any starts l + 1, and a task's substep s before its s + 1), so the
- * grabs before this launch are those of the substeps since the reset
- * (epoch counts from 1) and of the slot's launches before it. */
-static inline void ats_run_chunks(__global const ats_launch* launches, ats_slot slot, int l, int epoch, int groups,
-                                  __global const ulong* args, __global int* grabs) {
-  int before = 0, per_substep = 0;
-  for (int j = 0; j < slot.launch_count; ++j) {
-    const int n = ats_grabs(launches[slot.first_launch + j], groups);
-    if (j < l) before += n;
-    per_substep += n;
-  }
-  const int base = (epoch - 1) * per_substep + before;
-  const ats_launch run = launches[slot.first_launch + l];
-  const int chunks = (run.count + run.chunk - 1) / run.chunk;
-  __global atomic_int* next = (__global atomic_int*)(grabs + ATS_LINE * slot.task);
-  for (;;) {
-    const int c = atomic_fetch_add_explicit(next, 1, memory_order_relaxed, memory_scope_device) - base;
-    if (c >= chunks) return;
-    ats_run_range(run.function, args + run.first_arg, run.first + c * run.chunk,
-                  run.first + min(run.count, (c + 1) * run.chunk));
-  }
-}
-
 __kernel void ats_dispatch(__global const ats_slot* slots, int slot_count, __global const ats_launch* launches,
                            __global const ats_wait* waits, __global const ulong* args, __global int* counters,
-                           __global int* grabs, __global int* control, __global ulong* stamps, int stamp_stride,
-                           int device, int epoch0, int substeps, int record) {
+                           __global int* control, __global ulong* stamps, int stamp_stride, int device, int epoch0,
+                           int substeps, int record) {
   const int g = get_group_id(0);
   const int groups = get_num_groups(0);
   __global int* mine = control + ATS_LINE * (1 + device);
@@ -106,14 +73,10 @@ __kernel void ats_dispatch(__global const ats_slot* slots, int slot_count, __glo
           return;
         }
         const ats_launch run = launches[slot.first_launch + l];
-        if (run.chunk > 0) {
-          ats_run_chunks(launches, slot, l, epoch, groups, args, grabs);
-        } else {
-          const int share = (run.count + groups - 1) / groups;
-          const int begin = run.first + min(run.count, g * share);
-          const int end = run.first + min(run.count, (g + 1) * share);
-          if (begin < end) ats_run_range(run.function, args + run.first_arg, begin, end);
-        }
+        const int share = (run.count + groups - 1) / groups;
+        const int begin = run.first + min(run.count, g * share);
+        const int end = run.first + min(run.count, (g + 1) * share);
+        if (begin < end) ats_run_range(run.function, args + run.first_arg, begin, end);
         /* stamped before the last publish: no consumer can start before it */
         if (l + 1 == slot.launch_count) finish = ats_clock();
         if (slot.publish) atomic_fetch_add_explicit(done, 1, memory_order_release, memory_scope_device);

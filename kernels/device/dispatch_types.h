@@ -22,9 +22,6 @@ typedef struct {
   int first;
   int count;
   int first_arg; /* into the argument words (64 bits each) */
-  int chunk;     /* 0: each work-group one contiguous share; else chunks of
-                    this many elements, taken in turn (device/dispatch.cl) */
-  int pad0, pad1, pad2;
 } ats_launch;
 
 /* Wait until task's counter reaches (epoch + epoch_offset) * units: every

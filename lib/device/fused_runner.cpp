@@ -24,19 +24,6 @@ namespace {
 // The counters count launches; reset them long before an int overflows.
 constexpr long long kEpochLimit = 1 << 22;
 
-// A chunked launch (plan::KernelLaunch::chunked) on a device of several
-// work-groups: about kChunksPerGroup chunks per work-group, none under
-// kMinChunk elements, so that a crowded stretch of the range is shared and a
-// grab (an atomic add, tenths of a microsecond) stays small beside a chunk.
-constexpr int kChunksPerGroup = 16;
-constexpr int kMinChunk = 32;
-
-int chunk_of(const plan::KernelLaunch& launch, int groups) {
-  if (!launch.chunked || groups <= 1) return 0;
-  const int count = launch.range.count;
-  return std::max(kMinChunk, (count + groups * kChunksPerGroup - 1) / (groups * kChunksPerGroup));
-}
-
 int load(int* p) { return std::atomic_ref<int>(*p).load(std::memory_order_acquire); }
 void store(int* p, int v) { std::atomic_ref<int>(*p).store(v, std::memory_order_release); }
 
@@ -140,7 +127,6 @@ struct FusedRunner::Impl {
 
   // SVM shared with the running dispatchers.
   int* counters = nullptr;  // ATS_LINE ints per task
-  int* grabs = nullptr;     // ATS_LINE ints per task: the chunks taken (dispatch.cl ats_run_chunks)
   int* control = nullptr;   // ATS_CONTROL_INTS(devices)
   cl_ulong* stamps = nullptr;
 
@@ -158,9 +144,8 @@ struct FusedRunner::Impl {
     cl::Kernel kernel;
   };
   std::vector<DeviceTables> tables;
-  std::vector<std::size_t> device_of;   // per task
-  long long epoch = 0;                  // substeps run since the counters were reset
-  long long epoch_limit = kEpochLimit;  // reset before: the grab counters stay far from overflow too
+  std::vector<std::size_t> device_of;  // per task
+  long long epoch = 0;                 // substeps run since the counters were reset
 
   Completion completion;
   std::vector<cl_event> in_flight;  // one per launching device
@@ -176,7 +161,6 @@ struct FusedRunner::Impl {
     stamp_stride = *std::max_element(groups.begin(), groups.end());
     const std::size_t tasks = std::max<std::size_t>(r.plan.graph.size(), 1);
     counters = static_cast<int*>(arena.allocate(tasks * ATS_LINE * sizeof(int)));
-    grabs = static_cast<int*>(arena.allocate(tasks * ATS_LINE * sizeof(int)));
     control = static_cast<int*>(arena.allocate(ATS_CONTROL_INTS(r.set.devices.size()) * sizeof(int)));
     stamps = static_cast<cl_ulong*>(arena.allocate(tasks * stamp_stride * 2 * sizeof(cl_ulong)));
     tables.resize(r.set.devices.size());
@@ -198,7 +182,6 @@ struct FusedRunner::Impl {
     wait_quietly();
     for (DeviceTables& t : tables) release_tables(t);
     arena.release(counters);
-    arena.release(grabs);
     arena.release(control);
     arena.release(stamps);
   }
@@ -230,7 +213,6 @@ struct FusedRunner::Impl {
 
   void reset_counters() {
     std::memset(counters, 0, std::max<std::size_t>(r.plan.graph.size(), 1) * ATS_LINE * sizeof(int));
-    std::memset(grabs, 0, std::max<std::size_t>(r.plan.graph.size(), 1) * ATS_LINE * sizeof(int));
     std::memset(control, 0, ATS_CONTROL_INTS(r.set.devices.size()) * sizeof(int));
     epoch = 0;
   }
@@ -251,7 +233,6 @@ struct FusedRunner::Impl {
       device_of[s.task] = s.device;
       tables[s.device].tasks.push_back(s.task);
     }
-    long long most_grabs = 1;  // per task and substep, as ats_grabs counts them
     std::size_t devices_used = 0;
     for (const DeviceTables& t : tables) devices_used += t.tasks.empty() ? 0 : 1;
     for (std::size_t d = 0; d < n; ++d) {
@@ -282,17 +263,13 @@ struct FusedRunner::Impl {
         slot.wait_count = static_cast<int>(t.waits.size()) - slot.first_wait;
         slot.first_launch = static_cast<int>(t.launches.size());
         const auto& task_launches = r.plan.launches[task];
-        long long task_grabs = 0;
         for (std::size_t l = 0; l < task_launches.size(); ++l) {
           const plan::KernelLaunch& launch = task_launches[l];
-          const int chunk = chunk_of(launch, groups[d]);
-          t.launches.push_back({r.functions[task][l], launch.range.first, launch.range.count,
-                                static_cast<int>(t.args.size()), chunk, 0, 0, 0});
-          if (chunk > 0) task_grabs += (launch.range.count + chunk - 1) / chunk + groups[d];
+          t.launches.push_back(
+              {r.functions[task][l], launch.range.first, launch.range.count, static_cast<int>(t.args.size())});
           for (const plan::KernelArg& a : launch.args) t.args.push_back(word_of(a, r.buffers[0]));
         }
-        most_grabs = std::max(most_grabs, task_grabs);
-        if (task_launches.empty()) t.launches.push_back({0, 0, 0, 0, 0, 0, 0, 0});  // counts as done, runs nothing
+        if (task_launches.empty()) t.launches.push_back({0, 0, 0, 0});  // counts as done, runs nothing
         slot.launch_count = launch_count(task);
         slot.publish = static_cast<int>(task) == options.never_publish ? 0 : 1;
         t.slots.push_back(slot);
@@ -302,7 +279,6 @@ struct FusedRunner::Impl {
       t.svm_waits = upload(t.waits);
       t.svm_args = upload(t.args);
     }
-    epoch_limit = std::min(kEpochLimit, (1LL << 30) / most_grabs);
     reset_counters();
     have_record = false;
   }
@@ -311,7 +287,7 @@ struct FusedRunner::Impl {
     if (broken) throw runtime_error("fused executor: a wait failed before; the run cannot continue");
     finish();
     if (count <= 0) return;
-    if (epoch + count > epoch_limit) reset_counters();
+    if (epoch + count > kEpochLimit) reset_counters();
     const int epoch0 = static_cast<int>(epoch + 1);
     {
       const std::lock_guard<std::mutex> lock(completion.mutex);
@@ -336,7 +312,6 @@ struct FusedRunner::Impl {
       set_svm(t.svm_waits);
       set_svm(t.svm_args);
       set_svm(counters);
-      set_svm(grabs);
       set_svm(control);
       set_svm(stamps);
       set_int(stride);

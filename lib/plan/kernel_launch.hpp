@@ -39,10 +39,6 @@ struct KernelLaunch {
   // What it writes (write_span.hpp); a writable buffer argument it does not
   // list is taken to be written whole.
   std::vector<WriteSpan> writes;
-  // Taken in small chunks in turn by the work-groups of a device (the fused
-  // executor), not one contiguous share each: set by SubstepPlan::add_task
-  // for the tasks of an uneven kind (KindTraits::uneven).
-  bool chunked = false;
 };
 
 }  // namespace atssim::plan

@@ -1,7 +1,5 @@
 #include "plan/substep_plan.hpp"
 
-#include <optional>
-
 #include <fmt/format.h>
 
 #include "util/error.hpp"
@@ -14,9 +12,6 @@ BufferId SubstepPlan::add_buffer(std::string name, BufferRole role, std::vector<
 }
 
 sched::TaskId SubstepPlan::add_task(sched::Task task, std::vector<KernelLaunch> task_launches) {
-  if (const std::optional<TaskKind> kind = find_kind(task); kind && kind->traits().uneven) {
-    for (KernelLaunch& l : task_launches) l.chunked = true;
-  }
   const sched::TaskId id = graph.add_task(std::move(task));
   launches.push_back(std::move(task_launches));
   return id;

@@ -33,8 +33,7 @@ sched::Task make_task(std::string name, const TaskKind& kind, int iteration, int
     const auto [it, added] = table.by_label.emplace(label, kind.traits());
     const KindTraits& known = it->second;
     if (!added && (known.name != kind.name() || known.gauss_seidel != kind.traits().gauss_seidel ||
-                   known.serial != kind.traits().serial || known.per_particle != kind.traits().per_particle ||
-                   known.uneven != kind.traits().uneven)) {
+                   known.serial != kind.traits().serial || known.per_particle != kind.traits().per_particle)) {
       throw internal_error(fmt::format("task kind '{}' has the label of the kind '{}' with other traits; rename one",
                                        kind.name(), known.name));
     }
@@ -42,17 +41,14 @@ sched::Task make_task(std::string name, const TaskKind& kind, int iteration, int
   return {std::move(name), label, iteration, block, -1};
 }
 
-std::optional<TaskKind> find_kind(const sched::Task& task) {
+TaskKind kind_of(const sched::Task& task) {
   KindTable& table = kind_table();
   const std::lock_guard<std::mutex> lock(table.mutex);
   const auto it = table.by_label.find(task.kind);
-  if (it == table.by_label.end()) return std::nullopt;
+  if (it == table.by_label.end()) {
+    throw internal_error(fmt::format("plan: task '{}' has the label {}, which is no task kind", task.name, task.kind));
+  }
   return TaskKind(it->second);
-}
-
-TaskKind kind_of(const sched::Task& task) {
-  if (const std::optional<TaskKind> kind = find_kind(task)) return *kind;
-  throw internal_error(fmt::format("plan: task '{}' has the label {}, which is no task kind", task.name, task.kind));
 }
 
 }  // namespace atssim::plan

@@ -7,7 +7,6 @@
 // solver/xpbd/xpbd_plan.hpp), so that a new method adds kinds without
 // touching this file. sched::Task::kind holds the kind's label.
 #include <cstdint>
-#include <optional>
 #include <string>
 #include <string_view>
 
@@ -27,11 +26,6 @@ struct KindTraits {
   // Its launches range over particles (not elements): what it reads and
   // writes is the particle range itself.
   bool per_particle = false;
-  // The work per element varies widely (contact: most elements have none,
-  // a few crowded ones much): a device of several compute units takes its
-  // launches in small chunks in turn, not one contiguous share each
-  // (KernelLaunch::chunked, device/dispatch.cl).
-  bool uneven = false;
 };
 
 class TaskKind {
@@ -68,14 +62,14 @@ class TaskKind {
 
 inline constexpr TaskKind TaskKind::predict{{"predict", false, false, true}};
 inline constexpr TaskKind TaskKind::jacobi{{"jacobi", false, false, true}};
-inline constexpr TaskKind TaskKind::collision{{"collision", false, true, true, true}};
+inline constexpr TaskKind TaskKind::collision{{"collision", false, true, true}};
 inline constexpr TaskKind TaskKind::copy{{"copy", false, false, true}};
 inline constexpr TaskKind TaskKind::update_velocity{{"update_velocity", false, false, true}};
 inline constexpr TaskKind TaskKind::publish{{"publish", false, false, true}};
 inline constexpr TaskKind TaskKind::merge{{"merge", false, false, true}};
 inline constexpr TaskKind TaskKind::energy{{"energy", false, false, false}};
-inline constexpr TaskKind TaskKind::friction{{"friction", false, false, true, true}};
-inline constexpr TaskKind TaskKind::detection{{"detection", false, false, false, true}};
+inline constexpr TaskKind TaskKind::friction{{"friction", false, false, true}};
+inline constexpr TaskKind TaskKind::detection{{"detection", false, false, false}};
 
 inline KindTraits traits(const TaskKind& kind) { return kind.traits(); }
 inline std::string_view to_string(const TaskKind& kind) { return kind.name(); }
@@ -89,7 +83,5 @@ sched::Task make_task(std::string name, const TaskKind& kind, int iteration = -1
 // (internal) for a label of no kind a task was made with (a merged task, or a
 // graph from elsewhere).
 TaskKind kind_of(const sched::Task& task);
-// The same, or none for such a label.
-std::optional<TaskKind> find_kind(const sched::Task& task);
 
 }  // namespace atssim::plan

@@ -47,22 +47,6 @@ TEST_CASE("two kinds of one name and other traits are a bug") {
   CHECK_THROWS_WITH(plan::make_task("u", other), Catch::Contains("'test_sweep'") && Catch::Contains("other traits"));
 }
 
-TEST_CASE("the launches of an uneven kind's tasks are chunked, the others' not; a foreign label keeps its launches") {
-  CHECK(plan::traits(TaskKind::detection).uneven);
-  CHECK(plan::traits(TaskKind::collision).uneven);
-  CHECK(plan::traits(TaskKind::friction).uneven);
-  CHECK_FALSE(plan::traits(kSweep).uneven);
-  plan::SubstepPlan p;
-  const auto launch = [] { return plan::KernelLaunch{"f", {0, 100}, {}, {}}; };
-  const sched::TaskId sweep = p.add_task(plan::make_task("it1/sweep/c0", kSweep, 0, 0), {launch(), launch()});
-  const sched::TaskId detect = p.add_task_after(sweep, plan::make_task("detect/pairs", TaskKind::detection), launch());
-  const sched::TaskId merged = p.add_task({"a+b", sched::kMixedKind, 0, -1}, {launch()});
-  for (const plan::KernelLaunch& l : p.launches[sweep]) CHECK_FALSE(l.chunked);
-  CHECK(p.launches[detect].at(0).chunked);
-  CHECK_FALSE(p.launches[merged].at(0).chunked);
-  CHECK(plan::find_kind(p.graph.task(merged)) == std::nullopt);
-}
-
 TEST_CASE("a buffer is found by its role, and a role held twice or never is an error") {
   plan::SubstepPlan p;
   p.program = "test";
