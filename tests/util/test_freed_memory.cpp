@@ -2,6 +2,9 @@
 
 #include <cstdlib>
 #include <cstring>
+#include <thread>
+
+#include <unistd.h>
 
 #include <malloc.h>
 
@@ -39,4 +42,31 @@ TEST_CASE("freed blocks of tens of megabytes stay in the heap for the next frame
   CHECK(after.fordblks >= kBytes);       // kept as free heap memory
   CHECK(after.hblkhd <= mapped_before);  // and it was never a mapping of its own
   CHECK(mapped_before < kBytes);
+}
+
+TEST_CASE("once kept, a block another thread allocates comes from the main heap, which keeps it",
+          "[util][freed_memory]") {
+  // glibc gives a second thread an arena of its own: heaps mapped apart
+  // from the main heap (above the program break) and unmapped whole once
+  // free, whatever the thresholds. Kept, the thread allocates from the
+  // main heap, which lies below the break.
+  constexpr std::size_t kBytes = std::size_t(40) << 20;  // under an arena heap's 64 MB
+#if defined(ATSSIM_ASAN)
+  util::keep_freed_memory();
+  WARN("an ASan build: glibc's heap is not in use, nothing to measure");
+  return;
+#endif
+  REQUIRE(util::keep_freed_memory());
+  bool below_break = false, allocated = false;
+  std::thread other([&] {
+    void* block = std::malloc(kBytes);
+    allocated = block != nullptr;
+    if (!allocated) return;
+    std::memset(block, 1, kBytes);
+    below_break = static_cast<char*>(block) + kBytes <= static_cast<char*>(sbrk(0));
+    std::free(block);
+  });
+  other.join();
+  REQUIRE(allocated);
+  CHECK(below_break);
 }
