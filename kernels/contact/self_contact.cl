@@ -68,15 +68,15 @@ ATS_TASK void sc_clusters(int k, __global const float* motion, int blocks, __glo
   sc_cluster_box(k, motion, blocks, clusters);
 }
 
-/* Whether block b makes its lists anew, and its rho. */
+/* Whether block b makes its lists anew, and its rho (the task detect/decide_blocks). */
 ATS_TASK void sc_decide_block(int b, __global const float* motion, __global const float* clusters, int blocks, float r,
                               float r_max, __global const float* rho0, __global float* rho, __global int* make) {
   sc_block_decide(b, motion, clusters, blocks, r, r_max, rho0, rho, make);
 }
 
-/* Whether any block does (one work-item). */
-ATS_TASK void sc_decide_blocks(int k, __global const int* make, int blocks, float r_max, __global const float* rho,
-                               __global float* rho0, __global int* state) {
+/* Whether any block does (one work-item; the task detect/decide_any). */
+ATS_TASK void sc_decide_any_task(int k, __global const int* make, int blocks, float r_max, __global const float* rho,
+                                 __global float* rho0, __global int* state) {
   if (k == 0) sc_decide_any(make, blocks, r_max, rho, rho0, state);
 }
 

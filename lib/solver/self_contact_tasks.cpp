@@ -196,7 +196,7 @@ sched::TaskId add_self_contact_detection(plan::SubstepPlan& plan, sched::TaskId 
                                Arg::of_buffer(b.block_rho), Arg::of_buffer(b.block_make)},
                               {WriteSpan::per_element(b.block_rho, 4), WriteSpan::per_element(b.block_make, 4)}});
   last = plan.add_task_after(last, detect("detect/decide_any"),
-                             {"sc_decide_blocks",
+                             {"sc_decide_any_task",
                               {0, 1},
                               {Arg::of_buffer(b.block_make), Arg::of_int(blocks), Arg::of_float(s.query_radius),
                                Arg::of_buffer(b.block_rho), Arg::of_buffer(b.block_rho0), Arg::of_buffer(b.state)},
