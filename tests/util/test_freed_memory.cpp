@@ -20,19 +20,30 @@ using namespace atssim;
 #endif
 #endif
 
+namespace {
+
+// Keeps freed memory (util::keep_freed_memory); false in an ASan build,
+// whose allocator stands in for glibc's: there is no glibc heap to keep
+// blocks in, and the call must only do no harm.
+bool kept() {
+  [[maybe_unused]] const bool done = util::keep_freed_memory();
+#if defined(ATSSIM_ASAN)
+  WARN("an ASan build: glibc's heap is not in use, nothing to measure");
+  return false;
+#else
+  REQUIRE(done);
+  return true;
+#endif
+}
+
+}  // namespace
+
 TEST_CASE("freed blocks of tens of megabytes stay in the heap for the next frame once kept", "[util][freed_memory]") {
   // 64 MB, over glibc's largest default mmap threshold (32 MB): by default
   // it is mapped on its own and unmapped on free, so the heap's free bytes
   // (mallinfo2().fordblks) never hold it.
   constexpr std::size_t kBytes = std::size_t(64) << 20;
-#if defined(ATSSIM_ASAN)
-  // AddressSanitizer's allocator stands in for glibc's: there is no glibc
-  // heap to keep blocks in, and the call must only do no harm.
-  util::keep_freed_memory();
-  WARN("an ASan build: glibc's heap is not in use, nothing to measure");
-  return;
-#endif
-  REQUIRE(util::keep_freed_memory());
+  if (!kept()) return;
   void* block = std::malloc(kBytes);
   REQUIRE(block != nullptr);
   std::memset(block, 1, kBytes);  // touched, as a frame's scratch is
@@ -51,12 +62,7 @@ TEST_CASE("once kept, a block another thread allocates comes from the main heap,
   // free, whatever the thresholds. Kept, the thread allocates from the
   // main heap, which lies below the break.
   constexpr std::size_t kBytes = std::size_t(40) << 20;  // under an arena heap's 64 MB
-#if defined(ATSSIM_ASAN)
-  util::keep_freed_memory();
-  WARN("an ASan build: glibc's heap is not in use, nothing to measure");
-  return;
-#endif
-  REQUIRE(util::keep_freed_memory());
+  if (!kept()) return;
   bool below_break = false, allocated = false;
   std::thread other([&] {
     void* block = std::malloc(kBytes);
