@@ -145,7 +145,9 @@ int run(const Options& o) {
     times = time_frames(reference, sim.substeps, o);
     sum = checksum(reference.state().x);
   } else {
-    solver::vbd::VbdReference reference(layout, h, sim.iterations, o.threads);
+    if (o.ordering != "colors" && o.ordering != "color_batches")
+      throw input_error("vbd: --ordering colors or color_batches");
+    solver::vbd::VbdReference reference(layout, h, sim.iterations, o.threads, o.ordering == "color_batches");
     times = time_frames(reference, sim.substeps, o);
     sum = checksum(reference.state().x);
   }
@@ -170,7 +172,8 @@ int main(int argc, char** argv) {
   cli.add_option("--ordering", o.ordering,
                  "xpbd: colors, batches (the constraints in the order of solver.ordering: batches, one thread) "
                  "or color_batches (--loop plain: each color block cut into groups of 8 float lanes, "
-                 "bench/plain_xpbd_color_batches.hpp; 1 or more threads)")
+                 "bench/plain_xpbd_color_batches.hpp; 1 or more threads); vbd: colors or color_batches (the "
+                 "reference's lanes: each color's vertices in batches of 8 gathered as 8 float lanes)")
       ->check(CLI::IsMember({"colors", "batches", "color_batches"}))
       ->capture_default_str();
   cli.add_option("--loop", o.loop,

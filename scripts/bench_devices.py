@@ -11,11 +11,13 @@ times
     the reference; the batches ordering with float8 lanes on 1 thread,
     bench/plain_xpbd_batches.hpp; and the color_batches ordering, the color
     blocks cut into groups of 8 float8 lanes, on 1 thread and with a
-    parallel_for per block on 2, bench/plain_xpbd_color_batches.hpp);
+    parallel_for per block on 2, bench/plain_xpbd_color_batches.hpp); for VBD
+    the reference's color_batches loop beside it (each color's vertices in
+    batches of 8 whose gather runs as 8-float vectors, on 1 and 2 threads);
   - atssim with each executor asked for (--executor events,fused) on one
     1-CU sub-device (cpu/2:0), the whole 2-CU device (cpu), and the two
-    sub-devices with the split and heft schedules (cpu/2); for XPBD again
-    with each other solver.ordering asked for (--orderings colors,color_batches:
+    sub-devices with the split and heft schedules (cpu/2); again with each
+    other solver.ordering asked for (color_batches: XPBD and VBD) (--orderings colors,color_batches:
     the columns repeated with the ordering's name after them);
 and prints one Markdown table of median frame times (ms; the prediction error
 |measured - predicted| / measured substep makespan, median over frames, in
@@ -125,7 +127,7 @@ def run_atssim_frames(method: str, size: int, executor: str, devices: str, sched
     command = [BIN, "run", SCENE, "-o", out, "--frames", str(frames + 2), "--devices", devices, "--schedule", schedule,
                "--executor", executor, "--memory", memory, "--set", f"solver.method={method}", "--set",
                f"objects.0.grid.resolution=[{size},{size}]", "--quiet"]
-    if method == "xpbd":  # solver.ordering is an XPBD option; colors too, the default being color_batches
+    if method in ("xpbd", "vbd"):  # solver.ordering is set, colors too (XPBD's default depends on the size)
         command += ["--set", f"solver.ordering={ordering}"]
     subprocess.run(command, check=True)
     with h5py.File(out, "r") as f:
@@ -150,14 +152,17 @@ NATIVE_VARIANTS = [  # label, loop, threads, ordering, methods
     ("plain batches float8 1 thread", "plain", 1, "batches", ("xpbd",)),
     ("plain color batches float8 1 thread", "plain", 1, "color_batches", ("xpbd",)),
     ("plain color batches float8 TBB 2 threads", "plain", 2, "color_batches", ("xpbd",)),
+    ("native color batches float8 1 thread", "reference", 1, "color_batches", ("vbd",)),
+    ("native color batches float8 TBB 2 threads", "reference", 2, "color_batches", ("vbd",)),
 ]
 
 
 def device_columns(executors, orderings):
     """(column, executor, devices, schedule, ordering, methods) of each atssim run: every executor on every
-    DEVICE_VARIANTS row, for colors as before and, XPBD only, for each other ordering under its name."""
+    DEVICE_VARIANTS row, for colors as before and for each other ordering under its name (color_batches: XPBD and
+    VBD; batches: XPBD)."""
     return [(f"{e} {label}" + ("" if o == "colors" else f" {o}"), e, devices, schedule, o,
-             ("xpbd", "vbd") if o == "colors" else ("xpbd",))
+             ("xpbd", "vbd") if o in ("colors", "color_batches") else ("xpbd",))
             for o in orderings for e in executors for label, devices, schedule in DEVICE_VARIANTS]
 
 
@@ -217,7 +222,8 @@ def main() -> int:
     ap.add_argument("--executor", default="events,fused",
                     help="comma separated: events, fused; none: the native loops alone")
     ap.add_argument("--orderings", default="colors",
-                    help="comma separated XPBD solver.ordering values for the atssim runs (colors, color_batches); "
+                    help="comma separated solver.ordering values for the atssim runs (colors, color_batches: XPBD, VBD; "
+                    "batches: XPBD); "
                     "each but colors repeats the device columns with its name after them")
     ap.add_argument("--roofline", action="store_true", help="XPBD: also run bench/bench_roofline and print the "
                     "fraction of the machine's limits each loop reaches")

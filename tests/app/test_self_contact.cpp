@@ -294,6 +294,26 @@ TEST_CASE("with self-contact every method gives the same bits on one device and 
   CHECK(one == io::read_frame_positions(dir.file("whole.h5"), 10));
 }
 
+// VBD's color_batches gather 8 vertices of a colour as float lanes; the
+// contact terms, the solve and the clamps follow per vertex as in colors.
+TEST_CASE("with self-contact VBD's color_batches give the colors' bits, on one device and cut over two",
+          "[contact][self]") {
+  test::TempDir dir;
+  std::string yaml = kLayers;
+  yaml.replace(yaml.find("frames: 40"), 10, "frames: 10");
+  const auto run = [&](const std::string& ordering, const std::string& schedule) {
+    const std::string out = ordering + "_" + schedule + ".h5";
+    app::RunOptions o = options(dir, yaml, "vbd", schedule, out);
+    o.overrides.push_back("solver.ordering=" + ordering);
+    app::run_simulation(o);
+    return io::read_frame_positions(dir.file(out), 10);
+  };
+  const std::vector<float> colors = run("colors", "single");
+  CHECK(colors == run("color_batches", "single"));
+  CHECK(colors == run("color_batches", "split"));
+  CHECK(colors == run("color_batches", "heft"));
+}
+
 namespace {
 
 constexpr int kPillowCloth = 16;  // cloth vertices per side at the tests' size

@@ -11,8 +11,18 @@ constexpr plan::TaskKind kKinds[] = {kVertex};
 constexpr scene::SolidModel kSolids[] = {scene::SolidModel::neo_hookean, scene::SolidModel::stvk,
                                          scene::SolidModel::springs};
 
+constexpr std::string_view kOrderings[] = {"colors", "color_batches"};  // VbdOrdering's values in order
+
+constexpr MethodOption kOptions[] = {
+    {"ordering", 0.0, 0.0, 1.0, false, false,
+     "colors or color_batches: one work-item per vertex of a color, or per batch of 8 vertices of a color whose "
+     "element sums run as 8 float lanes (the same bits; vbd)",
+     kOrderings, false, -1},
+};
+
 plan::SubstepPlan build(const SimLayout& layout, const MethodSettings& s) {
-  return make_vbd_plan(layout, s.substep_dt, s.iterations);
+  return make_vbd_plan(layout, s.substep_dt, s.iterations, nullptr,
+                       static_cast<VbdOrdering>(static_cast<int>(s.option_or("ordering", 0.0))));
 }
 
 }  // namespace
@@ -26,6 +36,7 @@ extern const MethodDescription kDescription{
     .kinds = kKinds,
     .gauss_seidel = true,
     .descent = true,
+    .options = kOptions,
     .solid_models = kSolids,
     .build = build};
 

@@ -8,8 +8,8 @@
 
 namespace atssim::solver::vbd {
 
-plan::SubstepPlan make_vbd_plan(const SimLayout& layout, double substep_dt, int iterations,
-                                vertex::VertexBuffers* ids) {
+plan::SubstepPlan make_vbd_plan(const SimLayout& layout, double substep_dt, int iterations, vertex::VertexBuffers* ids,
+                                VbdOrdering ordering) {
   const vertex::VertexLayout vertices = vertex::make_vertex_layout(layout);
   plan::SubstepPlan plan;
   plan.program = std::string(kProgram);
@@ -22,6 +22,14 @@ plan::SubstepPlan make_vbd_plan(const SimLayout& layout, double substep_dt, int 
   // Element k of a color writes particle order[k].
   const auto order =
       std::make_shared<const std::vector<std::int32_t>>(vertices.colors.order.begin(), vertices.colors.order.end());
+  // color_batches: element b of a color is batch b, writing its 8 lanes' particles (-1: padding).
+  const bool lanes = ordering == VbdOrdering::color_batches;
+  const vertex::ColorLanes batches = lanes ? vertex::color_lanes(vertices.colors) : vertex::ColorLanes{};
+  const auto lanes_order =
+      std::make_shared<const std::vector<std::int32_t>>(batches.order.begin(), batches.order.end());
+  const plan::BufferId order_buffer =
+      lanes ? plan.add_buffer("vertex_order_lanes", plan::BufferRole::topology, plan::bytes_of(batches.order))
+            : b.order;
   // Contact pairs may join two vertices of one colour: the solve reads such a
   // partner from the iteration's start (kernels/contact/self_contact_terms.h),
   // kept by a copy before the first iteration and at the end of every other.
@@ -45,8 +53,9 @@ plan::SubstepPlan make_vbd_plan(const SimLayout& layout, double substep_dt, int 
   snapshot(-1, "contact/iteration_start");
   for (int it = 0; it < iterations; ++it) {
     for (int c = 0; c < vertices.colors.count(); ++c) {
-      const int first = vertices.colors.offsets[c];
-      const int count = vertices.colors.offsets[c + 1] - first;
+      const std::vector<int>& offsets = lanes ? batches.offsets : vertices.colors.offsets;
+      const int first = offsets[c];
+      const int count = offsets[c + 1] - first;
       using Arg = plan::KernelArg;
       std::vector<Arg> args{Arg::of_buffer(b.x),
                             Arg::of_buffer(b.x_tilde),
@@ -55,7 +64,7 @@ plan::SubstepPlan make_vbd_plan(const SimLayout& layout, double substep_dt, int 
                             Arg::of_buffer(b.stretch),
                             Arg::of_buffer(b.bend),
                             Arg::of_buffer(b.tets),
-                            Arg::of_buffer(b.order),
+                            Arg::of_buffer(order_buffer),
                             Arg::of_float(inv_h2),
                             Arg::of_int(layout.has_ground ? 1 : 0),
                             Arg::of_float(layout.ground_y)};
@@ -64,9 +73,13 @@ plan::SubstepPlan make_vbd_plan(const SimLayout& layout, double substep_dt, int 
       for (const Arg& a : self_contact_args(layout, sc, hi)) args.push_back(a);
       args.push_back(Arg::of_buffer(x_iter));
       args.push_back(Arg::of_buffer(color));
-      last = plan.add_task_after(
-          last, plan::make_task(fmt::format("it{}/vertex/c{}", it + 1, c), kVertex, it, c),
-          {"vbd_solve", {first, count}, std::move(args), {plan::WriteSpan::per_index(b.x, kParticleBytes, 1, order)}});
+      last =
+          plan.add_task_after(last, plan::make_task(fmt::format("it{}/vertex/c{}", it + 1, c), kVertex, it, c),
+                              {lanes ? "vbd_solve_lanes" : "vbd_solve",
+                               {first, count},
+                               std::move(args),
+                               {lanes ? plan::WriteSpan::per_index(b.x, kParticleBytes, vertex::kLaneWidth, lanes_order)
+                                      : plan::WriteSpan::per_index(b.x, kParticleBytes, 1, order)}});
     }
     last = add_ground_task(plan, last, layout, b.x, it);
     if (it + 1 < iterations) snapshot(it, fmt::format("it{}/collision/iteration_end", it + 1));

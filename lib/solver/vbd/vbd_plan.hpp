@@ -19,7 +19,13 @@ inline constexpr std::string_view kProgram = "vbd";
 // chain over the colors.
 inline constexpr plan::TaskKind kVertex{{"vertex", true, false, true}};
 
+// solver.ordering: colors runs a task per color, a work-item per vertex;
+// color_batches a task per color, a work-item per batch of 8 vertices whose
+// gather runs as float lanes (kernels/common/vertex_system_lanes.h): the same
+// bits.
+enum class VbdOrdering { colors, color_batches };  // solver.ordering's choices in order
+
 plan::SubstepPlan make_vbd_plan(const SimLayout& layout, double substep_dt, int iterations,
-                                vertex::VertexBuffers* ids = nullptr);
+                                vertex::VertexBuffers* ids = nullptr, VbdOrdering ordering = VbdOrdering::colors);
 
 }  // namespace atssim::solver::vbd

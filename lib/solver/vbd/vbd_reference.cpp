@@ -14,6 +14,7 @@
 #include "common/particle_step.h"
 #include "common/vertex_solve.h"
 #include "common/vertex_system.h"
+#include "common/vertex_system_lanes.h"
 
 namespace atssim::solver::vbd {
 
@@ -22,9 +23,10 @@ struct VbdReference::Arena {
   tbb::task_arena arena;
 };
 
-VbdReference::VbdReference(SimLayout layout, double substep_dt, int iterations, int threads)
+VbdReference::VbdReference(SimLayout layout, double substep_dt, int iterations, int threads, bool lanes)
     : layout_(std::move(layout)),
       vertices_(vertex::make_vertex_layout(layout_)),
+      lanes_(lanes ? vertex::color_lanes(vertices_.colors) : vertex::ColorLanes{}),
       substep_dt_(substep_dt),
       iterations_(iterations),
       x_prev_(layout_.x),
@@ -63,7 +65,13 @@ void VbdReference::substep() {
 void VbdReference::substep_here() {
   predict();
   for (int it = 0; it < iterations_; ++it) {
-    for (int c = 0; c < vertices_.colors.count(); ++c) solve_color(c);
+    for (int c = 0; c < vertices_.colors.count(); ++c) {
+      if (lanes_.offsets.empty()) {
+        solve_color(c);
+      } else {
+        solve_color_lanes(c);
+      }
+    }
     if (layout_.has_ground) project_ground();
   }
   update_velocity();
@@ -83,6 +91,27 @@ void VbdReference::predict() {
   });
 }
 
+namespace {
+
+// vbd_step (kernels/vbd/vbd.cl) without contact: spring damping, the 3x3
+// solve, the ground.
+void step_vertex(SimLayout& layout, int i, vertex_system s, const Float4* x_prev, float inv_h,
+                 const vertex::VertexLayout& vertices) {
+  const Float4* x = layout.x.data();
+  s = add_spring_damping(s, i, x, x_prev, inv_h, vertices.adjacency_offsets.data(), vertices.adjacency.data(),
+                         layout.stretch.data());
+  const ats_solve3 d = ats_m3_solve(s.h, s.f);
+  if (!d.ok) return;
+  Float4& p = layout.x[i];
+  ats_vec3 step = d.x;
+  if (layout.has_ground && p.y + step.y < layout.ground_y) {
+    step = ats_vertex_step_above_ground(s.h, s.f, step, p.y, layout.ground_y);
+  }
+  p = {p.x + step.x, p.y + step.y, p.z + step.z, p.w};
+}
+
+}  // namespace
+
 // vbd_solve (kernels/vbd/vbd.cl): one 3x3 Newton step per vertex of the
 // color, its neighbours (other colors) held fixed.
 void VbdReference::solve_color(int color) {
@@ -93,20 +122,29 @@ void VbdReference::solve_color(int color) {
   const int* order = vertices_.colors.order.data();
   sweep(vertices_.colors.offsets[color], vertices_.colors.offsets[color + 1], [&](int k) {
     const int i = order[k];
-    const vertex_system s =
-        add_spring_damping(gather_vertex_system(i, x, x_tilde_.data(), inv_h2, vertices_.adjacency_offsets.data(),
-                                                vertices_.adjacency.data(), layout_.stretch.data(), layout_.bend.data(),
-                                                layout_.tets.data()),
-                           i, x, x_prev_.data(), inv_h, vertices_.adjacency_offsets.data(), vertices_.adjacency.data(),
-                           layout_.stretch.data());
-    const ats_solve3 d = ats_m3_solve(s.h, s.f);
-    if (!d.ok) return;
-    Float4& p = layout_.x[i];
-    ats_vec3 step = d.x;
-    if (layout_.has_ground && p.y + step.y < layout_.ground_y) {
-      step = ats_vertex_step_above_ground(s.h, s.f, step, p.y, layout_.ground_y);
+    step_vertex(layout_, i,
+                gather_vertex_system(i, x, x_tilde_.data(), inv_h2, vertices_.adjacency_offsets.data(),
+                                     vertices_.adjacency.data(), layout_.stretch.data(), layout_.bend.data(),
+                                     layout_.tets.data()),
+                x_prev_.data(), inv_h, vertices_);
+  });
+}
+
+// vbd_solve_lanes (kernels/vbd/vbd.cl): the color's batches of 8 vertices,
+// each gathered as 8 float lanes, then stepped one after another.
+void VbdReference::solve_color_lanes(int color) {
+  const double hi = inertia_dt(layout_, substep_dt_);
+  const float inv_h2 = static_cast<float>(1.0 / (hi * hi));
+  const float inv_h = has_spring_damping(layout_) ? static_cast<float>(1.0 / substep_dt_) : 0.0f;  // as damping_args
+  const Float4* x = layout_.x.data();
+  sweep(lanes_.offsets[color], lanes_.offsets[color + 1], [&](int b) {
+    const int* v = lanes_.order.data() + vertex::kLaneWidth * b;
+    vertex_system s[vertex::kLaneWidth];
+    gather_vertex_system8(v, x, x_tilde_.data(), inv_h2, vertices_.adjacency_offsets.data(), vertices_.adjacency.data(),
+                          layout_.stretch.data(), layout_.bend.data(), layout_.tets.data(), s);
+    for (int l = 0; l < vertex::kLaneWidth; ++l) {
+      if (v[l] >= 0) step_vertex(layout_, v[l], s[l], x_prev_.data(), inv_h, vertices_);
     }
-    p = {p.x + step.x, p.y + step.y, p.z + step.z, p.w};
   });
 }
 

@@ -6,7 +6,11 @@
 // vertex_system.h, vertex_solve.h). With threads > 1 each color's vertices
 // run as a tbb::parallel_for, the native multi-threaded loop that atssim's
 // devices are compared with (bench/bench_native.cpp); vertices of one color
-// share no element, so the result is bit-identical to 1 thread.
+// share no element, so the result is bit-identical to 1 thread. lanes: each
+// color's vertices in batches of 8 whose gather runs as 8-float vectors (GCC
+// vector extensions, kernels/common/vertex_system_lanes.h), as the
+// color_batches ordering's kernel does: the same bits, the native loop of that
+// ordering.
 #include <memory>
 #include <vector>
 
@@ -20,7 +24,7 @@ class VbdReference {
   // threads: 1 runs plain loops; more run the particle loops and each vertex
   // color in a tbb::task_arena of that many threads. Throws atssim::Error
   // (input) when a constraint is infinitely stiff, as make_vbd_plan does.
-  VbdReference(SimLayout layout, double substep_dt, int iterations, int threads = 1);
+  VbdReference(SimLayout layout, double substep_dt, int iterations, int threads = 1, bool lanes = false);
   VbdReference(VbdReference&&) noexcept;
   VbdReference& operator=(VbdReference&&) noexcept;
   ~VbdReference();
@@ -34,6 +38,7 @@ class VbdReference {
   void substep_here();  // the substep, in the arena already when threads > 1
   void predict();
   void solve_color(int color);
+  void solve_color_lanes(int color);
   void project_ground();
   void update_velocity();
   // body(i) for i in [first, last): in order, or in parallel in the arena.
@@ -42,6 +47,7 @@ class VbdReference {
 
   SimLayout layout_;
   vertex::VertexLayout vertices_;
+  vertex::ColorLanes lanes_;  // empty: one vertex at a time
   double substep_dt_;
   int iterations_;
   std::vector<Float4> x_prev_;

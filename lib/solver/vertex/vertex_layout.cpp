@@ -43,4 +43,16 @@ VertexLayout make_vertex_layout(const SimLayout& layout) {
   return out;
 }
 
+ColorLanes color_lanes(const graph::ColorBlocks& colors) {
+  ColorLanes out;
+  out.offsets.push_back(0);
+  for (int c = 0; c < colors.count(); ++c) {
+    const std::span<const int> block = colors.block(c);
+    out.order.insert(out.order.end(), block.begin(), block.end());
+    out.order.resize((out.order.size() + kLaneWidth - 1) / kLaneWidth * kLaneWidth, -1);
+    out.offsets.push_back(static_cast<int>(out.order.size()) / kLaneWidth);
+  }
+  return out;
+}
+
 }  // namespace atssim::solver::vertex

@@ -17,6 +17,18 @@ struct VertexLayout {
 
 VertexLayout make_vertex_layout(const SimLayout& layout);
 
+// The colors cut into batches of kLaneWidth vertices (VBD's solver.ordering:
+// color_batches, kernels/common/vertex_system_lanes.h): each color's
+// vertices in their order, padded with -1 to a whole batch; batch b is
+// order[kLaneWidth b … kLaneWidth b + kLaneWidth), and color c's batches are
+// [offsets[c], offsets[c + 1]).
+inline constexpr int kLaneWidth = 8;
+struct ColorLanes {
+  std::vector<int> order;
+  std::vector<int> offsets;
+};
+ColorLanes color_lanes(const graph::ColorBlocks& colors);
+
 // Entry code of kernels/common/vertex_system.cl.
 inline int adjacency_code(int element, int kind, int slot) { return element << 4 | kind << 2 | slot; }
 

@@ -54,23 +54,35 @@ SimLayout with_ground(SimLayout layout) {
 SimLayout start_of(const std::string& name) {
   if (name == "cloth") return test::moving_cloth(16, 1e4, 1e-3, kH);
   if (name == "cloth over the ground") return with_ground(test::moving_cloth(16, 1e4, 1e-3, kH));
+  if (name == "cloth, half dihedral, damped springs") {
+    SimLayout layout = test::moving_cloth(16, 1e4, 1e-3, kH);
+    for (std::size_t k = 0; k < layout.bend.size(); k += 2) layout.bend[k].model = ATS_BEND_DIHEDRAL;
+    for (std::size_t k = 0; k < layout.stretch.size(); k += 3) layout.stretch[k].damping = 0.05f;
+    return layout;
+  }
   return moving_soft_box();
+}
+
+// x and v after kSubsteps of the plan on the whole CPU device.
+std::pair<std::vector<Float4>, std::vector<Float4>> run_plan(const SimLayout& start, vbd::VbdOrdering ordering) {
+  vertex::VertexBuffers ids;
+  const auto plan = vbd::make_vbd_plan(start, kH, kIterations, &ids, ordering);
+  const auto devices = device::DeviceSet::open("cpu");
+  device::PlanExecutor exec(devices, plan);
+  exec.run_substeps(kSubsteps);
+  return {as_float4(exec.read(ids.x)), as_float4(exec.read(ids.v))};
 }
 
 }  // namespace
 
 TEST_CASE("the OpenCL VBD plan and the host VBD reference agree to 1e-5 after a few substeps", "[vbd]") {
   const std::string scene = GENERATE("cloth", "cloth over the ground", "neo-Hookean solid");
+  const bool lanes = GENERATE(false, true);  // solver.ordering colors or color_batches, on both sides
+  INFO(scene << (lanes ? ", color_batches" : ", colors"));
   const SimLayout start = start_of(scene);
-  vertex::VertexBuffers ids;
-  const auto plan = vbd::make_vbd_plan(start, kH, kIterations, &ids);
-  const auto devices = device::DeviceSet::open("cpu");
-  device::PlanExecutor exec(devices, plan);
-  exec.run_substeps(kSubsteps);
-  const auto device_x = as_float4(exec.read(ids.x));
-  const auto device_v = as_float4(exec.read(ids.v));
+  const auto [device_x, device_v] = run_plan(start, lanes ? vbd::VbdOrdering::color_batches : vbd::VbdOrdering::colors);
 
-  vbd::VbdReference ref(start, kH, kIterations);
+  vbd::VbdReference ref(start, kH, kIterations, 1, lanes);
   for (int s = 0; s < kSubsteps; ++s) ref.substep();
   REQUIRE(device_x.size() == ref.state().x.size());
   const double dx = test::max_distance(device_x, ref.state().x);
@@ -80,4 +92,19 @@ TEST_CASE("the OpenCL VBD plan and the host VBD reference agree to 1e-5 after a 
   CHECK(moved > 1e-4);  // the substeps really changed the state
   CHECK(dx < 1e-5);
   CHECK(dv < 1e-5 / kH);
+}
+
+TEST_CASE("the VBD kernel's lanes (color_batches) give the colors' bits", "[vbd]") {
+  // The lanes' gather is the scalar one's operations per lane
+  // (common/vertex_system_lanes.h): springs and isometric stencils as
+  // vectors, dihedral stencils and tets lane by lane.
+  const std::string scene =
+      GENERATE("cloth over the ground", "cloth, half dihedral, damped springs", "neo-Hookean solid");
+  INFO(scene);
+  const SimLayout start = start_of(scene);
+  const auto colors = run_plan(start, vbd::VbdOrdering::colors);
+  const auto lanes = run_plan(start, vbd::VbdOrdering::color_batches);
+  CHECK(test::max_distance(colors.first, start.x) > 1e-4);  // it moved
+  CHECK(std::memcmp(colors.first.data(), lanes.first.data(), colors.first.size() * sizeof(Float4)) == 0);
+  CHECK(std::memcmp(colors.second.data(), lanes.second.data(), colors.second.size() * sizeof(Float4)) == 0);
 }

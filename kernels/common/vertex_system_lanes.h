@@ -1,0 +1,271 @@
+/* The vertex-system gather of common/vertex_system.h for 8 vertices at once,
+ * as 8 float lanes (VBD's solver.ordering: color_batches): lane l gathers
+ * vertex v[l] (-1: a padding lane, left at zero). The 8 vertices come from
+ * one color, so no lane reads a position another lane's step writes.
+ *
+ * Each lane sums its elements in its own adjacency order with the scalar
+ * gather's operations, so each lane's system is bit for bit the scalar
+ * one. The lanes walk their lists in three phases, the entries of one kind
+ * each (a vertex's list holds its stretch entries, then its bending, then
+ * its tets: solver/vertex/vertex_layout.cpp): a lane whose next entry is of
+ * another kind waits for the next phase. Springs and isometric bending run
+ * as 8-float vectors; a dihedral stencil or a tet is computed lane by lane
+ * with the scalar math and added as a vector.
+ *
+ * In the common subset of OpenCL C and GCC's C++ (vector extensions): the
+ * kernels (kernels/vbd/vbd.cl) and the host VBD reference's lanes
+ * (lib/solver/vbd/vbd_reference.cpp, bench_native's native lanes row) run
+ * this one gather. Needs FP contraction off, as energy_stretch.h does. */
+#ifndef ATS_VERTEX_SYSTEM_LANES_H
+#define ATS_VERTEX_SYSTEM_LANES_H
+
+#include "common/vertex_system.h"
+
+#ifdef __OPENCL_VERSION__
+typedef float8 ats_f8;
+typedef int8 ats_i8;
+#define ATS_F8(s) ((float8)(s))
+#define ATS_F8_LOAD(p) vload8(0, p)
+#define ATS_I8_LOAD(p) vload8(0, p)
+#define ATS_F8_STORE(v, p) vstore8(v, 0, p)
+#define ATS_F8_SQRT(v) sqrt(v)
+#define ATS_F8_FMA(a, b, c) fma(a, b, c)
+#define ATS_F8_SELECT(m, a, b) select(b, a, m) /* a where m, else b */
+#else
+typedef float ats_f8 __attribute__((vector_size(32)));
+typedef int ats_i8 __attribute__((vector_size(32)));
+#define ATS_F8(s) (ats_f8{(s), (s), (s), (s), (s), (s), (s), (s)})
+#define ATS_F8_LOAD(p) ats_f8_load(p)
+#define ATS_I8_LOAD(p) ats_i8_load(p)
+#define ATS_F8_STORE(v, p) __builtin_memcpy(p, &(v), sizeof(ats_f8))
+#define ATS_F8_SQRT(v) ats_f8_sqrt(v)
+#define ATS_F8_FMA(a, b, c) ats_f8_fma(a, b, c)
+#define ATS_F8_SELECT(m, a, b) ((m) ? (a) : (b))
+ATS_FN ats_f8 ats_f8_load(const float* p) {
+  ats_f8 v;
+  __builtin_memcpy(&v, p, sizeof v);
+  return v;
+}
+ATS_FN ats_i8 ats_i8_load(const int* p) {
+  ats_i8 v;
+  __builtin_memcpy(&v, p, sizeof v);
+  return v;
+}
+ATS_FN ats_f8 ats_f8_sqrt(ats_f8 v) {
+  for (int l = 0; l < 8; ++l) v[l] = __builtin_sqrtf(v[l]);
+  return v;
+}
+ATS_FN ats_f8 ats_f8_fma(ats_f8 a, ats_f8 b, ats_f8 c) {
+  for (int l = 0; l < 8; ++l) a[l] = __builtin_fmaf(a[l], b[l], c[l]);
+  return a;
+}
+#endif
+
+/* ats_two_sum and ats_stretch_extension (common/energy_stretch.h), lane-wise. */
+ATS_FN ats_f8 ats_two_sum8(ats_f8 a, ats_f8 b, ats_f8* e) {
+  const ats_f8 s = a + b;
+  const ats_f8 z = s - a;
+  *e = (a - (s - z)) + (b - z);
+  return s;
+}
+ATS_FN ats_f8 ats_add_square8(ats_f8 s, ats_f8 a, ats_f8* err) {
+  const ats_f8 p = a * a;
+  const ats_f8 e_prod = ATS_F8_FMA(a, a, -p);
+  ats_f8 e_sum;
+  s = ats_two_sum8(s, p, &e_sum);
+  *err += e_prod + e_sum;
+  return s;
+}
+ATS_FN ats_f8 ats_stretch_extension8(const ats_f8 xa[3], const ats_f8 xb[3], ats_f8 rest, ats_f8 l) {
+  ats_f8 err = ATS_F8(0.0f), d[3], a[3];
+  ATS_UNROLL for (int j = 0; j < 3; ++j) a[j] = ats_two_sum8(xa[j], -xb[j], &d[j]);
+  ats_f8 s = ats_add_square8(ATS_F8(0.0f), a[0], &err);
+  s = ats_add_square8(s, a[1], &err);
+  s = ats_add_square8(s, a[2], &err);
+  const ats_f8 p = rest * -rest;
+  const ats_f8 e_prod = ATS_F8_FMA(rest, -rest, -p);
+  ats_f8 e_sum;
+  s = ats_two_sum8(s, p, &e_sum);
+  err += e_prod + e_sum;
+  err += 2.0f * (a[0] * d[0] + a[1] * d[1] + a[2] * d[2]);
+  return ATS_F8_SELECT(l + rest <= 0.0f, ATS_F8(0.0f), (s + err) / (l + rest));
+}
+
+/* One phase's contribution: f -= g (f += g where plus), h += H, in the
+ * lanes that take an entry. acc: f.x, f.y, f.z, then h row by row. */
+ATS_FN void ats_vs8_add(ats_f8 acc[12], ats_i8 take, ats_i8 plus, const ats_f8 g[3], const ats_f8 hc[9]) {
+  ATS_UNROLL for (int j = 0; j < 3; ++j) acc[j] =
+      ATS_F8_SELECT(take, ATS_F8_SELECT(plus, acc[j] + g[j], acc[j] - g[j]), acc[j]);
+  ATS_UNROLL for (int j = 0; j < 9; ++j) acc[3 + j] = ATS_F8_SELECT(take, acc[3 + j] + hc[j], acc[3 + j]);
+}
+
+/* ats_stretch_gradient and ats_stretch_hessian (projected), lane-wise. */
+ATS_FN void ats_stretch_terms8(const ats_f8 xa[3], const ats_f8 xb[3], ats_f8 rest, ats_f8 k, ats_f8 g[3],
+                               ats_f8 hc[9]) {
+  ats_f8 d[3];
+  ATS_UNROLL for (int j = 0; j < 3; ++j) d[j] = xa[j] - xb[j];
+  const ats_f8 l = ATS_F8_SQRT(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  const ats_i8 live = l > ATS_STRETCH_MIN_LENGTH;
+  const ats_f8 ext = ats_stretch_extension8(xa, xb, rest, l);
+  const ats_f8 gs = k * ext / l;
+  const ats_f8 inv_l = 1.0f / l;
+  ats_f8 n[3];
+  ATS_UNROLL for (int j = 0; j < 3; ++j) {
+    g[j] = ATS_F8_SELECT(live, d[j] * gs, ATS_F8(0.0f));
+    n[j] = d[j] * inv_l;
+  }
+  ats_f8 f = ext / l;
+  f = ATS_F8_SELECT(f < 0.0f, ATS_F8(0.0f), f);
+  const ats_f8 across = k * (1.0f - f), diag = k * f;
+  ATS_UNROLL for (int r = 0; r < 3; ++r) {
+    ATS_UNROLL for (int c = 0; c < 3; ++c) {
+      const ats_f8 o = n[c] * across * n[r];
+      hc[3 * r + c] = ATS_F8_SELECT(live, r == c ? o + diag : o + 0.0f, ATS_F8(0.0f));
+    }
+  }
+}
+
+/* A lane's scalar contribution (vertex_system.h's arithmetic for a dihedral
+ * stencil or a tet) into the per-lane arrays the phase loads as vectors. */
+ATS_FN void ats_vs8_put(float g[3][8], float hc[9][8], int l, ats_vec3 gv, ats_mat3 hm) {
+  g[0][l] = gv.x;
+  g[1][l] = gv.y;
+  g[2][l] = gv.z;
+  ATS_UNROLL for (int r = 0; r < 3; ++r) {
+    hc[3 * r][l] = hm.r[r].x;
+    hc[3 * r + 1][l] = hm.r[r].y;
+    hc[3 * r + 2][l] = hm.r[r].z;
+  }
+}
+
+ATS_FN void gather_vertex_system8(const int v[8], ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const ats_float4* x_tilde,
+                                  float inv_h2, ATS_GLOBAL const int* adj_offsets, ATS_GLOBAL const int* adj,
+                                  ATS_GLOBAL const ats_distance_c* stretch, ATS_GLOBAL const ats_bend_c* bend,
+                                  ATS_GLOBAL const ats_tet_c* tets, vertex_system out[8]) {
+  float a0[12][8];
+  int at[8], end[8];
+  ATS_UNROLL for (int l = 0; l < 8; ++l) {
+    const int i = v[l];
+    at[l] = i >= 0 ? adj_offsets[i] : 0;
+    end[l] = i >= 0 ? adj_offsets[i + 1] : 0;
+    const ats_float4 p = x[i >= 0 ? i : v[0]];
+    const float mass = 1.0f / p.w;
+    const ats_vec3 f =
+        ats_scale(ats_inertia_gradient(vs_xyz(p), vs_xyz(x_tilde[i >= 0 ? i : v[0]]), mass, inv_h2), -1.0f);
+    const ats_mat3 h = ats_inertia_hessian(mass, inv_h2);
+    ats_vs8_put(a0, a0 + 3, l, f, h);
+  }
+  ats_f8 acc[12];
+  ATS_UNROLL for (int j = 0; j < 12; ++j) acc[j] = ATS_F8_LOAD(a0[j]);
+  for (int kind = 0; kind < 3; ++kind) {
+    for (;;) {
+      int take[8], code[8], pl[8], any = 0;
+      ATS_UNROLL for (int l = 0; l < 8; ++l) {
+        code[l] = at[l] < end[l] ? adj[at[l]] : -1;
+        take[l] = code[l] >= 0 && ((code[l] >> 2) & 3) == kind ? -1 : 0;
+        at[l] += take[l] ? 1 : 0;
+        any |= take[l];
+      }
+      if (!any) break;
+      ats_f8 g[3], hc[9];
+      ATS_UNROLL for (int l = 0; l < 8; ++l) pl[l] = 0;
+      if (kind == 0) {
+        float ax[3][8], bx[3][8], rest[8], k[8];
+        ATS_UNROLL for (int l = 0; l < 8; ++l) {
+          /* a lane that takes nothing gathers a unit spring at rest: finite, and its sums are not taken */
+          const ats_distance_c c = stretch[take[l] ? code[l] >> 4 : 0];
+          const ats_float4 pa = x[take[l] ? c.a : v[0]];
+          const ats_float4 pb = take[l] ? x[c.b] : pa;
+          ax[0][l] = pa.x;
+          ax[1][l] = pa.y;
+          ax[2][l] = pa.z;
+          bx[0][l] = take[l] ? pb.x : pa.x + 1.0f;
+          bx[1][l] = pb.y;
+          bx[2][l] = pb.z;
+          rest[l] = take[l] ? c.rest : 1.0f;
+          k[l] = take[l] ? 1.0f / c.compliance : 0.0f;
+          pl[l] = take[l] && (code[l] & 3) != 0 ? -1 : 0;
+        }
+        ats_f8 xa[3], xb[3];
+        ATS_UNROLL for (int j = 0; j < 3; ++j) {
+          xa[j] = ATS_F8_LOAD(ax[j]);
+          xb[j] = ATS_F8_LOAD(bx[j]);
+        }
+        ats_stretch_terms8(xa, xb, ATS_F8_LOAD(rest), ATS_F8_LOAD(k), g, hc);
+      } else if (kind == 1) {
+        /* isometric: g = S (k s K_slot), H = diag(k s K_slot K_slot), S = sum_j K_j x_j */
+        float q[4][3][8], kk[4][8], ks[8], kslot[8], gd[3][8], hd[9][8];
+        int isom[8];
+        ATS_UNROLL for (int l = 0; l < 8; ++l) {
+          const ats_bend_c c = bend[take[l] ? code[l] >> 4 : 0];
+          const int slot = code[l] & 3;
+          const int iso = take[l] && c.model != ATS_BEND_DIHEDRAL;
+          isom[l] = iso ? -1 : 0;
+          ATS_UNROLL for (int j = 0; j < 4; ++j) {
+            const ats_float4 p = x[iso ? c.v[j] : v[0]];
+            q[j][0][l] = p.x;
+            q[j][1][l] = p.y;
+            q[j][2][l] = p.z;
+            kk[j][l] = iso ? c.K[j] : 0.0f;
+          }
+          const float stiffness = 1.0f / c.compliance;
+          ks[l] = iso ? stiffness * c.scale : 0.0f;
+          kslot[l] = iso ? c.K[slot] : 0.0f;
+          if (take[l] && !iso) {
+            ats_vec3 qq[4];
+            ATS_UNROLL for (int j = 0; j < 4; ++j) qq[j] = vs_xyz(x[c.v[j]]);
+            ats_vs8_put(gd, hd, l, ats_bend_element_gradient(c.model, qq, c.K, c.scale, stiffness, c.rest_angle, slot),
+                        ats_bend_element_hessian(c.model, qq, c.K, c.scale, stiffness, slot, slot));
+          } else {
+            ats_vs8_put(gd, hd, l, ats_v3(0, 0, 0), ats_m3_diag(0));
+          }
+        }
+        ats_f8 s[3];
+        ATS_UNROLL for (int j = 0; j < 3; ++j) {
+          s[j] = ATS_F8(0.0f);
+          ATS_UNROLL for (int m = 0; m < 4; ++m) s[j] = s[j] + ATS_F8_LOAD(q[m][j]) * ATS_F8_LOAD(kk[m]);
+        }
+        const ats_f8 ksv = ATS_F8_LOAD(ks), kslv = ATS_F8_LOAD(kslot);
+        const ats_i8 iso = ATS_I8_LOAD(isom);
+        const ats_f8 gs = ksv * kslv, hd8 = gs * kslv;
+        ATS_UNROLL for (int j = 0; j < 3; ++j) g[j] = ATS_F8_SELECT(iso, s[j] * gs, ATS_F8_LOAD(gd[j]));
+        ATS_UNROLL for (int j = 0; j < 9; ++j) {
+          const ats_f8 hdiag = (j == 0 || j == 4 || j == 8) ? hd8 : ATS_F8(0.0f);
+          hc[j] = ATS_F8_SELECT(iso, hdiag, ATS_F8_LOAD(hd[j]));
+        }
+      } else {
+        float gd[3][8], hd[9][8];
+        ATS_UNROLL for (int l = 0; l < 8; ++l) {
+          if (!take[l]) {
+            ats_vs8_put(gd, hd, l, ats_v3(0, 0, 0), ats_m3_diag(0));
+            continue;
+          }
+          const ats_tet_c t = tets[code[l] >> 4];
+          const int slot = code[l] & 3;
+          ats_vec3 q[4];
+          ATS_UNROLL for (int j = 0; j < 4; ++j) q[j] = vs_xyz(x[t.v[j]]);
+          ats_mat3 dm;
+          ATS_UNROLL for (int r = 0; r < 3; ++r) dm.r[r] =
+              ats_v3(t.dm_inv[3 * r], t.dm_inv[3 * r + 1], t.dm_inv[3 * r + 2]);
+          if (t.model == ATS_TET_STVK) {
+            ats_vs8_put(gd, hd, l, ats_tet_stvk_gradient(q, dm, t.volume, t.mu, t.lambda, slot),
+                        ats_tet_stvk_hessian_diag_psd(q, dm, t.volume, t.mu, t.lambda, slot));
+          } else {
+            ats_vs8_put(gd, hd, l, ats_tet_nh_gradient(q, dm, t.volume, t.mu, t.lambda, slot),
+                        ats_tet_nh_hessian_diag_psd(q, dm, t.volume, t.mu, t.lambda, slot));
+          }
+        }
+        ATS_UNROLL for (int j = 0; j < 3; ++j) g[j] = ATS_F8_LOAD(gd[j]);
+        ATS_UNROLL for (int j = 0; j < 9; ++j) hc[j] = ATS_F8_LOAD(hd[j]);
+      }
+      ats_vs8_add(acc, ATS_I8_LOAD(take), ATS_I8_LOAD(pl), g, hc);
+    }
+  }
+  ATS_UNROLL for (int j = 0; j < 12; ++j) ATS_F8_STORE(acc[j], a0[j]);
+  ATS_UNROLL for (int l = 0; l < 8; ++l) {
+    out[l].f = ats_v3(a0[0][l], a0[1][l], a0[2][l]);
+    ATS_UNROLL for (int r = 0; r < 3; ++r) out[l].h.r[r] = ats_v3(a0[3 + 3 * r][l], a0[4 + 3 * r][l], a0[5 + 3 * r][l]);
+  }
+}
+
+#endif
