@@ -31,6 +31,8 @@ typedef int8 ats_i8;
 #define ATS_F8_SQRT(v) sqrt(v)
 #define ATS_F8_FMA(a, b, c) fma(a, b, c)
 #define ATS_F8_SELECT(m, a, b) select(b, a, m) /* a where m, else b */
+#define ATS_F8_FMAX(a, b) fmax(a, b)
+#define ATS_F8_FABS(a) fabs(a)
 #else
 typedef float ats_f8 __attribute__((vector_size(32)));
 typedef int ats_i8 __attribute__((vector_size(32)));
@@ -41,6 +43,8 @@ typedef int ats_i8 __attribute__((vector_size(32)));
 #define ATS_F8_SQRT(v) ats_f8_sqrt(v)
 #define ATS_F8_FMA(a, b, c) ats_f8_fma(a, b, c)
 #define ATS_F8_SELECT(m, a, b) ((m) ? (a) : (b))
+#define ATS_F8_FMAX(a, b) ats_f8_fmax(a, b)
+#define ATS_F8_FABS(a) ats_f8_fabs(a)
 ATS_FN ats_f8 ats_f8_load(const float* p) {
   ats_f8 v;
   __builtin_memcpy(&v, p, sizeof v);
@@ -54,6 +58,14 @@ ATS_FN ats_i8 ats_i8_load(const int* p) {
 ATS_FN ats_f8 ats_f8_sqrt(ats_f8 v) {
   for (int l = 0; l < 8; ++l) v[l] = __builtin_sqrtf(v[l]);
   return v;
+}
+ATS_FN ats_f8 ats_f8_fmax(ats_f8 a, ats_f8 b) {
+  for (int l = 0; l < 8; ++l) a[l] = __builtin_fmaxf(a[l], b[l]);
+  return a;
+}
+ATS_FN ats_f8 ats_f8_fabs(ats_f8 a) {
+  for (int l = 0; l < 8; ++l) a[l] = __builtin_fabsf(a[l]);
+  return a;
 }
 ATS_FN ats_f8 ats_f8_fma(ats_f8 a, ats_f8 b, ats_f8 c) {
   for (int l = 0; l < 8; ++l) a[l] = __builtin_fmaf(a[l], b[l], c[l]);
@@ -138,10 +150,42 @@ ATS_FN void ats_vs8_put(float g[3][8], float hc[9][8], int l, ats_vec3 gv, ats_m
   }
 }
 
-ATS_FN void gather_vertex_system8(const int v[8], ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const ats_float4* x_tilde,
-                                  float inv_h2, ATS_GLOBAL const int* adj_offsets, ATS_GLOBAL const int* adj,
-                                  ATS_GLOBAL const ats_distance_c* stretch, ATS_GLOBAL const ats_bend_c* bend,
-                                  ATS_GLOBAL const ats_tet_c* tets, vertex_system out[8]) {
+/* A dihedral stencil's and a tet's terms for one lane, with the scalar
+ * math, kept out of line: the lanes' loop holds one call, not eight copies
+ * of the rarely taken math. */
+ATS_FN_NOINLINE void ats_vs8_bend_lane(ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const ats_bend_c* bend, int code,
+                                       float g[3][8], float hc[9][8], int l) {
+  const ats_bend_c c = bend[code >> 4];
+  const int slot = code & 3;
+  const float stiffness = 1.0f / c.compliance;
+  ats_vec3 q[4];
+  ATS_UNROLL for (int j = 0; j < 4; ++j) q[j] = vs_xyz(x[c.v[j]]);
+  ats_vs8_put(g, hc, l, ats_bend_element_gradient(c.model, q, c.K, c.scale, stiffness, c.rest_angle, slot),
+              ats_bend_element_hessian(c.model, q, c.K, c.scale, stiffness, slot, slot));
+}
+ATS_FN_NOINLINE void ats_vs8_tet_lane(ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const ats_tet_c* tets, int code,
+                                      float g[3][8], float hc[9][8], int l) {
+  const ats_tet_c t = tets[code >> 4];
+  const int slot = code & 3;
+  ats_vec3 q[4];
+  ATS_UNROLL for (int j = 0; j < 4; ++j) q[j] = vs_xyz(x[t.v[j]]);
+  ats_mat3 dm;
+  ATS_UNROLL for (int r = 0; r < 3; ++r) dm.r[r] = ats_v3(t.dm_inv[3 * r], t.dm_inv[3 * r + 1], t.dm_inv[3 * r + 2]);
+  if (t.model == ATS_TET_STVK) {
+    ats_vs8_put(g, hc, l, ats_tet_stvk_gradient(q, dm, t.volume, t.mu, t.lambda, slot),
+                ats_tet_stvk_hessian_diag_psd(q, dm, t.volume, t.mu, t.lambda, slot));
+  } else {
+    ats_vs8_put(g, hc, l, ats_tet_nh_gradient(q, dm, t.volume, t.mu, t.lambda, slot),
+                ats_tet_nh_hessian_diag_psd(q, dm, t.volume, t.mu, t.lambda, slot));
+  }
+}
+
+/* The 8 systems as 12 vectors: f.x, f.y, f.z, then h row by row. */
+ATS_FN void gather_vertex_system8_lanes(const int v[8], ATS_GLOBAL const ats_float4* x,
+                                        ATS_GLOBAL const ats_float4* x_tilde, float inv_h2,
+                                        ATS_GLOBAL const int* adj_offsets, ATS_GLOBAL const int* adj,
+                                        ATS_GLOBAL const ats_distance_c* stretch, ATS_GLOBAL const ats_bend_c* bend,
+                                        ATS_GLOBAL const ats_tet_c* tets, ats_f8 acc[12]) {
   float a0[12][8];
   int at[8], end[8];
   ATS_UNROLL for (int l = 0; l < 8; ++l) {
@@ -155,7 +199,6 @@ ATS_FN void gather_vertex_system8(const int v[8], ATS_GLOBAL const ats_float4* x
     const ats_mat3 h = ats_inertia_hessian(mass, inv_h2);
     ats_vs8_put(a0, a0 + 3, l, f, h);
   }
-  ats_f8 acc[12];
   ATS_UNROLL for (int j = 0; j < 12; ++j) acc[j] = ATS_F8_LOAD(a0[j]);
   for (int kind = 0; kind < 3; ++kind) {
     for (;;) {
@@ -170,7 +213,7 @@ ATS_FN void gather_vertex_system8(const int v[8], ATS_GLOBAL const ats_float4* x
       ats_f8 g[3], hc[9];
       ATS_UNROLL for (int l = 0; l < 8; ++l) pl[l] = 0;
       if (kind == 0) {
-        float ax[3][8], bx[3][8], rest[8], k[8];
+        float ax[3][8], bx[3][8], rest[8], comp[8];
         ATS_UNROLL for (int l = 0; l < 8; ++l) {
           /* a lane that takes nothing gathers a unit spring at rest: finite, and its sums are not taken */
           const ats_distance_c c = stretch[take[l] ? code[l] >> 4 : 0];
@@ -183,7 +226,7 @@ ATS_FN void gather_vertex_system8(const int v[8], ATS_GLOBAL const ats_float4* x
           bx[1][l] = pb.y;
           bx[2][l] = pb.z;
           rest[l] = take[l] ? c.rest : 1.0f;
-          k[l] = take[l] ? 1.0f / c.compliance : 0.0f;
+          comp[l] = take[l] ? c.compliance : 1.0f;
           pl[l] = take[l] && (code[l] & 3) != 0 ? -1 : 0;
         }
         ats_f8 xa[3], xb[3];
@@ -191,14 +234,13 @@ ATS_FN void gather_vertex_system8(const int v[8], ATS_GLOBAL const ats_float4* x
           xa[j] = ATS_F8_LOAD(ax[j]);
           xb[j] = ATS_F8_LOAD(bx[j]);
         }
-        ats_stretch_terms8(xa, xb, ATS_F8_LOAD(rest), ATS_F8_LOAD(k), g, hc);
+        ats_stretch_terms8(xa, xb, ATS_F8_LOAD(rest), 1.0f / ATS_F8_LOAD(comp), g, hc);
       } else if (kind == 1) {
         /* isometric: g = S (k s K_slot), H = diag(k s K_slot K_slot), S = sum_j K_j x_j */
-        float q[4][3][8], kk[4][8], ks[8], kslot[8], gd[3][8], hd[9][8];
-        int isom[8];
+        float q[4][3][8], kk[4][8], comp[8], scale[8], kslot[8], gd[3][8], hd[9][8];
+        int isom[8], dihedral = 0;
         ATS_UNROLL for (int l = 0; l < 8; ++l) {
           const ats_bend_c c = bend[take[l] ? code[l] >> 4 : 0];
-          const int slot = code[l] & 3;
           const int iso = take[l] && c.model != ATS_BEND_DIHEDRAL;
           isom[l] = iso ? -1 : 0;
           ATS_UNROLL for (int j = 0; j < 4; ++j) {
@@ -208,16 +250,15 @@ ATS_FN void gather_vertex_system8(const int v[8], ATS_GLOBAL const ats_float4* x
             q[j][2][l] = p.z;
             kk[j][l] = iso ? c.K[j] : 0.0f;
           }
-          const float stiffness = 1.0f / c.compliance;
-          ks[l] = iso ? stiffness * c.scale : 0.0f;
-          kslot[l] = iso ? c.K[slot] : 0.0f;
+          comp[l] = iso ? c.compliance : 1.0f;
+          scale[l] = iso ? c.scale : 0.0f;
+          kslot[l] = iso ? c.K[code[l] & 3] : 0.0f;
           if (take[l] && !iso) {
-            ats_vec3 qq[4];
-            ATS_UNROLL for (int j = 0; j < 4; ++j) qq[j] = vs_xyz(x[c.v[j]]);
-            ats_vs8_put(gd, hd, l, ats_bend_element_gradient(c.model, qq, c.K, c.scale, stiffness, c.rest_angle, slot),
-                        ats_bend_element_hessian(c.model, qq, c.K, c.scale, stiffness, slot, slot));
-          } else {
-            ats_vs8_put(gd, hd, l, ats_v3(0, 0, 0), ats_m3_diag(0));
+            if (!dihedral) {
+              ATS_UNROLL for (int m = 0; m < 8; ++m) ats_vs8_put(gd, hd, m, ats_v3(0, 0, 0), ats_m3_diag(0));
+            }
+            dihedral = 1;
+            ats_vs8_bend_lane(x, bend, code[l], gd, hd, l);
           }
         }
         ats_f8 s[3];
@@ -225,13 +266,14 @@ ATS_FN void gather_vertex_system8(const int v[8], ATS_GLOBAL const ats_float4* x
           s[j] = ATS_F8(0.0f);
           ATS_UNROLL for (int m = 0; m < 4; ++m) s[j] = s[j] + ATS_F8_LOAD(q[m][j]) * ATS_F8_LOAD(kk[m]);
         }
-        const ats_f8 ksv = ATS_F8_LOAD(ks), kslv = ATS_F8_LOAD(kslot);
-        const ats_i8 iso = ATS_I8_LOAD(isom);
-        const ats_f8 gs = ksv * kslv, hd8 = gs * kslv;
-        ATS_UNROLL for (int j = 0; j < 3; ++j) g[j] = ATS_F8_SELECT(iso, s[j] * gs, ATS_F8_LOAD(gd[j]));
-        ATS_UNROLL for (int j = 0; j < 9; ++j) {
-          const ats_f8 hdiag = (j == 0 || j == 4 || j == 8) ? hd8 : ATS_F8(0.0f);
-          hc[j] = ATS_F8_SELECT(iso, hdiag, ATS_F8_LOAD(hd[j]));
+        const ats_f8 kslv = ATS_F8_LOAD(kslot);
+        const ats_f8 gs = 1.0f / ATS_F8_LOAD(comp) * ATS_F8_LOAD(scale) * kslv, hd8 = gs * kslv;
+        ATS_UNROLL for (int j = 0; j < 3; ++j) g[j] = s[j] * gs;
+        ATS_UNROLL for (int j = 0; j < 9; ++j) hc[j] = (j == 0 || j == 4 || j == 8) ? hd8 : ATS_F8(0.0f);
+        if (dihedral) {
+          const ats_i8 iso = ATS_I8_LOAD(isom);
+          ATS_UNROLL for (int j = 0; j < 3; ++j) g[j] = ATS_F8_SELECT(iso, g[j], ATS_F8_LOAD(gd[j]));
+          ATS_UNROLL for (int j = 0; j < 9; ++j) hc[j] = ATS_F8_SELECT(iso, hc[j], ATS_F8_LOAD(hd[j]));
         }
       } else {
         float gd[3][8], hd[9][8];
@@ -240,20 +282,7 @@ ATS_FN void gather_vertex_system8(const int v[8], ATS_GLOBAL const ats_float4* x
             ats_vs8_put(gd, hd, l, ats_v3(0, 0, 0), ats_m3_diag(0));
             continue;
           }
-          const ats_tet_c t = tets[code[l] >> 4];
-          const int slot = code[l] & 3;
-          ats_vec3 q[4];
-          ATS_UNROLL for (int j = 0; j < 4; ++j) q[j] = vs_xyz(x[t.v[j]]);
-          ats_mat3 dm;
-          ATS_UNROLL for (int r = 0; r < 3; ++r) dm.r[r] =
-              ats_v3(t.dm_inv[3 * r], t.dm_inv[3 * r + 1], t.dm_inv[3 * r + 2]);
-          if (t.model == ATS_TET_STVK) {
-            ats_vs8_put(gd, hd, l, ats_tet_stvk_gradient(q, dm, t.volume, t.mu, t.lambda, slot),
-                        ats_tet_stvk_hessian_diag_psd(q, dm, t.volume, t.mu, t.lambda, slot));
-          } else {
-            ats_vs8_put(gd, hd, l, ats_tet_nh_gradient(q, dm, t.volume, t.mu, t.lambda, slot),
-                        ats_tet_nh_hessian_diag_psd(q, dm, t.volume, t.mu, t.lambda, slot));
-          }
+          ats_vs8_tet_lane(x, tets, code[l], gd, hd, l);
         }
         ATS_UNROLL for (int j = 0; j < 3; ++j) g[j] = ATS_F8_LOAD(gd[j]);
         ATS_UNROLL for (int j = 0; j < 9; ++j) hc[j] = ATS_F8_LOAD(hd[j]);
@@ -261,11 +290,49 @@ ATS_FN void gather_vertex_system8(const int v[8], ATS_GLOBAL const ats_float4* x
       ats_vs8_add(acc, ATS_I8_LOAD(take), ATS_I8_LOAD(pl), g, hc);
     }
   }
+}
+
+/* The same systems, one per lane. */
+ATS_FN void gather_vertex_system8(const int v[8], ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const ats_float4* x_tilde,
+                                  float inv_h2, ATS_GLOBAL const int* adj_offsets, ATS_GLOBAL const int* adj,
+                                  ATS_GLOBAL const ats_distance_c* stretch, ATS_GLOBAL const ats_bend_c* bend,
+                                  ATS_GLOBAL const ats_tet_c* tets, vertex_system out[8]) {
+  ats_f8 acc[12];
+  gather_vertex_system8_lanes(v, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend, tets, acc);
+  float a0[12][8];
   ATS_UNROLL for (int j = 0; j < 12; ++j) ATS_F8_STORE(acc[j], a0[j]);
   ATS_UNROLL for (int l = 0; l < 8; ++l) {
     out[l].f = ats_v3(a0[0][l], a0[1][l], a0[2][l]);
     ATS_UNROLL for (int r = 0; r < 3; ++r) out[l].h.r[r] = ats_v3(a0[3 + 3 * r][l], a0[4 + 3 * r][l], a0[5 + 3 * r][l]);
   }
+}
+
+/* ats_m3_solve (common/vertex_solve.h) lane-wise: dx = H^-1 f of each lane's
+ * system acc (gather_vertex_system8_lanes), and where it was solved. */
+ATS_FN ats_i8 ats_m3_solve8(const ats_f8 acc[12], ats_f8 dx[3]) {
+  ats_f8 m = ATS_F8(0.0f);
+  ATS_UNROLL for (int r = 0; r < 3; ++r) {
+    m = ATS_F8_FMAX(m, ATS_F8_FMAX(ATS_F8_FABS(acc[3 + 3 * r]),
+                                   ATS_F8_FMAX(ATS_F8_FABS(acc[4 + 3 * r]), ATS_F8_FABS(acc[5 + 3 * r]))));
+  }
+  const ats_f8 inv_m = 1.0f / m;
+  ats_f8 h[9];
+  ATS_UNROLL for (int j = 0; j < 9; ++j) h[j] = acc[3 + j] * inv_m;
+  /* c0 = r1 x r2, c1 = r2 x r0, c2 = r0 x r1 (ats_v3_cross) */
+  ats_f8 c[3][3];
+  ATS_UNROLL for (int k = 0; k < 3; ++k) {
+    const int a = 3 * ((k + 1) % 3), b = 3 * ((k + 2) % 3);
+    c[k][0] = h[a + 1] * h[b + 2] - h[a + 2] * h[b + 1];
+    c[k][1] = h[a + 2] * h[b + 0] - h[a + 0] * h[b + 2];
+    c[k][2] = h[a + 0] * h[b + 1] - h[a + 1] * h[b + 0];
+  }
+  const ats_f8 det = h[0] * c[0][0] + h[1] * c[0][1] + h[2] * c[0][2];
+  const ats_i8 ok = (m > 0.0f) & (ATS_F8_FABS(det) > 1e-6f);
+  const ats_f8 s = inv_m / det;
+  ATS_UNROLL for (int j = 0; j < 3; ++j) {
+    dx[j] = ATS_F8_SELECT(ok, ((c[0][j] * acc[0] + c[1][j] * acc[1]) + c[2][j] * acc[2]) * s, ATS_F8(0.0f));
+  }
+  return ok;
 }
 
 #endif

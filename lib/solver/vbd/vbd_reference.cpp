@@ -34,6 +34,8 @@ VbdReference::VbdReference(SimLayout layout, double substep_dt, int iterations, 
   energy::require_finite_stiffness(layout_);
   if (threads < 1) throw input_error("the VBD reference needs threads >= 1, got " + std::to_string(threads));
   if (threads > 1) arena_ = std::make_unique<Arena>(threads);
+  // As damping_args: 1/h where a spring is damped, else 0 (looked up once, not per color).
+  damping_inv_h_ = has_spring_damping(layout_) ? static_cast<float>(1.0 / substep_dt_) : 0.0f;
 }
 
 VbdReference::VbdReference(VbdReference&&) noexcept = default;
@@ -117,7 +119,7 @@ void step_vertex(SimLayout& layout, int i, vertex_system s, const Float4* x_prev
 void VbdReference::solve_color(int color) {
   const double hi = inertia_dt(layout_, substep_dt_);
   const float inv_h2 = static_cast<float>(1.0 / (hi * hi));
-  const float inv_h = has_spring_damping(layout_) ? static_cast<float>(1.0 / substep_dt_) : 0.0f;  // as damping_args
+  const float inv_h = damping_inv_h_;
   const Float4* x = layout_.x.data();
   const int* order = vertices_.colors.order.data();
   sweep(vertices_.colors.offsets[color], vertices_.colors.offsets[color + 1], [&](int k) {
@@ -135,10 +137,29 @@ void VbdReference::solve_color(int color) {
 void VbdReference::solve_color_lanes(int color) {
   const double hi = inertia_dt(layout_, substep_dt_);
   const float inv_h2 = static_cast<float>(1.0 / (hi * hi));
-  const float inv_h = has_spring_damping(layout_) ? static_cast<float>(1.0 / substep_dt_) : 0.0f;  // as damping_args
+  const float inv_h = damping_inv_h_;
   const Float4* x = layout_.x.data();
   sweep(lanes_.offsets[color], lanes_.offsets[color + 1], [&](int b) {
     const int* v = lanes_.order.data() + vertex::kLaneWidth * b;
+    if (inv_h == 0.0f) {  // no damping: the solve as lanes too, as the kernel's
+      ats_f8 acc[12], dx[3];
+      gather_vertex_system8_lanes(v, x, x_tilde_.data(), inv_h2, vertices_.adjacency_offsets.data(),
+                                  vertices_.adjacency.data(), layout_.stretch.data(), layout_.bend.data(),
+                                  layout_.tets.data(), acc);
+      const ats_i8 ok = ats_m3_solve8(acc, dx);
+      for (int l = 0; l < vertex::kLaneWidth; ++l) {
+        if (v[l] < 0 || !ok[l]) continue;
+        Float4& p = layout_.x[v[l]];
+        ats_vec3 step = ats_v3(dx[0][l], dx[1][l], dx[2][l]);
+        if (layout_.has_ground && p.y + step.y < layout_.ground_y) {
+          ats_mat3 h;
+          for (int r = 0; r < 3; ++r) h.r[r] = ats_v3(acc[3 + 3 * r][l], acc[4 + 3 * r][l], acc[5 + 3 * r][l]);
+          step = ats_vertex_step_above_ground(h, ats_v3(acc[0][l], acc[1][l], acc[2][l]), step, p.y, layout_.ground_y);
+        }
+        p = {p.x + step.x, p.y + step.y, p.z + step.z, p.w};
+      }
+      return;
+    }
     vertex_system s[vertex::kLaneWidth];
     gather_vertex_system8(v, x, x_tilde_.data(), inv_h2, vertices_.adjacency_offsets.data(), vertices_.adjacency.data(),
                           layout_.stretch.data(), layout_.bend.data(), layout_.tets.data(), s);

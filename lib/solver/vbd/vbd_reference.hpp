@@ -50,6 +50,7 @@ class VbdReference {
   vertex::ColorLanes lanes_;  // empty: one vertex at a time
   double substep_dt_;
   int iterations_;
+  float damping_inv_h_ = 0.0f;  // 1/h when a spring is damped (add_spring_damping), else 0
   std::vector<Float4> x_prev_;
   std::vector<Float4> x_tilde_;
   struct Arena;                   // a tbb::task_arena, kept out of this header
