@@ -13,16 +13,19 @@ constexpr scene::SolidModel kSolids[] = {scene::SolidModel::neo_hookean, scene::
 
 constexpr std::string_view kOrderings[] = {"colors", "color_batches"};  // VbdOrdering's values in order
 
+// color_batches by default: the same bits as colors, and on one sub-device,
+// the whole device and two sub-devices 1.9-2.0x as fast at 64x64, 128x128
+// and 256x256 (docs/benchmarks.md, "VBD in float8 lanes").
 constexpr MethodOption kOptions[] = {
-    {"ordering", 0.0, 0.0, 1.0, false, false,
+    {"ordering", 1.0, 0.0, 1.0, false, false,
      "colors or color_batches: one work-item per vertex of a color, or per batch of 8 vertices of a color whose "
-     "element sums run as 8 float lanes (the same bits; vbd)",
+     "element sums run as 8 float lanes (the same bits; vbd; default color_batches)",
      kOrderings, false, -1},
 };
 
 plan::SubstepPlan build(const SimLayout& layout, const MethodSettings& s) {
   return make_vbd_plan(layout, s.substep_dt, s.iterations, nullptr,
-                       static_cast<VbdOrdering>(static_cast<int>(s.option_or("ordering", 0.0))));
+                       static_cast<VbdOrdering>(static_cast<int>(s.option_or("ordering", 1.0))));
 }
 
 }  // namespace
