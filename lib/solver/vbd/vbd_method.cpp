@@ -14,7 +14,7 @@ constexpr scene::SolidModel kSolids[] = {scene::SolidModel::neo_hookean, scene::
 constexpr std::string_view kOrderings[] = {"colors", "color_batches"};  // VbdOrdering's values in order
 
 // color_batches by default: the same bits as colors, and on one sub-device,
-// the whole device and two sub-devices 1.9-2.0x as fast at 64x64, 128x128
+// the whole device and two sub-devices 1.8-2.0x as fast at 64x64, 128x128
 // and 256x256 (docs/benchmarks.md, "VBD in float8 lanes").
 constexpr MethodOption kOptions[] = {
     {"ordering", 1.0, 0.0, 1.0, false, false,
