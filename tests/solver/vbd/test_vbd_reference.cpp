@@ -24,6 +24,17 @@ bool same_bits(const std::vector<Float4>& a, const std::vector<Float4>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Float4)) == 0;
 }
 
+// Five substeps of a and b from `start`: the same bits, and they moved.
+void check_same_substeps(VbdReference a, VbdReference b, const SimLayout& start) {
+  for (int s = 0; s < 5; ++s) {
+    a.substep();
+    b.substep();
+  }
+  CHECK(same_bits(a.state().x, b.state().x));
+  CHECK(same_bits(a.state().v, b.state().v));
+  CHECK_FALSE(same_bits(a.state().x, start.x));
+}
+
 // The moving cloth with a ground just below its lowest particle, so that
 // some vertices take the bounded step.
 SimLayout moving_cloth_over_ground() {
@@ -122,15 +133,7 @@ TEST_CASE("the host VBD keeps every particle on or above the ground", "[vbd]") {
 TEST_CASE("the host VBD on 2 threads gives the 1-thread result bit for bit", "[vbd]") {
   // Vertices of one color share no element, so their order does not matter.
   const SimLayout start = moving_cloth_over_ground();
-  VbdReference one(start, kH, 8, 1);
-  VbdReference two(start, kH, 8, 2);
-  for (int s = 0; s < 5; ++s) {
-    one.substep();
-    two.substep();
-  }
-  CHECK(same_bits(one.state().x, two.state().x));
-  CHECK(same_bits(one.state().v, two.state().v));
-  CHECK_FALSE(same_bits(one.state().x, start.x));  // it moved
+  check_same_substeps(VbdReference(start, kH, 8, 1), VbdReference(start, kH, 8, 2), start);
 }
 
 TEST_CASE("the host VBD's lanes give the one-vertex-at-a-time result bit for bit", "[vbd]") {
@@ -144,15 +147,7 @@ TEST_CASE("the host VBD's lanes give the one-vertex-at-a-time result bit for bit
     for (std::size_t k = 0; k < start.stretch.size(); k += 3) start.stretch[k].damping = 0.05f;
   }
   for (const int threads : {1, 2}) {
-    VbdReference one(start, kH, 8, threads);
-    VbdReference lanes(start, kH, 8, threads, true);
-    for (int s = 0; s < 5; ++s) {
-      one.substep();
-      lanes.substep();
-    }
-    CHECK(same_bits(one.state().x, lanes.state().x));
-    CHECK(same_bits(one.state().v, lanes.state().v));
-    CHECK_FALSE(same_bits(one.state().x, start.x));  // it moved
+    check_same_substeps(VbdReference(start, kH, 8, threads), VbdReference(start, kH, 8, threads, true), start);
   }
 }
 
