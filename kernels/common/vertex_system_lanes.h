@@ -1,7 +1,9 @@
 /* The vertex-system gather of common/vertex_system.h for 8 vertices at once,
  * as 8 float lanes (VBD's solver.ordering: color_batches): lane l gathers
- * vertex v[l] (-1: a padding lane, left at zero). The 8 vertices come from
- * one color, so no lane reads a position another lane's step writes.
+ * vertex v[l] (-1: a padding lane, at the end of a batch; its sums are not
+ * used). The 8 vertices come from one color, so no lane reads a position
+ * another lane's step writes. ats_m3_solve8 then solves the 8 systems as
+ * lanes with ats_m3_solve's operations.
  *
  * Each lane sums its elements in its own adjacency order with the scalar
  * gather's operations, so each lane's system is bit for bit the scalar
