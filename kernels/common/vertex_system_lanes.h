@@ -21,6 +21,7 @@
 #ifndef ATS_VERTEX_SYSTEM_LANES_H
 #define ATS_VERTEX_SYSTEM_LANES_H
 
+#include "common/vertex_solve.h"
 #include "common/vertex_system.h"
 
 #ifdef __OPENCL_VERSION__
@@ -294,6 +295,14 @@ ATS_FN void gather_vertex_system8_lanes(const int v[8], ATS_GLOBAL const ats_flo
   }
 }
 
+/* Lane l of the 8 systems acc (gather_vertex_system8_lanes). */
+ATS_FN vertex_system ats_vs8_lane(const ats_f8 acc[12], int l) {
+  vertex_system s;
+  s.f = ats_v3(acc[0][l], acc[1][l], acc[2][l]);
+  ATS_UNROLL for (int r = 0; r < 3; ++r) s.h.r[r] = ats_v3(acc[3 + 3 * r][l], acc[4 + 3 * r][l], acc[5 + 3 * r][l]);
+  return s;
+}
+
 /* The same systems, one per lane. */
 ATS_FN void gather_vertex_system8(const int v[8], ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const ats_float4* x_tilde,
                                   float inv_h2, ATS_GLOBAL const int* adj_offsets, ATS_GLOBAL const int* adj,
@@ -301,12 +310,7 @@ ATS_FN void gather_vertex_system8(const int v[8], ATS_GLOBAL const ats_float4* x
                                   ATS_GLOBAL const ats_tet_c* tets, vertex_system out[8]) {
   ats_f8 acc[12];
   gather_vertex_system8_lanes(v, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend, tets, acc);
-  float a0[12][8];
-  ATS_UNROLL for (int j = 0; j < 12; ++j) ATS_F8_STORE(acc[j], a0[j]);
-  ATS_UNROLL for (int l = 0; l < 8; ++l) {
-    out[l].f = ats_v3(a0[0][l], a0[1][l], a0[2][l]);
-    ATS_UNROLL for (int r = 0; r < 3; ++r) out[l].h.r[r] = ats_v3(a0[3 + 3 * r][l], a0[4 + 3 * r][l], a0[5 + 3 * r][l]);
-  }
+  ATS_UNROLL for (int l = 0; l < 8; ++l) out[l] = ats_vs8_lane(acc, l);
 }
 
 /* ats_m3_solve (common/vertex_solve.h) lane-wise: dx = H^-1 f of each lane's
@@ -335,6 +339,27 @@ ATS_FN ats_i8 ats_m3_solve8(const ats_f8 acc[12], ats_f8 dx[3]) {
     dx[j] = ATS_F8_SELECT(ok, ((c[0][j] * acc[0] + c[1][j] * acc[1]) + c[2][j] * acc[2]) * s, ATS_F8(0.0f));
   }
   return ok;
+}
+
+/* VBD's vertex step where no contact term and no damping follows the gather
+ * (vbd_step in kernels/vbd/vbd.cl, the host reference's step_vertex): the 8
+ * solves as lanes, then each lane's ground and its write. */
+ATS_FN void ats_vbd_step8(const int v[8], const ats_f8 acc[12], ATS_GLOBAL ats_float4* x, int has_ground,
+                          float ground) {
+  ats_f8 dx[3];
+  const ats_i8 ok = ats_m3_solve8(acc, dx);
+  for (int l = 0; l < 8; ++l) {
+    if (v[l] < 0 || !ok[l]) continue;
+    const ats_float4 p = x[v[l]];
+    ats_vec3 step = ats_v3(dx[0][l], dx[1][l], dx[2][l]);
+    if (has_ground && p.y + step.y < ground) {
+      const vertex_system s = ats_vs8_lane(acc, l);
+      step = ats_vertex_step_above_ground(s.h, s.f, step, p.y, ground);
+    }
+    x[v[l]].x = p.x + step.x;
+    x[v[l]].y = p.y + step.y;
+    x[v[l]].z = p.z + step.z;
+  }
 }
 
 #endif

@@ -80,25 +80,9 @@ ATS_TASK void vbd_solve_lanes(int b, __global float4* x, __global const float4* 
   if (!sc_on && collider_count == 0 && !(inv_h > 0.0f)) {
     /* No contact term and no damping: vbd_step is the solve and the ground,
      * and the solve runs as lanes too (ats_m3_solve8, the same operations). */
-    ats_f8 acc[12], dx[3];
+    ats_f8 acc[12];
     gather_vertex_system8_lanes(v, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend, tets, acc);
-    int ok[8];
-    float d[3][8];
-    vstore8(ats_m3_solve8(acc, dx), 0, ok);
-    ATS_UNROLL for (int j = 0; j < 3; ++j) vstore8(dx[j], 0, d[j]);
-    for (int l = 0; l < 8; ++l) {
-      if (v[l] < 0 || !ok[l]) continue;
-      const float4 p = x[v[l]];
-      ats_vec3 step = ats_v3(d[0][l], d[1][l], d[2][l]);
-      if (has_ground && p.y + step.y < ground) {
-        vertex_system s;
-        s.f = ats_v3(acc[0][l], acc[1][l], acc[2][l]);
-        ATS_UNROLL for (int r = 0; r < 3; ++r) s.h.r[r] =
-            ats_v3(acc[3 + 3 * r][l], acc[4 + 3 * r][l], acc[5 + 3 * r][l]);
-        step = ats_vertex_step_above_ground(s.h, s.f, step, p.y, ground);
-      }
-      x[v[l]] = (float4)(p.x + step.x, p.y + step.y, p.z + step.z, p.w);
-    }
+    ats_vbd_step8(v, acc, x, has_ground, ground);
     return;
   }
   vertex_system s[8];

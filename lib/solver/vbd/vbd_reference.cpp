@@ -142,22 +142,11 @@ void VbdReference::solve_color_lanes(int color) {
   sweep(lanes_.offsets[color], lanes_.offsets[color + 1], [&](int b) {
     const int* v = lanes_.order.data() + vertex::kLaneWidth * b;
     if (inv_h == 0.0f) {  // no damping: the solve as lanes too, as the kernel's
-      ats_f8 acc[12], dx[3];
+      ats_f8 acc[12];
       gather_vertex_system8_lanes(v, x, x_tilde_.data(), inv_h2, vertices_.adjacency_offsets.data(),
                                   vertices_.adjacency.data(), layout_.stretch.data(), layout_.bend.data(),
                                   layout_.tets.data(), acc);
-      const ats_i8 ok = ats_m3_solve8(acc, dx);
-      for (int l = 0; l < vertex::kLaneWidth; ++l) {
-        if (v[l] < 0 || !ok[l]) continue;
-        Float4& p = layout_.x[v[l]];
-        ats_vec3 step = ats_v3(dx[0][l], dx[1][l], dx[2][l]);
-        if (layout_.has_ground && p.y + step.y < layout_.ground_y) {
-          ats_mat3 h;
-          for (int r = 0; r < 3; ++r) h.r[r] = ats_v3(acc[3 + 3 * r][l], acc[4 + 3 * r][l], acc[5 + 3 * r][l]);
-          step = ats_vertex_step_above_ground(h, ats_v3(acc[0][l], acc[1][l], acc[2][l]), step, p.y, layout_.ground_y);
-        }
-        p = {p.x + step.x, p.y + step.y, p.z + step.z, p.w};
-      }
+      ats_vbd_step8(v, acc, layout_.x.data(), layout_.has_ground ? 1 : 0, layout_.ground_y);
       return;
     }
     vertex_system s[vertex::kLaneWidth];
