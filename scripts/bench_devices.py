@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Devices against the native loop: frame time of the hanging cloth, side by side in one run.
 
-For each method (XPBD, VBD) and cloth size (64x64, 128x128, 256x256 vertices),
+For each method (XPBD, VBD; JPGD, which has no native loop, on the devices
+only) and cloth size (64x64, 128x128, 256x256 vertices),
 times
   - the native host loop a user would write instead (bench/bench_native: the
     project's host reference on one thread, and with tbb::parallel_for per
@@ -17,8 +18,10 @@ times
   - atssim with each executor asked for (--executor events,fused) on one
     1-CU sub-device (cpu/2:0), the whole 2-CU device (cpu), and the two
     sub-devices with the split and heft schedules (cpu/2); again with each
-    other solver.ordering asked for (color_batches: XPBD and VBD) (--orderings colors,color_batches:
-    the columns repeated with the ordering's name after them);
+    other solver.ordering asked for (color_batches: XPBD and VBD;
+    vertex_batches: JPGD, whose one-vertex ordering runs in the colors'
+    columns) (--orderings colors,color_batches: the columns repeated with the
+    ordering's name after them);
 and prints one Markdown table of median frame times (ms; the prediction error
 |measured - predicted| / measured substep makespan, median over frames, in
 parentheses), a second with each cell's spread over the rounds (min / median
@@ -129,6 +132,8 @@ def run_atssim_frames(method: str, size: int, executor: str, devices: str, sched
                f"objects.0.grid.resolution=[{size},{size}]", "--quiet"]
     if method in ("xpbd", "vbd"):  # solver.ordering is set, colors too (XPBD's default depends on the size)
         command += ["--set", f"solver.ordering={ordering}"]
+    if method == "jpgd":  # its one-vertex ordering stands in the colors' columns
+        command += ["--set", f"solver.ordering={'vertices' if ordering == 'colors' else ordering}"]
     subprocess.run(command, check=True)
     with h5py.File(out, "r") as f:
         frame_ms = f["timing/frame_ms"][3:]  # skip the initial state and two warm-up frames
@@ -157,12 +162,15 @@ NATIVE_VARIANTS = [  # label, loop, threads, ordering, methods
 ]
 
 
+ORDERING_METHODS = {  # solver.ordering -> the methods that take it (JPGD's vertices run in the colors' columns)
+    "colors": ("xpbd", "vbd", "jpgd"), "color_batches": ("xpbd", "vbd"), "batches": ("xpbd",),
+    "vertex_batches": ("jpgd",)}
+
+
 def device_columns(executors, orderings):
     """(column, executor, devices, schedule, ordering, methods) of each atssim run: every executor on every
-    DEVICE_VARIANTS row, for colors as before and for each other ordering under its name (color_batches: XPBD and
-    VBD; batches: XPBD)."""
-    return [(f"{e} {label}" + ("" if o == "colors" else f" {o}"), e, devices, schedule, o,
-             ("xpbd", "vbd") if o in ("colors", "color_batches") else ("xpbd",))
+    DEVICE_VARIANTS row, for colors as before and for each other ordering under its name (ORDERING_METHODS)."""
+    return [(f"{e} {label}" + ("" if o == "colors" else f" {o}"), e, devices, schedule, o, ORDERING_METHODS[o])
             for o in orderings for e in executors for label, devices, schedule in DEVICE_VARIANTS]
 
 
@@ -223,7 +231,7 @@ def main() -> int:
                     help="comma separated: events, fused; none: the native loops alone")
     ap.add_argument("--orderings", default="colors",
                     help="comma separated solver.ordering values for the atssim runs (colors, color_batches: XPBD, VBD; "
-                    "batches: XPBD); "
+                    "batches: XPBD; vertex_batches: JPGD, whose vertices run as colors); "
                     "each but colors repeats the device columns with its name after them")
     ap.add_argument("--roofline", action="store_true", help="XPBD: also run bench/bench_roofline and print the "
                     "fraction of the machine's limits each loop reaches")
@@ -287,8 +295,8 @@ def main() -> int:
                   f"{r2:.2f}{' ✓' if r2 <= 1.1 else ' ✗'} |")
     if machine is not None:
         print_roofline(machine, results, device, native)
-    if "fused" not in executors or "colors" not in args.orderings.split(","):
-        return 0
+    if "fused" not in executors or "colors" not in args.orderings.split(",") or not native:
+        return 0  # (JPGD alone: no native loop to hold the targets against)
     print()
     print("| method | cloth | ordering | fused 1 sub vs events 1 sub (>= 2x at 64) | fused 1 sub / native 1 thread "
           "(<= 1.2 at 64, 256) | best two-sub fused vs fused 1 sub (>= 1.6x at 64, 1.8x above) | vs fused whole "
@@ -298,8 +306,8 @@ def main() -> int:
     for (method, size), cells in results.items():
         for ordering in args.orderings.split(","):
             suffix = "" if ordering == "colors" else f" {ordering}"
-            if f"fused 1 sub-device{suffix}" not in cells:
-                continue
+            if f"fused 1 sub-device{suffix}" not in cells or "native 1 thread" not in cells:
+                continue  # JPGD has no native loop: its cells are in the tables above
             fused_one = cells[f"fused 1 sub-device{suffix}"][0]
             two = min(cells[f"fused split{suffix}"][0], cells[f"fused heft{suffix}"][0])
             whole = cells[f"fused whole device{suffix}"][0]

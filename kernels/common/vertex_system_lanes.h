@@ -1,9 +1,11 @@
 /* The vertex-system gather of common/vertex_system.h for 8 vertices at once,
- * as 8 float lanes (VBD's solver.ordering: color_batches): lane l gathers
- * vertex v[l] (-1: a padding lane, at the end of a batch; its sums are not
- * used). The 8 vertices come from one color, so no lane reads a position
- * another lane's step writes. ats_m3_solve8 then solves the 8 systems as
- * lanes with ats_m3_solve's operations.
+ * as 8 float lanes (VBD's solver.ordering: color_batches, JPGD's
+ * vertex_batches): lane l gathers vertex v[l] (-1: a padding lane, at the
+ * end of a batch; its sums are not used). VBD's 8 vertices come from one
+ * color, so no lane reads a position another lane's step writes; JPGD's
+ * are 8 consecutive vertices, which read x^k and write x^{k+1}.
+ * ats_m3_solve8 then solves the 8 systems as lanes with ats_m3_solve's
+ * operations.
  *
  * Each lane sums its elements in its own adjacency order with the scalar
  * gather's operations, so each lane's system is bit for bit the scalar
@@ -15,7 +17,7 @@
  * with the scalar math and added as a vector.
  *
  * In the common subset of OpenCL C and GCC's C++ (vector extensions): the
- * kernels (kernels/vbd/vbd.cl) and the host VBD reference's lanes
+ * kernels (kernels/vbd/vbd.cl, kernels/jpgd/jpgd.cl) and the host VBD reference's lanes
  * (lib/solver/vbd/vbd_reference.cpp, bench_native's native lanes row) run
  * this one gather. Needs FP contraction off, as energy_stretch.h does. */
 #ifndef ATS_VERTEX_SYSTEM_LANES_H

@@ -12,6 +12,7 @@
 #include "common/ats_math.h"
 #include "common/vertex_solve.h"
 #include "common/vertex_system.cl"
+#include "common/vertex_system_lanes.h"
 #include "common/vertex_contact.h"
 #include "contact/self_contact.cl"
 #include "contact/self_contact_terms.h"
@@ -20,27 +21,27 @@
 #include "common/particle_steps.cl"
 #include "async/merge.cl"
 
-ATS_TASK void jpgd_step(int i, __global const float4* x, __global const float4* x_before, __global float4* x_next,
-                        __global const float4* x_tilde, __global const int* adj_offsets, __global const int* adj,
-                        __global const ats_distance_c* stretch, __global const ats_bend_c* bend,
-                        __global const ats_tet_c* tets, float inv_h2, float alpha, float omega, float beta,
-                        int has_ground, float ground, __global const ats_collider_c* colliders, int collider_count,
-                        __global const ats_mesh_near* near, __global const float4* x_start, float inv_h,
-                        __global const int4* sc_tris, __global const int2* sc_edges, __global const int* sc_inc,
-                        __global const int* sc_vt, __global const int* sc_tv, __global const int* sc_ee,
-                        __global const float* sc_bound, int sc_n, float sc_k, float sc_r, int sc_on) {
+/* Vertex i's step from its gathered system g: spring damping, collider and
+ * surface contact terms, the 3x3 solve, alpha of the way, the ground and the
+ * acceleration. */
+static inline void jpgd_vertex(int i, vertex_system g, __global const float4* x, __global const float4* x_before,
+                               __global float4* x_next, __global const int* adj_offsets, __global const int* adj,
+                               __global const ats_distance_c* stretch, float inv_h2, float alpha, float omega,
+                               float beta, int has_ground, float ground, __global const ats_collider_c* colliders,
+                               int collider_count, __global const ats_mesh_near* near, __global const float4* x_start,
+                               float inv_h, __global const int4* sc_tris, __global const int2* sc_edges,
+                               __global const int* sc_inc, __global const int* sc_vt, __global const int* sc_tv,
+                               __global const int* sc_ee, int sc_n, float sc_k, float sc_r, int sc_on) {
   const float4 p = x[i];
   if (p.w == 0.0f) {
     x_next[i] = p;
     return;
   }
   __global const ats_mesh_near* mine = ats_near_of(colliders, collider_count, near, i);
-  const vertex_system s = add_self_contact_terms(
-      add_contact_terms(
-          add_spring_damping(gather_vertex_system(i, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend, tets), i, x,
-                             x_start, inv_h, adj_offsets, adj, stretch),
-          vs_xyz(p), p.w, inv_h2, colliders, collider_count, mine),
-      i, x, sc_tris, sc_edges, sc_inc, sc_n, sc_vt, sc_tv, sc_ee, sc_k, sc_r, sc_on);
+  const vertex_system s =
+      add_self_contact_terms(add_contact_terms(add_spring_damping(g, i, x, x_start, inv_h, adj_offsets, adj, stretch),
+                                               vs_xyz(p), p.w, inv_h2, colliders, collider_count, mine),
+                             i, x, sc_tris, sc_edges, sc_inc, sc_n, sc_vt, sc_tv, sc_ee, sc_k, sc_r, sc_on);
   const ats_solve3 d =
       sc_contact_step(s, i, x, 0, 0, sc_tris, sc_edges, sc_inc, sc_n, sc_vt, sc_tv, sc_ee, sc_k, sc_r, sc_on);
   ats_vec3 step = ats_scale(d.x, alpha);
@@ -53,3 +54,49 @@ ATS_TASK void jpgd_step(int i, __global const float4* x, __global const float4* 
   const float3 next = omega * (stepped - before) + before + beta * ((float3)(p.x, p.y, p.z) - before);
   x_next[i] = sc_out_of_colliders((float4)(next, p.w), colliders, collider_count, mine, sc_on);
 }
+
+#define JPGD_TAIL_ARGS                                                                                       \
+  x, x_before, x_next, adj_offsets, adj, stretch, inv_h2, alpha, omega, beta, has_ground, ground, colliders, \
+      collider_count, near, x_start, inv_h, sc_tris, sc_edges, sc_inc, sc_vt, sc_tv, sc_ee, sc_n, sc_k, sc_r, sc_on
+
+/* solver.ordering: vertices. A pinned vertex skips its gather. */
+ATS_TASK void jpgd_step(int i, __global const float4* x, __global const float4* x_before, __global float4* x_next,
+                        __global const float4* x_tilde, __global const int* adj_offsets, __global const int* adj,
+                        __global const ats_distance_c* stretch, __global const ats_bend_c* bend,
+                        __global const ats_tet_c* tets, float inv_h2, float alpha, float omega, float beta,
+                        int has_ground, float ground, __global const ats_collider_c* colliders, int collider_count,
+                        __global const ats_mesh_near* near, __global const float4* x_start, float inv_h,
+                        __global const int4* sc_tris, __global const int2* sc_edges, __global const int* sc_inc,
+                        __global const int* sc_vt, __global const int* sc_tv, __global const int* sc_ee,
+                        __global const float* sc_bound, int sc_n, float sc_k, float sc_r, int sc_on) {
+  if (x[i].w == 0.0f) {
+    x_next[i] = x[i];
+    return;
+  }
+  jpgd_vertex(i, gather_vertex_system(i, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend, tets), JPGD_TAIL_ARGS);
+}
+
+/* solver.ordering: vertex_batches. Work-item b gathers the vertices
+ * order[8b .. 8b + 8) (solver/vertex/vertex_layout vertex_lanes: 8
+ * consecutive vertices, -1 padding the last batch) as 8 float lanes
+ * (common/vertex_system_lanes.h), then steps them one after another: the
+ * same bits as jpgd_step over them (every vertex reads x^k only). */
+ATS_TASK void jpgd_step_lanes(int b, __global const float4* x, __global const float4* x_before, __global float4* x_next,
+                              __global const float4* x_tilde, __global const int* adj_offsets, __global const int* adj,
+                              __global const ats_distance_c* stretch, __global const ats_bend_c* bend,
+                              __global const ats_tet_c* tets, __global const int* order, float inv_h2, float alpha,
+                              float omega, float beta, int has_ground, float ground,
+                              __global const ats_collider_c* colliders, int collider_count,
+                              __global const ats_mesh_near* near, __global const float4* x_start, float inv_h,
+                              __global const int4* sc_tris, __global const int2* sc_edges, __global const int* sc_inc,
+                              __global const int* sc_vt, __global const int* sc_tv, __global const int* sc_ee,
+                              __global const float* sc_bound, int sc_n, float sc_k, float sc_r, int sc_on) {
+  int v[8];
+  ATS_UNROLL for (int l = 0; l < 8; ++l) v[l] = order[8 * b + l];
+  vertex_system s[8];
+  gather_vertex_system8(v, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend, tets, s);
+  for (int l = 0; l < 8; ++l) {
+    if (v[l] >= 0) jpgd_vertex(v[l], s[l], JPGD_TAIL_ARGS);
+  }
+}
+#undef JPGD_TAIL_ARGS

@@ -294,29 +294,34 @@ TEST_CASE("with self-contact every method gives the same bits on one device and 
   CHECK(one == io::read_frame_positions(dir.file("whole.h5"), 10));
 }
 
-// VBD's color_batches gather 8 vertices of a colour as float lanes; the
-// contact terms, the solve and the clamps follow per vertex as in colors.
-TEST_CASE("with and without self-contact VBD's color_batches give the colors' bits, on one device and cut over two",
-          "[contact][self]") {
+// VBD's color_batches gather 8 vertices of a colour as float lanes, JPGD's
+// vertex_batches 8 consecutive vertices; the contact terms, the solve and
+// the clamps follow per vertex as in the one-vertex orderings.
+TEST_CASE(
+    "with and without self-contact the lanes orderings (VBD color_batches, JPGD vertex_batches) give the one-vertex "
+    "orderings' bits, on one device and cut over two",
+    "[contact][self]") {
   // The sphere's collider terms follow the lanes' gather vertex by vertex,
   // with or without the surfaces' pairs.
   const bool self = GENERATE(true, false);
-  INFO("contact.self " << self);
+  const auto [method, scalar, lanes] = GENERATE(table<std::string, std::string, std::string>(
+      {{"vbd", "colors", "color_batches"}, {"jpgd", "vertices", "vertex_batches"}}));
+  INFO(method << ", contact.self " << self);
   test::TempDir dir;
   std::string yaml = kLayers;
   yaml.replace(yaml.find("frames: 40"), 10, "frames: 10");
   if (!self) yaml.replace(yaml.find("self: true"), 10, "self: false");
   const auto run = [&](const std::string& ordering, const std::string& schedule) {
     const std::string out = ordering + "_" + schedule + ".h5";
-    app::RunOptions o = options(dir, yaml, "vbd", schedule, out);
+    app::RunOptions o = options(dir, yaml, method, schedule, out);
     o.overrides.push_back("solver.ordering=" + ordering);
     app::run_simulation(o);
     return io::read_frame_positions(dir.file(out), 10);
   };
-  const std::vector<float> colors = run("colors", "single");
-  CHECK(colors == run("color_batches", "single"));
-  CHECK(colors == run("color_batches", "split"));
-  CHECK(colors == run("color_batches", "heft"));
+  const std::vector<float> one = run(scalar, "single");
+  CHECK(one == run(lanes, "single"));
+  CHECK(one == run(lanes, "split"));
+  CHECK(one == run(lanes, "heft"));
 }
 
 namespace {

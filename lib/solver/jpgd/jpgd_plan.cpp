@@ -39,6 +39,12 @@ plan::SubstepPlan make_jpgd_plan(const SimLayout& layout, const JpgdSettings& se
   last = add_self_contact_detection(plan, last, layout, sc, b.x_prev, b.x);
   const std::vector<double> omega = chebyshev_weights(settings.iterations, heavy_ball ? 0.0 : settings.chebyshev_rho);
   const float beta = heavy_ball ? static_cast<float>(settings.momentum) : 0.0f;
+  // vertex_batches: element b is batch b, writing its 8 lanes' particles (-1: padding).
+  const bool lanes = settings.ordering == vertex::JacobiOrdering::vertex_batches;
+  const auto lanes_order =
+      std::make_shared<const std::vector<std::int32_t>>(lanes ? vertex::vertex_lanes(n) : std::vector<int>{});
+  const plan::BufferId order =
+      lanes ? plan.add_buffer("vertex_order_lanes", plan::BufferRole::topology, plan::bytes_of(*lanes_order)) : -1;
   using Arg = plan::KernelArg;
   for (int it = 0; it < settings.iterations; ++it) {
     const plan::BufferId current = rotation[it % 3];
@@ -52,19 +58,22 @@ plan::SubstepPlan make_jpgd_plan(const SimLayout& layout, const JpgdSettings& se
                           Arg::of_buffer(b.adjacency),
                           Arg::of_buffer(b.stretch),
                           Arg::of_buffer(b.bend),
-                          Arg::of_buffer(b.tets),
-                          Arg::of_float(inv_h2),
-                          Arg::of_float(static_cast<float>(settings.step)),
-                          Arg::of_float(static_cast<float>(omega[it])),
-                          Arg::of_float(it == 0 ? 0.0f : beta),
-                          Arg::of_int(layout.has_ground ? 1 : 0),
-                          Arg::of_float(layout.ground_y)};
+                          Arg::of_buffer(b.tets)};
+    if (lanes) args.push_back(Arg::of_buffer(order));
+    for (const Arg& a : {Arg::of_float(inv_h2), Arg::of_float(static_cast<float>(settings.step)),
+                         Arg::of_float(static_cast<float>(omega[it])), Arg::of_float(it == 0 ? 0.0f : beta),
+                         Arg::of_int(layout.has_ground ? 1 : 0), Arg::of_float(layout.ground_y)})
+      args.push_back(a);
     for (const Arg& a : vertex::collider_args(layout, b)) args.push_back(a);
     for (const Arg& a : vertex::damping_args(layout, b, settings.substep_dt)) args.push_back(a);
     for (const Arg& a : self_contact_args(layout, sc, hi)) args.push_back(a);
     const sched::TaskId t =
         plan.add_task_after(last, plan::make_task(fmt::format("it{}/jacobi", it + 1), plan::TaskKind::jacobi, it, 0),
-                            {"jpgd_step", {0, n}, std::move(args), {particle_write(next)}});
+                            {lanes ? "jpgd_step_lanes" : "jpgd_step",
+                             {0, lanes ? static_cast<int>(lanes_order->size()) / vertex::kLaneWidth : n},
+                             std::move(args),
+                             {lanes ? plan::WriteSpan::per_index(next, kParticleBytes, vertex::kLaneWidth, lanes_order)
+                                    : particle_write(next)}});
     last = add_ground_task(plan, add_self_contact_clamp(plan, t, layout, sc, b.x_prev, next, it), layout, next, it);
     if (!layout.self_contact.enabled) last = add_contact_task(plan, last, layout, b.colliders, next, it);
   }

@@ -7,6 +7,7 @@
 
 #include "plan/substep_plan.hpp"
 #include "solver/layout/sim_layout.hpp"
+#include "solver/vertex/vertex_layout.hpp"
 #include "solver/vertex/vertex_plan.hpp"
 
 namespace atssim::solver::jpgd {
@@ -26,6 +27,7 @@ struct JpgdSettings {
   // Heavy-ball momentum (Polyak): x^{k+1} = x^k + step d + beta (x^k - x^{k-1}).
   // beta > 0 replaces the Chebyshev weights; 0 keeps them.
   double momentum = 0.0;
+  vertex::JacobiOrdering ordering = vertex::JacobiOrdering::vertices;
 };
 
 // Chebyshev weights omega_1 .. omega_n: 1, 2/(2 - rho^2), 4/(4 - rho^2 omega_{k-1}).

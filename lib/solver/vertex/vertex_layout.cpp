@@ -55,4 +55,10 @@ ColorLanes color_lanes(const graph::ColorBlocks& colors) {
   return out;
 }
 
+std::vector<int> vertex_lanes(int n) {
+  std::vector<int> order((n + kLaneWidth - 1) / kLaneWidth * kLaneWidth, -1);
+  for (int i = 0; i < n; ++i) order[i] = i;
+  return order;
+}
+
 }  // namespace atssim::solver::vertex
