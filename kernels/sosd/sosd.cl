@@ -70,19 +70,23 @@ static inline void sosd_set_block(float a[SOSD_MAX][SOSD_MAX], int row, int col,
  * blocks off[a][b] (a < b; H_ba = H_ab^T) and writes d[base + a]. Pinned
  * vertices keep d = 0. When the system is not positive definite (an
  * indefinite element coupling), each vertex takes its own block step, as
- * VBD would; a near-singular vertex block stays put. */
-static void sosd_solve(const int* v, int n, ats_mat3 off[4][4], __global const float4* x, __global const float4* sys,
-                       __global float4* d, int base) {
+ * VBD would; a near-singular vertex block stays put. Inlined into each
+ * kernel, where n is a constant (2 or 4), so the unrolled loops keep the
+ * 3n x 3n system in registers: 1.2-1.8x as fast as the call with its
+ * loops (docs/benchmarks.md, "SOSD's stencil solve unrolled"), the same
+ * operations in the same order. */
+ATS_FN_INLINE void sosd_solve(const int* v, int n, ats_mat3 off[4][4], __global const float4* x,
+                              __global const float4* sys, __global float4* d, int base) {
   float a[SOSD_MAX][SOSD_MAX];
   float b[SOSD_MAX];
   int movable[4];
   const int m = 3 * n;
-  for (int p = 0; p < n; ++p) movable[p] = x[v[p]].w != 0.0f;
-  for (int r = 0; r < m; ++r) {
+  ATS_UNROLL for (int p = 0; p < n; ++p) movable[p] = x[v[p]].w != 0.0f;
+  ATS_UNROLL for (int r = 0; r < m; ++r) {
     b[r] = 0.0f;
-    for (int c = 0; c < m; ++c) a[r][c] = 0.0f;
+    ATS_UNROLL for (int c = 0; c < m; ++c) a[r][c] = 0.0f;
   }
-  for (int p = 0; p < n; ++p) {
+  ATS_UNROLL for (int p = 0; p < n; ++p) {
     if (!movable[p]) {
       ATS_UNROLL for (int r = 0; r < 3; ++r) a[3 * p + r][3 * p + r] = 1.0f;
       continue;
@@ -92,7 +96,7 @@ static void sosd_solve(const int* v, int n, ats_mat3 off[4][4], __global const f
     b[3 * p + 1] = f.y;
     b[3 * p + 2] = f.z;
     sosd_set_block(a, 3 * p, 3 * p, sosd_block(sys, v[p]));
-    for (int q = p + 1; q < n; ++q) {
+    ATS_UNROLL for (int q = p + 1; q < n; ++q) {
       if (!movable[q]) continue;
       sosd_set_block(a, 3 * p, 3 * q, off[p][q]);
       sosd_set_block(a, 3 * q, 3 * p, ats_m3_transpose(off[p][q]));
@@ -101,39 +105,39 @@ static void sosd_solve(const int* v, int n, ats_mat3 off[4][4], __global const f
   /* Cholesky A = L L^T in place (lower triangle), pivots checked against
    * the original diagonal so that scale does not matter. */
   int ok = 1;
-  for (int j = 0; j < m && ok; ++j) {
+  ATS_UNROLL for (int j = 0; j < m && ok; ++j) {
     const float diag = a[j][j];
     float s = diag;
-    for (int k = 0; k < j; ++k) s -= a[j][k] * a[j][k];
+    ATS_UNROLL for (int k = 0; k < j; ++k) s -= a[j][k] * a[j][k];
     if (!(s > 1e-6f * fabs(diag)) || !(diag > 0.0f)) {
       ok = 0;
       break;
     }
     const float l = sqrt(s);
     a[j][j] = l;
-    for (int r = j + 1; r < m; ++r) {
+    ATS_UNROLL for (int r = j + 1; r < m; ++r) {
       float t = a[r][j];
-      for (int k = 0; k < j; ++k) t -= a[r][k] * a[j][k];
+      ATS_UNROLL for (int k = 0; k < j; ++k) t -= a[r][k] * a[j][k];
       a[r][j] = t / l;
     }
   }
   if (ok) {
-    for (int r = 0; r < m; ++r) { /* L y = b */
+    ATS_UNROLL for (int r = 0; r < m; ++r) { /* L y = b */
       float t = b[r];
-      for (int k = 0; k < r; ++k) t -= a[r][k] * b[k];
+      ATS_UNROLL for (int k = 0; k < r; ++k) t -= a[r][k] * b[k];
       b[r] = t / a[r][r];
     }
-    for (int r = m - 1; r >= 0; --r) { /* L^T d = y */
+    ATS_UNROLL for (int r = m - 1; r >= 0; --r) { /* L^T d = y */
       float t = b[r];
-      for (int k = r + 1; k < m; ++k) t -= a[k][r] * b[k];
+      ATS_UNROLL for (int k = r + 1; k < m; ++k) t -= a[k][r] * b[k];
       b[r] = t / a[r][r];
     }
-    for (int p = 0; p < n; ++p) {
+    ATS_UNROLL for (int p = 0; p < n; ++p) {
       d[base + p] = movable[p] ? (float4)(b[3 * p], b[3 * p + 1], b[3 * p + 2], 0.0f) : (float4)(0.0f);
     }
     return;
   }
-  for (int p = 0; p < n; ++p) {
+  ATS_UNROLL for (int p = 0; p < n; ++p) {
     float4 out = (float4)(0.0f);
     if (movable[p]) {
       const ats_solve3 s = ats_m3_solve(sosd_block(sys, v[p]), vs_xyz(sys[4 * v[p]]));
