@@ -175,6 +175,109 @@ ATS_TASK void sosd_bend(int e, __global const float4* x, __global const float4* 
   sosd_solve(c.v, 4, off, x, sys, d, 4 * e);
 }
 
+/* solver.ordering: color_batches. Work-item b solves the bending stencils
+ * order[8b .. 8b + 8) (solver/sosd/sosd_plan: each color block of
+ * stencils padded to whole batches, -1 a padding lane) side by side: each
+ * lane's 12 x 12 system is filled with sosd_solve's scalar code, then the
+ * Cholesky and the two substitutions run as 8-float vectors, lane l the
+ * operations sosd_solve does for its stencil, in its order (a lane whose
+ * pivot fails goes on with values nobody reads and takes sosd_solve's
+ * per-vertex steps instead). The same bits as sosd_bend. */
+ATS_TASK void sosd_bend_lanes(int b, __global const float4* x, __global const float4* sys,
+                              __global const ats_bend_c* bend, __global const int* order, __global float4* d) {
+  float a[SOSD_MAX][SOSD_MAX][8];
+  float rhs[SOSD_MAX][8];
+  int movable[4][8];
+  int e[8];
+  ATS_UNROLL for (int l = 0; l < 8; ++l) e[l] = order[8 * b + l];
+  for (int l = 0; l < 8; ++l) {
+    ATS_UNROLL for (int r = 0; r < SOSD_MAX; ++r) {
+      rhs[r][l] = 0.0f;
+      ATS_UNROLL for (int c = 0; c < SOSD_MAX; ++c) a[r][c][l] = r == c && e[l] < 0 ? 1.0f : 0.0f;
+    }
+    if (e[l] < 0) continue; /* padding: the identity, solved and dropped */
+    const ats_bend_c c = bend[e[l]];
+    ats_vec3 y[4];
+    ATS_UNROLL for (int j = 0; j < 4; ++j) y[j] = vs_xyz(x[c.v[j]]);
+    ATS_UNROLL for (int p = 0; p < 4; ++p) movable[p][l] = x[c.v[p]].w != 0.0f;
+    ATS_UNROLL for (int p = 0; p < 4; ++p) {
+      if (!movable[p][l]) {
+        ATS_UNROLL for (int r = 0; r < 3; ++r) a[3 * p + r][3 * p + r][l] = 1.0f;
+        continue;
+      }
+      const ats_vec3 f = vs_xyz(sys[4 * c.v[p]]);
+      rhs[3 * p][l] = f.x;
+      rhs[3 * p + 1][l] = f.y;
+      rhs[3 * p + 2][l] = f.z;
+      const ats_mat3 h = sosd_block(sys, c.v[p]);
+      ATS_UNROLL for (int r = 0; r < 3; ++r) {
+        a[3 * p + r][3 * p][l] = h.r[r].x;
+        a[3 * p + r][3 * p + 1][l] = h.r[r].y;
+        a[3 * p + r][3 * p + 2][l] = h.r[r].z;
+      }
+      ATS_UNROLL for (int q = p + 1; q < 4; ++q) {
+        if (!movable[q][l]) continue;
+        const ats_mat3 o = ats_bend_element_hessian(c.model, y, c.K, c.scale, 1.0f / c.compliance, p, q);
+        ATS_UNROLL for (int r = 0; r < 3; ++r) {
+          a[3 * p + r][3 * q][l] = o.r[r].x;
+          a[3 * p + r][3 * q + 1][l] = o.r[r].y;
+          a[3 * p + r][3 * q + 2][l] = o.r[r].z;
+        }
+        const ats_mat3 t = ats_m3_transpose(o);
+        ATS_UNROLL for (int r = 0; r < 3; ++r) {
+          a[3 * q + r][3 * p][l] = t.r[r].x;
+          a[3 * q + r][3 * p + 1][l] = t.r[r].y;
+          a[3 * q + r][3 * p + 2][l] = t.r[r].z;
+        }
+      }
+    }
+  }
+  /* Cholesky A = L L^T in place, as sosd_solve, 8 lanes at a time. */
+  int8 ok = (int8)(-1);
+  ATS_UNROLL for (int j = 0; j < SOSD_MAX; ++j) {
+    const float8 diag = vload8(0, a[j][j]);
+    float8 s = diag;
+    ATS_UNROLL for (int k = 0; k < j; ++k) {
+      const float8 ajk = vload8(0, a[j][k]);
+      s -= ajk * ajk;
+    }
+    ok &= (s > 1e-6f * fabs(diag)) & (diag > 0.0f);
+    const float8 l = sqrt(s);
+    vstore8(l, 0, a[j][j]);
+    ATS_UNROLL for (int r = j + 1; r < SOSD_MAX; ++r) {
+      float8 t = vload8(0, a[r][j]);
+      ATS_UNROLL for (int k = 0; k < j; ++k) t -= vload8(0, a[r][k]) * vload8(0, a[j][k]);
+      vstore8(t / l, 0, a[r][j]);
+    }
+  }
+  ATS_UNROLL for (int r = 0; r < SOSD_MAX; ++r) { /* L y = b */
+    float8 t = vload8(0, rhs[r]);
+    ATS_UNROLL for (int k = 0; k < r; ++k) t -= vload8(0, a[r][k]) * vload8(0, rhs[k]);
+    vstore8(t / vload8(0, a[r][r]), 0, rhs[r]);
+  }
+  ATS_UNROLL for (int r = SOSD_MAX - 1; r >= 0; --r) { /* L^T d = y */
+    float8 t = vload8(0, rhs[r]);
+    ATS_UNROLL for (int k = r + 1; k < SOSD_MAX; ++k) t -= vload8(0, a[k][r]) * vload8(0, rhs[k]);
+    vstore8(t / vload8(0, a[r][r]), 0, rhs[r]);
+  }
+  int okl[8];
+  vstore8(ok, 0, okl);
+  for (int l = 0; l < 8; ++l) {
+    if (e[l] < 0) continue;
+    __global const int* v = bend[e[l]].v;
+    for (int p = 0; p < 4; ++p) {
+      float4 out = (float4)(0.0f);
+      if (okl[l]) {
+        if (movable[p][l]) out = (float4)(rhs[3 * p][l], rhs[3 * p + 1][l], rhs[3 * p + 2][l], 0.0f);
+      } else if (movable[p][l]) {
+        const ats_solve3 s = ats_m3_solve(sosd_block(sys, v[p]), vs_xyz(sys[4 * v[p]]));
+        if (s.ok) out = (float4)(s.x.x, s.x.y, s.x.z, 0.0f);
+      }
+      d[4 * e[l] + p] = out;
+    }
+  }
+}
+
 ATS_TASK void sosd_tet(int e, __global const float4* x, __global const float4* sys, __global const ats_tet_c* tets,
                        __global float4* d) {
   const ats_tet_c t = tets[e];

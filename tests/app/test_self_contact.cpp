@@ -296,16 +296,19 @@ TEST_CASE("with self-contact every method gives the same bits on one device and 
 
 // VBD's color_batches gather 8 vertices of a colour as float lanes, JPGD's
 // vertex_batches 8 consecutive vertices; the contact terms, the solve and
-// the clamps follow per vertex as in the one-vertex orderings.
+// the clamps follow per vertex as in the one-vertex orderings. SOSD's
+// color_batches solve 8 bending stencils of a colour as lanes.
 TEST_CASE(
-    "with and without self-contact the lanes orderings (VBD color_batches, JPGD vertex_batches) give the one-vertex "
-    "orderings' bits, on one device and cut over two",
+    "with and without self-contact the lanes orderings (VBD color_batches, JPGD vertex_batches, SOSD color_batches) "
+    "give the one-element orderings' bits, on one device and cut over two",
     "[contact][self]") {
   // The sphere's collider terms follow the lanes' gather vertex by vertex,
   // with or without the surfaces' pairs.
   const bool self = GENERATE(true, false);
-  const auto [method, scalar, lanes] = GENERATE(table<std::string, std::string, std::string>(
-      {{"vbd", "colors", "color_batches"}, {"jpgd", "vertices", "vertex_batches"}}));
+  const auto [method, scalar, lanes] =
+      GENERATE(table<std::string, std::string, std::string>({{"vbd", "colors", "color_batches"},
+                                                             {"jpgd", "vertices", "vertex_batches"},
+                                                             {"sosd", "colors", "color_batches"}}));
   INFO(method << ", contact.self " << self);
   test::TempDir dir;
   std::string yaml = kLayers;

@@ -1,6 +1,8 @@
 #include "solver/sosd/sosd_plan.hpp"
 
 #include <array>
+#include <map>
+#include <memory>
 
 #include <fmt/format.h>
 
@@ -29,7 +31,7 @@ std::vector<StencilBlock> stencil_blocks(const SimLayout& layout) {
 }
 
 plan::SubstepPlan make_sosd_plan(const SimLayout& layout, double substep_dt, int iterations, double step,
-                                 vertex::VertexBuffers* ids) {
+                                 vertex::VertexBuffers* ids, SosdOrdering ordering) {
   const vertex::VertexLayout vertices = vertex::make_vertex_layout(layout);
   plan::SubstepPlan plan;
   plan.program = std::string(kProgram);
@@ -58,6 +60,23 @@ plan::SubstepPlan make_sosd_plan(const SimLayout& layout, double substep_dt, int
   SelfContactBuffers sc = add_self_contact_buffers(plan, layout, b.colliders);
   last = add_self_contact_detection(plan, last, layout, sc, b.x_prev, b.x);
   const std::vector<Arg> sc_args = self_contact_args(layout, sc, hi);
+  // color_batches: each color block of bending stencils padded with -1 to
+  // whole batches of 8; batch_at[k] is the batch where the block starting
+  // at stencil k starts (every range launched below starts and ends on a
+  // block's bounds).
+  const bool lanes = ordering == SosdOrdering::color_batches && kind_count[1] > 0 && layout.bend_blocks.size() >= 2 &&
+                     layout.bend_blocks.front() == 0 && layout.bend_blocks.back() == kind_count[1];
+  std::vector<std::int32_t> bend_order;
+  std::map<int, int> batch_at;
+  for (std::size_t c = 0; lanes && c + 1 < layout.bend_blocks.size(); ++c) {
+    batch_at[layout.bend_blocks[c]] = static_cast<int>(bend_order.size()) / vertex::kLaneWidth;
+    for (int k = layout.bend_blocks[c]; k < layout.bend_blocks[c + 1]; ++k) bend_order.push_back(k);
+    bend_order.resize((bend_order.size() + vertex::kLaneWidth - 1) / vertex::kLaneWidth * vertex::kLaneWidth, -1);
+  }
+  batch_at[kind_count[1]] = static_cast<int>(bend_order.size()) / vertex::kLaneWidth;
+  const auto lanes_order = std::make_shared<const std::vector<std::int32_t>>(std::move(bend_order));
+  const plan::BufferId order =
+      lanes ? plan.add_buffer("bend_order_lanes", BufferRole::topology, plan::bytes_of(*lanes_order)) : -1;
   for (int it = 0; it < iterations; ++it) {
     std::vector<Arg> system_args{
         Arg::of_buffer(b.x),         Arg::of_buffer(b.x_tilde), Arg::of_buffer(b.adjacency_offsets),
@@ -75,6 +94,14 @@ plan::SubstepPlan make_sosd_plan(const SimLayout& layout, double substep_dt, int
     const StencilBlock main = blocks.empty() ? StencilBlock{-1, 0, 0} : blocks[it % blocks.size()];
     std::vector<sched::TaskId> stencil_tasks;
     const auto launch = [&](int kind, int first, int end) {
+      if (lanes && kind == 1) {
+        const int batch = batch_at.at(first);
+        return plan::KernelLaunch{"sosd_bend_lanes",
+                                  {batch, batch_at.at(end) - batch},
+                                  {Arg::of_buffer(b.x), Arg::of_buffer(systems), Arg::of_buffer(b.bend),
+                                   Arg::of_buffer(order), Arg::of_buffer(d[1])},
+                                  {plan::WriteSpan::per_index(d[1], 4 * kFloat4, vertex::kLaneWidth, lanes_order)}};
+      }
       std::vector<Arg> args{Arg::of_buffer(b.x), Arg::of_buffer(systems), Arg::of_buffer(elements[kind]),
                             Arg::of_buffer(d[kind])};
       if (kind == 0) args.insert(args.end(), damping.begin(), damping.end());

@@ -42,7 +42,13 @@ std::vector<StencilBlock> stencil_blocks(const SimLayout& layout);
 // neighbours, which move in the same step, so a full step is a Jacobi step
 // over nearly every vertex (a stretch color is a matching) and overshoots on
 // stiff cloth (docs/accuracy.md).
+//
+// solver.ordering: colors solves a stencil per work-item; color_batches
+// cuts each color block of bending stencils into batches of 8 whose
+// Cholesky solves run as 8 float lanes (kernels/sosd/sosd.cl
+// sosd_bend_lanes), the same bits.
+enum class SosdOrdering { colors, color_batches };  // solver.ordering's choices in order
 plan::SubstepPlan make_sosd_plan(const SimLayout& layout, double substep_dt, int iterations, double step = 0.7,
-                                 vertex::VertexBuffers* ids = nullptr);
+                                 vertex::VertexBuffers* ids = nullptr, SosdOrdering ordering = SosdOrdering::colors);
 
 }  // namespace atssim::solver::sosd
