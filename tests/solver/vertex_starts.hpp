@@ -1,14 +1,18 @@
 #pragma once
-// Start states of the vertex-block methods' device tests (VBD, JPGD): a
-// moving cloth, over the ground, with dihedral bending and damped springs,
-// and a moving neo-Hookean bar (81 vertices: its last batch of 8 is padded).
+// Start states of the vertex-block methods' device tests (VBD, JPGD, SOSD):
+// a moving cloth, over the ground, with dihedral bending and damped
+// springs, and a moving neo-Hookean bar (81 vertices: its last batch of 8
+// is padded); and a plan's x and v after some substeps on the CPU device.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <string>
 #include <vector>
 
+#include "device/device_set.hpp"
+#include "device/plan_executor.hpp"
 #include "solver/energy/moving_cloth.hpp"
+#include "solver/vertex/vertex_plan.hpp"
 
 namespace atssim::test {
 
@@ -54,6 +58,24 @@ inline solver::SimLayout vertex_start(const std::string& name, double h) {
     return layout;
   }
   return moving_soft_box();
+}
+
+// x and v after `substeps` of `plan` (ids: its buffers) on the whole CPU device.
+inline std::pair<std::vector<solver::Float4>, std::vector<solver::Float4>> run_on_cpu(
+    const plan::SubstepPlan& plan, const solver::vertex::VertexBuffers& ids, int substeps) {
+  const auto devices = device::DeviceSet::open("cpu");
+  device::PlanExecutor exec(devices, plan);
+  exec.run_substeps(substeps);
+  return {as_float4(exec.read(ids.x)), as_float4(exec.read(ids.v))};
+}
+
+// Whether two runs' x and v are the same bits.
+inline bool same_bits(const std::pair<std::vector<solver::Float4>, std::vector<solver::Float4>>& a,
+                      const std::pair<std::vector<solver::Float4>, std::vector<solver::Float4>>& b) {
+  const auto same = [](const std::vector<solver::Float4>& p, const std::vector<solver::Float4>& q) {
+    return p.size() == q.size() && std::memcmp(p.data(), q.data(), p.size() * sizeof(solver::Float4)) == 0;
+  };
+  return same(a.first, b.first) && same(a.second, b.second);
 }
 
 }  // namespace atssim::test

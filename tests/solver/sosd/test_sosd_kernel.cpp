@@ -1,9 +1,5 @@
 #include <catch2/catch.hpp>
 
-#include <cstring>
-
-#include "device/device_set.hpp"
-#include "device/plan_executor.hpp"
 #include "solver/sosd/sosd_plan.hpp"
 #include "solver/vertex_starts.hpp"
 #include "support/positions.hpp"
@@ -21,10 +17,7 @@ constexpr int kSubsteps = 4;
 std::pair<std::vector<Float4>, std::vector<Float4>> run_plan(const SimLayout& start, sosd::SosdOrdering ordering) {
   vertex::VertexBuffers ids;
   const auto plan = sosd::make_sosd_plan(start, kH, kIterations, 0.7, &ids, ordering);
-  const auto devices = device::DeviceSet::open("cpu");
-  device::PlanExecutor exec(devices, plan);
-  exec.run_substeps(kSubsteps);
-  return {test::as_float4(exec.read(ids.x)), test::as_float4(exec.read(ids.v))};
+  return test::run_on_cpu(plan, ids, kSubsteps);
 }
 
 }  // namespace
@@ -41,7 +34,5 @@ TEST_CASE("the SOSD bending stencils' lanes (color_batches) give the colors' bit
   const auto colors = run_plan(start, sosd::SosdOrdering::colors);
   const auto lanes = run_plan(start, sosd::SosdOrdering::color_batches);
   CHECK(test::max_distance(colors.first, start.x) > 1e-4);  // it moved
-  REQUIRE(colors.first.size() == lanes.first.size());
-  CHECK(std::memcmp(colors.first.data(), lanes.first.data(), colors.first.size() * sizeof(Float4)) == 0);
-  CHECK(std::memcmp(colors.second.data(), lanes.second.data(), colors.second.size() * sizeof(Float4)) == 0);
+  CHECK(test::same_bits(colors, lanes));
 }
