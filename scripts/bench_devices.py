@@ -236,6 +236,9 @@ def main() -> int:
     ap.add_argument("--roofline", action="store_true", help="XPBD: also run bench/bench_roofline and print the "
                     "fraction of the machine's limits each loop reaches")
     args = ap.parse_args()
+    unknown = [o for o in args.orderings.split(",") if o not in ORDERING_METHODS]
+    if unknown:
+        ap.error(f"--orderings: unknown {', '.join(unknown)}; use {', '.join(ORDERING_METHODS)}")
     if not binaries_ready():
         return 2
     machine = None
