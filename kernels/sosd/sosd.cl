@@ -58,50 +58,80 @@ static inline ats_mat3 sosd_block(__global const float4* sys, int i) {
   return h;
 }
 
-static inline void sosd_set_block(float a[SOSD_MAX][SOSD_MAX], int row, int col, ats_mat3 h) {
+static inline void sosd_set_block(float* a, int stride, int row, int col, ats_mat3 h) {
   ATS_UNROLL for (int r = 0; r < 3; ++r) {
-    a[row + r][col] = h.r[r].x;
-    a[row + r][col + 1] = h.r[r].y;
-    a[row + r][col + 2] = h.r[r].z;
+    a[(SOSD_MAX * (row + r) + col) * stride] = h.r[r].x;
+    a[(SOSD_MAX * (row + r) + col + 1) * stride] = h.r[r].y;
+    a[(SOSD_MAX * (row + r) + col + 2) * stride] = h.r[r].z;
   }
 }
 
-/* Solves the stencil system over vertices v[0 .. n) with off-diagonal
- * blocks off[a][b] (a < b; H_ba = H_ab^T) and writes d[base + a]. Pinned
- * vertices keep d = 0. When the system is not positive definite (an
- * indefinite element coupling), each vertex takes its own block step, as
- * VBD would; a near-singular vertex block stays put. Inlined into each
- * kernel, where n is a constant (2 or 4), so the unrolled loops keep the
- * 3n x 3n system in registers: 1.2-1.8x as fast as the call with its
- * loops (docs/benchmarks.md, "SOSD's stencil solve unrolled"), the same
- * operations in the same order. */
+/* The stencil system over vertices v[0 .. n), off-diagonal blocks
+ * off[p][q] (p < q; H_qp = H_pq^T): A's row r, column c at
+ * a[(SOSD_MAX r + c) stride], f's row r at rhs[r stride], and whether
+ * vertex p moves at movable[p stride]; a pinned vertex's rows are the
+ * identity and its f 0. stride 1: one system (sosd_solve); 8: one lane of
+ * sosd_bend_lanes' arrays, the pointers offset by the lane. */
+ATS_FN_INLINE void sosd_fill(const int* v, int n, ats_mat3 off[4][4], __global const float4* x,
+                             __global const float4* sys, float* a, float* rhs, int* movable, int stride) {
+  const int m = 3 * n;
+  ATS_UNROLL for (int p = 0; p < n; ++p) movable[p * stride] = x[v[p]].w != 0.0f;
+  ATS_UNROLL for (int r = 0; r < m; ++r) {
+    rhs[r * stride] = 0.0f;
+    ATS_UNROLL for (int c = 0; c < m; ++c) a[(SOSD_MAX * r + c) * stride] = 0.0f;
+  }
+  ATS_UNROLL for (int p = 0; p < n; ++p) {
+    if (!movable[p * stride]) {
+      ATS_UNROLL for (int r = 0; r < 3; ++r) a[(SOSD_MAX + 1) * (3 * p + r) * stride] = 1.0f;
+      continue;
+    }
+    const ats_vec3 f = vs_xyz(sys[4 * v[p]]);
+    rhs[3 * p * stride] = f.x;
+    rhs[(3 * p + 1) * stride] = f.y;
+    rhs[(3 * p + 2) * stride] = f.z;
+    sosd_set_block(a, stride, 3 * p, 3 * p, sosd_block(sys, v[p]));
+    ATS_UNROLL for (int q = p + 1; q < n; ++q) {
+      if (!movable[q * stride]) continue;
+      sosd_set_block(a, stride, 3 * p, 3 * q, off[p][q]);
+      sosd_set_block(a, stride, 3 * q, 3 * p, ats_m3_transpose(off[p][q]));
+    }
+  }
+}
+
+/* d[base + p] for the stencil's vertices: the solve's (rhs, stride apart)
+ * where its Cholesky held (ok); otherwise each vertex's own block step, as
+ * VBD would take it (a near-singular vertex block stays put); 0 for a
+ * pinned vertex. */
+ATS_FN_INLINE void sosd_write(const int* v, int n, int ok, const float* rhs, const int* movable, int stride,
+                              __global const float4* sys, __global float4* d, int base) {
+  ATS_UNROLL for (int p = 0; p < n; ++p) {
+    float4 out = (float4)(0.0f);
+    if (movable[p * stride]) {
+      if (ok) {
+        out = (float4)(rhs[3 * p * stride], rhs[(3 * p + 1) * stride], rhs[(3 * p + 2) * stride], 0.0f);
+      } else {
+        const ats_solve3 s = ats_m3_solve(sosd_block(sys, v[p]), vs_xyz(sys[4 * v[p]]));
+        if (s.ok) out = (float4)(s.x.x, s.x.y, s.x.z, 0.0f);
+      }
+    }
+    d[base + p] = out;
+  }
+}
+
+/* Solves the stencil system over vertices v[0 .. n) (sosd_fill) and
+ * writes d[base + p] (sosd_write): Cholesky when the system is positive
+ * definite, else (an indefinite element coupling) each vertex's own block
+ * step. Inlined into each kernel, where n is a constant (2 or 4), so the
+ * unrolled loops keep the 3n x 3n system in registers: 1.2-1.8x as fast as
+ * the call with its loops (docs/benchmarks.md, "SOSD's stencil solve
+ * unrolled"), the same operations in the same order. */
 ATS_FN_INLINE void sosd_solve(const int* v, int n, ats_mat3 off[4][4], __global const float4* x,
                               __global const float4* sys, __global float4* d, int base) {
   float a[SOSD_MAX][SOSD_MAX];
   float b[SOSD_MAX];
   int movable[4];
   const int m = 3 * n;
-  ATS_UNROLL for (int p = 0; p < n; ++p) movable[p] = x[v[p]].w != 0.0f;
-  ATS_UNROLL for (int r = 0; r < m; ++r) {
-    b[r] = 0.0f;
-    ATS_UNROLL for (int c = 0; c < m; ++c) a[r][c] = 0.0f;
-  }
-  ATS_UNROLL for (int p = 0; p < n; ++p) {
-    if (!movable[p]) {
-      ATS_UNROLL for (int r = 0; r < 3; ++r) a[3 * p + r][3 * p + r] = 1.0f;
-      continue;
-    }
-    const ats_vec3 f = vs_xyz(sys[4 * v[p]]);
-    b[3 * p] = f.x;
-    b[3 * p + 1] = f.y;
-    b[3 * p + 2] = f.z;
-    sosd_set_block(a, 3 * p, 3 * p, sosd_block(sys, v[p]));
-    ATS_UNROLL for (int q = p + 1; q < n; ++q) {
-      if (!movable[q]) continue;
-      sosd_set_block(a, 3 * p, 3 * q, off[p][q]);
-      sosd_set_block(a, 3 * q, 3 * p, ats_m3_transpose(off[p][q]));
-    }
-  }
+  sosd_fill(v, n, off, x, sys, &a[0][0], b, movable, 1);
   /* Cholesky A = L L^T in place (lower triangle), pivots checked against
    * the original diagonal so that scale does not matter. */
   int ok = 1;
@@ -132,19 +162,8 @@ ATS_FN_INLINE void sosd_solve(const int* v, int n, ats_mat3 off[4][4], __global 
       ATS_UNROLL for (int k = r + 1; k < m; ++k) t -= a[k][r] * b[k];
       b[r] = t / a[r][r];
     }
-    ATS_UNROLL for (int p = 0; p < n; ++p) {
-      d[base + p] = movable[p] ? (float4)(b[3 * p], b[3 * p + 1], b[3 * p + 2], 0.0f) : (float4)(0.0f);
-    }
-    return;
   }
-  ATS_UNROLL for (int p = 0; p < n; ++p) {
-    float4 out = (float4)(0.0f);
-    if (movable[p]) {
-      const ats_solve3 s = ats_m3_solve(sosd_block(sys, v[p]), vs_xyz(sys[4 * v[p]]));
-      if (s.ok) out = (float4)(s.x.x, s.x.y, s.x.z, 0.0f);
-    }
-    d[base + p] = out;
-  }
+  sosd_write(v, n, ok, b, movable, 1, sys, d, base);
 }
 
 ATS_TASK void sosd_stretch(int e, __global const float4* x, __global const float4* sys,
@@ -161,28 +180,33 @@ ATS_TASK void sosd_stretch(int e, __global const float4* x, __global const float
   sosd_solve(v, 2, off, x, sys, d, 2 * e);
 }
 
-ATS_TASK void sosd_bend(int e, __global const float4* x, __global const float4* sys, __global const ats_bend_c* bend,
-                        __global float4* d) {
-  const ats_bend_c c = bend[e];
+/* A bending stencil's coupling blocks off[p][q] (p < q). */
+static inline void sosd_bend_coupling(ats_bend_c c, __global const float4* x, ats_mat3 off[4][4]) {
   ats_vec3 y[4];
   ATS_UNROLL for (int j = 0; j < 4; ++j) y[j] = vs_xyz(x[c.v[j]]);
-  ats_mat3 off[4][4];
   ATS_UNROLL for (int p = 0; p < 4; ++p) {
     ATS_UNROLL for (int q = p + 1; q < 4; ++q) {
       off[p][q] = ats_bend_element_hessian(c.model, y, c.K, c.scale, 1.0f / c.compliance, p, q);
     }
   }
+}
+
+ATS_TASK void sosd_bend(int e, __global const float4* x, __global const float4* sys, __global const ats_bend_c* bend,
+                        __global float4* d) {
+  const ats_bend_c c = bend[e];
+  ats_mat3 off[4][4];
+  sosd_bend_coupling(c, x, off);
   sosd_solve(c.v, 4, off, x, sys, d, 4 * e);
 }
 
 /* solver.ordering: color_batches. Work-item b solves the bending stencils
  * order[8b .. 8b + 8) (solver/sosd/sosd_plan: each color block of
  * stencils padded to whole batches, -1 a padding lane) side by side: each
- * lane's 12 x 12 system is filled with sosd_solve's scalar code, then the
- * Cholesky and the two substitutions run as 8-float vectors, lane l the
- * operations sosd_solve does for its stencil, in its order (a lane whose
- * pivot fails goes on with values nobody reads and takes sosd_solve's
- * per-vertex steps instead). The same bits as sosd_bend. */
+ * lane's 12 x 12 system is filled by sosd_fill, then the Cholesky and the
+ * two substitutions run as 8-float vectors, lane l the operations
+ * sosd_solve does for its stencil, in its order (a lane whose pivot fails
+ * goes on with values nobody reads), and sosd_write writes each lane. The
+ * same bits as sosd_bend. */
 ATS_TASK void sosd_bend_lanes(int b, __global const float4* x, __global const float4* sys,
                               __global const ats_bend_c* bend, __global const int* order, __global float4* d) {
   float a[SOSD_MAX][SOSD_MAX][8];
@@ -191,46 +215,17 @@ ATS_TASK void sosd_bend_lanes(int b, __global const float4* x, __global const fl
   int e[8];
   ATS_UNROLL for (int l = 0; l < 8; ++l) e[l] = order[8 * b + l];
   for (int l = 0; l < 8; ++l) {
-    ATS_UNROLL for (int r = 0; r < SOSD_MAX; ++r) {
-      rhs[r][l] = 0.0f;
-      ATS_UNROLL for (int c = 0; c < SOSD_MAX; ++c) a[r][c][l] = r == c && e[l] < 0 ? 1.0f : 0.0f;
+    if (e[l] < 0) { /* padding: the identity, solved and dropped */
+      ATS_UNROLL for (int r = 0; r < SOSD_MAX; ++r) {
+        rhs[r][l] = 0.0f;
+        ATS_UNROLL for (int c = 0; c < SOSD_MAX; ++c) a[r][c][l] = r == c ? 1.0f : 0.0f;
+      }
+      continue;
     }
-    if (e[l] < 0) continue; /* padding: the identity, solved and dropped */
     const ats_bend_c c = bend[e[l]];
-    ats_vec3 y[4];
-    ATS_UNROLL for (int j = 0; j < 4; ++j) y[j] = vs_xyz(x[c.v[j]]);
-    ATS_UNROLL for (int p = 0; p < 4; ++p) movable[p][l] = x[c.v[p]].w != 0.0f;
-    ATS_UNROLL for (int p = 0; p < 4; ++p) {
-      if (!movable[p][l]) {
-        ATS_UNROLL for (int r = 0; r < 3; ++r) a[3 * p + r][3 * p + r][l] = 1.0f;
-        continue;
-      }
-      const ats_vec3 f = vs_xyz(sys[4 * c.v[p]]);
-      rhs[3 * p][l] = f.x;
-      rhs[3 * p + 1][l] = f.y;
-      rhs[3 * p + 2][l] = f.z;
-      const ats_mat3 h = sosd_block(sys, c.v[p]);
-      ATS_UNROLL for (int r = 0; r < 3; ++r) {
-        a[3 * p + r][3 * p][l] = h.r[r].x;
-        a[3 * p + r][3 * p + 1][l] = h.r[r].y;
-        a[3 * p + r][3 * p + 2][l] = h.r[r].z;
-      }
-      ATS_UNROLL for (int q = p + 1; q < 4; ++q) {
-        if (!movable[q][l]) continue;
-        const ats_mat3 o = ats_bend_element_hessian(c.model, y, c.K, c.scale, 1.0f / c.compliance, p, q);
-        ATS_UNROLL for (int r = 0; r < 3; ++r) {
-          a[3 * p + r][3 * q][l] = o.r[r].x;
-          a[3 * p + r][3 * q + 1][l] = o.r[r].y;
-          a[3 * p + r][3 * q + 2][l] = o.r[r].z;
-        }
-        const ats_mat3 t = ats_m3_transpose(o);
-        ATS_UNROLL for (int r = 0; r < 3; ++r) {
-          a[3 * q + r][3 * p][l] = t.r[r].x;
-          a[3 * q + r][3 * p + 1][l] = t.r[r].y;
-          a[3 * q + r][3 * p + 2][l] = t.r[r].z;
-        }
-      }
-    }
+    ats_mat3 off[4][4];
+    sosd_bend_coupling(c, x, off);
+    sosd_fill(c.v, 4, off, x, sys, &a[0][0][l], &rhs[0][l], &movable[0][l], 8);
   }
   /* Cholesky A = L L^T in place, as sosd_solve, 8 lanes at a time. */
   int8 ok = (int8)(-1);
@@ -264,17 +259,8 @@ ATS_TASK void sosd_bend_lanes(int b, __global const float4* x, __global const fl
   vstore8(ok, 0, okl);
   for (int l = 0; l < 8; ++l) {
     if (e[l] < 0) continue;
-    __global const int* v = bend[e[l]].v;
-    for (int p = 0; p < 4; ++p) {
-      float4 out = (float4)(0.0f);
-      if (okl[l]) {
-        if (movable[p][l]) out = (float4)(rhs[3 * p][l], rhs[3 * p + 1][l], rhs[3 * p + 2][l], 0.0f);
-      } else if (movable[p][l]) {
-        const ats_solve3 s = ats_m3_solve(sosd_block(sys, v[p]), vs_xyz(sys[4 * v[p]]));
-        if (s.ok) out = (float4)(s.x.x, s.x.y, s.x.z, 0.0f);
-      }
-      d[4 * e[l] + p] = out;
-    }
+    const ats_bend_c c = bend[e[l]];
+    sosd_write(c.v, 4, okl[l], &rhs[0][l], &movable[0][l], 8, sys, d, 4 * e[l]);
   }
 }
 
