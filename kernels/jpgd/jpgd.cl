@@ -21,6 +21,20 @@
 #include "common/particle_steps.cl"
 #include "async/merge.cl"
 
+/* Vertex p's next iterate from its system s and its solve d: alpha of the
+ * way, the ground, and the acceleration from its previous iterate. */
+static inline float4 jpgd_next(float4 p, vertex_system s, ats_solve3 d, float4 p_before, float alpha, float omega,
+                               float beta, int has_ground, float ground) {
+  ats_vec3 step = ats_scale(d.x, alpha);
+  if (d.ok && has_ground && p.y + step.y < ground) {
+    step = ats_scale(ats_vertex_step_above_ground(s.h, s.f, d.x, p.y, ground), alpha);
+    step.y = ground - p.y; /* the bound itself, not alpha of the way to it */
+  }
+  const float3 stepped = (float3)(p.x + step.x, p.y + step.y, p.z + step.z);
+  const float3 before = p_before.xyz;
+  return (float4)(omega * (stepped - before) + before + beta * ((float3)(p.x, p.y, p.z) - before), p.w);
+}
+
 /* Vertex i's step from its gathered system g: spring damping, collider and
  * surface contact terms, the 3x3 solve, alpha of the way, the ground and the
  * acceleration. */
@@ -44,15 +58,8 @@ static inline void jpgd_vertex(int i, vertex_system g, __global const float4* x,
                              i, x, sc_tris, sc_edges, sc_inc, sc_n, sc_vt, sc_tv, sc_ee, sc_k, sc_r, sc_on);
   const ats_solve3 d =
       sc_contact_step(s, i, x, 0, 0, sc_tris, sc_edges, sc_inc, sc_n, sc_vt, sc_tv, sc_ee, sc_k, sc_r, sc_on);
-  ats_vec3 step = ats_scale(d.x, alpha);
-  if (d.ok && has_ground && p.y + step.y < ground) {
-    step = ats_scale(ats_vertex_step_above_ground(s.h, s.f, d.x, p.y, ground), alpha);
-    step.y = ground - p.y; /* the bound itself, not alpha of the way to it */
-  }
-  const float3 stepped = (float3)(p.x + step.x, p.y + step.y, p.z + step.z);
-  const float3 before = x_before[i].xyz;
-  const float3 next = omega * (stepped - before) + before + beta * ((float3)(p.x, p.y, p.z) - before);
-  x_next[i] = sc_out_of_colliders((float4)(next, p.w), colliders, collider_count, mine, sc_on);
+  x_next[i] = sc_out_of_colliders(jpgd_next(p, s, d, x_before[i], alpha, omega, beta, has_ground, ground), colliders,
+                                  collider_count, mine, sc_on);
 }
 
 #define JPGD_TAIL_ARGS                                                                                       \
@@ -93,6 +100,27 @@ ATS_TASK void jpgd_step_lanes(int b, __global const float4* x, __global const fl
                               __global const float* sc_bound, int sc_n, float sc_k, float sc_r, int sc_on) {
   int v[8];
   ATS_UNROLL for (int l = 0; l < 8; ++l) v[l] = order[8 * b + l];
+  if (!sc_on && collider_count == 0 && !(inv_h > 0.0f)) {
+    /* No contact term and no damping: the solves run as lanes too
+     * (ats_m3_solve8, ats_m3_solve's operations; a lane it cannot solve
+     * takes ats_m3_solve's zero step), as in VBD's vbd_solve_lanes. */
+    ats_f8 acc[12], dx[3];
+    gather_vertex_system8_lanes(v, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend, tets, acc);
+    const ats_i8 ok = ats_m3_solve8(acc, dx);
+    for (int l = 0; l < 8; ++l) {
+      if (v[l] < 0) continue;
+      const float4 p = x[v[l]];
+      if (p.w == 0.0f) {
+        x_next[v[l]] = p;
+        continue;
+      }
+      ats_solve3 d;
+      d.ok = ok[l] ? 1 : 0;
+      d.x = d.ok ? ats_v3(dx[0][l], dx[1][l], dx[2][l]) : ats_v3(0, 0, 0);
+      x_next[v[l]] = jpgd_next(p, ats_vs8_lane(acc, l), d, x_before[v[l]], alpha, omega, beta, has_ground, ground);
+    }
+    return;
+  }
   vertex_system s[8];
   gather_vertex_system8(v, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend, tets, s);
   for (int l = 0; l < 8; ++l) {
