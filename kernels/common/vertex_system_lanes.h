@@ -343,6 +343,22 @@ ATS_FN ats_i8 ats_m3_solve8(const ats_f8 acc[12], ats_f8 dx[3]) {
   return ok;
 }
 
+/* Lane l of ats_m3_solve8's result as ats_m3_solve returns it (a lane it
+ * could not solve has dx 0 there too). */
+ATS_FN ats_solve3 ats_solve8_lane(ats_i8 ok, const ats_f8 dx[3], int l) {
+  ats_solve3 d;
+  d.ok = ok[l] ? 1 : 0;
+  d.x = ats_v3(dx[0][l], dx[1][l], dx[2][l]);
+  return d;
+}
+
+/* Whether a vertex's solve takes its gathered system as it is: no surface
+ * contact, collider or spring damping term is added after the gather. The
+ * lanes kernels (VBD's, JPGD's) then solve their 8 systems as lanes too. */
+ATS_FN int ats_gather_alone(int contact_on, int collider_count, float inv_h) {
+  return !contact_on && collider_count == 0 && !(inv_h > 0.0f);
+}
+
 /* VBD's vertex step where no contact term and no damping follows the gather
  * (vbd_step in kernels/vbd/vbd.cl, the host reference's step_vertex): the 8
  * solves as lanes, then each lane's ground and its write. */

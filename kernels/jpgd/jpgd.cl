@@ -100,10 +100,9 @@ ATS_TASK void jpgd_step_lanes(int b, __global const float4* x, __global const fl
                               __global const float* sc_bound, int sc_n, float sc_k, float sc_r, int sc_on) {
   int v[8];
   ATS_UNROLL for (int l = 0; l < 8; ++l) v[l] = order[8 * b + l];
-  if (!sc_on && collider_count == 0 && !(inv_h > 0.0f)) {
+  if (ats_gather_alone(sc_on, collider_count, inv_h)) {
     /* No contact term and no damping: the solves run as lanes too
-     * (ats_m3_solve8, ats_m3_solve's operations; a lane it cannot solve
-     * takes ats_m3_solve's zero step), as in VBD's vbd_solve_lanes. */
+     * (ats_m3_solve8, ats_m3_solve's operations), as in VBD's vbd_solve_lanes. */
     ats_f8 acc[12], dx[3];
     gather_vertex_system8_lanes(v, x, x_tilde, inv_h2, adj_offsets, adj, stretch, bend, tets, acc);
     const ats_i8 ok = ats_m3_solve8(acc, dx);
@@ -114,10 +113,8 @@ ATS_TASK void jpgd_step_lanes(int b, __global const float4* x, __global const fl
         x_next[v[l]] = p;
         continue;
       }
-      ats_solve3 d;
-      d.ok = ok[l] ? 1 : 0;
-      d.x = d.ok ? ats_v3(dx[0][l], dx[1][l], dx[2][l]) : ats_v3(0, 0, 0);
-      x_next[v[l]] = jpgd_next(p, ats_vs8_lane(acc, l), d, x_before[v[l]], alpha, omega, beta, has_ground, ground);
+      x_next[v[l]] = jpgd_next(p, ats_vs8_lane(acc, l), ats_solve8_lane(ok, dx, l), x_before[v[l]], alpha, omega, beta,
+                               has_ground, ground);
     }
     return;
   }

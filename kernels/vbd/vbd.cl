@@ -77,7 +77,7 @@ ATS_TASK void vbd_solve_lanes(int b, __global float4* x, __global const float4* 
                               __global const float4* sc_x_iter, __global const int* sc_color) {
   int v[8];
   ATS_UNROLL for (int l = 0; l < 8; ++l) v[l] = order[8 * b + l];
-  if (!sc_on && collider_count == 0 && !(inv_h > 0.0f)) {
+  if (ats_gather_alone(sc_on, collider_count, inv_h)) {
     /* No contact term and no damping: vbd_step is the solve and the ground,
      * and the solve runs as lanes too (ats_m3_solve8, the same operations). */
     ats_f8 acc[12];
