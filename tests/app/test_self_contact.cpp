@@ -11,6 +11,7 @@
 #include <map>
 #include <numbers>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <fmt/format.h>
@@ -345,10 +346,13 @@ TEST_CASE(
   // The sphere's collider terms follow the lanes' gather vertex by vertex,
   // with or without the surfaces' pairs.
   const bool self = GENERATE(true, false);
-  const auto [method, scalar, lanes] =
-      GENERATE(table<std::string, std::string, std::string>({{"vbd", "colors", "color_batches"},
-                                                             {"jpgd", "vertices", "vertex_batches"},
-                                                             {"sosd", "colors", "color_batches"}}));
+  // Named from the row rather than bound to it: a lambda below captures them.
+  const auto row = GENERATE(table<std::string, std::string, std::string>({{"vbd", "colors", "color_batches"},
+                                                                          {"jpgd", "vertices", "vertex_batches"},
+                                                                          {"sosd", "colors", "color_batches"}}));
+  const std::string& method = std::get<0>(row);
+  const std::string& scalar = std::get<1>(row);
+  const std::string& lanes = std::get<2>(row);
   INFO(method << ", contact.self " << self);
   test::TempDir dir;
   std::string yaml = kLayers;
