@@ -4,17 +4,22 @@
 // broad_phase/bvh_pairs.hpp) against a uniform spatial hash rebuilt every
 // substep (Teschner et al. 2003; broad_phase/hash_pairs.hpp), for the same
 // three queries and the same pairs, on a folded, crumpled cloth sheet
-// (broad_phase/crumpled_sheet.hpp). Host float, 1 thread and TBB threads.
+// (broad_phase/crumpled_sheet.hpp), or on the surfaces of a scene at one
+// frame of a run (--scene, --state, --frame: e.g. the paper funnel's
+// pressed layers). Host float, 1 thread and TBB threads.
 //
 //   bench_broad_phase [--sizes 128,256,512] [--cells 1,2,4] [--threads 1,2] [--rounds 5] [--brute-max 128]
+//   bench_broad_phase --scene scenes/paper/funnel.yaml --state funnel.h5 --frame 16 [--cells 2] [--threads 1]
 //
 // Every method runs once per round, interleaved; the medians are printed.
 // Before timing, the pair sets of every method are compared (and with a
 // brute force up to --brute-max); a mismatch prints FAIL and exits 1.
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,6 +33,9 @@
 #include "broad_phase/bvh_pairs.hpp"
 #include "broad_phase/crumpled_sheet.hpp"
 #include "broad_phase/hash_pairs.hpp"
+#include "io/result_reader.hpp"
+#include "model/cloth_builder.hpp"
+#include "scene/scene_loader.hpp"
 
 using namespace atssim;
 using namespace atssim::bench;
@@ -188,6 +196,49 @@ void hash_step(const Scene& sc, SurfaceHash& h, const Runner& run, Timing& t) {
       [&] { run.each(sc.edges(), [&](int b, int e, PairLists& o) { hash_query_edges(s, sc.x, h, sc.r, b, e, o); }); });
 }
 
+// The model of `scene` with the positions of frame `frame` of the result
+// file `state` (a run of that scene), or nullopt with a message.
+std::optional<model::Model> state_model(const std::string& scene, const std::string& state, int frame) {
+  model::Model m = model::build_model(scene::load_scene_file(scene));
+  const std::vector<float> p = io::read_frame_positions(state, static_cast<std::size_t>(frame));
+  if (p.size() != 3 * m.particles.position.size()) {
+    std::printf("%s: frame %d holds %zu particles, %s has %zu; give the result of a run of that scene\n", state.c_str(),
+                frame, p.size() / 3, scene.c_str(), m.particles.position.size());
+    return std::nullopt;
+  }
+  for (std::size_t i = 0; i < m.particles.position.size(); ++i)
+    m.particles.position[i] = Eigen::Vector3d(p[3 * i], p[3 * i + 1], p[3 * i + 2]);
+  return m;
+}
+
+// How full the kernels' lists are: per kind (per vertex the triangles, per
+// triangle the vertices, per edge the edges), the share of non-empty lists
+// and of full ones (ATS_SC_CAPACITY entries: more were within the radius or
+// as many), and the mean entries of a non-empty list; then a hash (FNV-1a)
+// of all three, to tell whether two builds made the same lists.
+std::string list_fill(const KernelLists& l) {
+  std::string out;
+  std::uint64_t hash = 14695981039346656037ull;
+  for (const std::vector<int>* v : {&l.vt, &l.tv, &l.ee})
+    for (const int i : *v) hash = (hash ^ static_cast<std::uint32_t>(i)) * 1099511628211ull;
+  const char* names[3] = {"vertex", "triangle", "edge"};
+  const std::vector<int>* lists[3] = {&l.vt, &l.tv, &l.ee};
+  for (int k = 0; k < 3; ++k) {
+    const std::size_t count = lists[k]->size() / ATS_SC_STRIDE;
+    std::size_t used = 0, full = 0, entries = 0;
+    for (std::size_t i = 0; i < count; ++i) {
+      const int c = (*lists[k])[i * ATS_SC_STRIDE];
+      used += c > 0;
+      full += c == ATS_SC_CAPACITY;
+      entries += static_cast<std::size_t>(c);
+    }
+    out += fmt::format("{}{} lists {:.1f} % non-empty, {:.1f} % full, {:.2f} entries a non-empty one", k ? "; " : "",
+                       names[k], 100.0 * double(used) / double(count), 100.0 * double(full) / double(count),
+                       used ? double(entries) / double(used) : 0.0);
+  }
+  return out + fmt::format("; hash {:016x}", hash);
+}
+
 void uptime(const char* when) {
   std::fflush(stdout);
   std::printf("%s: ", when);
@@ -202,20 +253,33 @@ int main(int argc, char** argv) {
   std::vector<int> sizes{128, 256, 512};
   std::vector<float> cells{1.0f, 2.0f, 4.0f};
   std::vector<int> thread_counts{1, 2};
-  int rounds = 5, brute_max = 128;
+  int rounds = 5, brute_max = 128, frame = 0;
+  bool kernels_only = false;
+  std::string scene_path, state_path;
   app.add_option("--sizes", sizes, "cloth grids N x N")->delimiter(',');
   app.add_option("--cells", cells, "hash cell sizes, in query radii")->delimiter(',');
   app.add_option("--threads", thread_counts, "thread counts (1: plain loops; more: TBB)")->delimiter(',');
   app.add_option("--rounds", rounds, "interleaved rounds (the median is printed)");
   app.add_option("--brute-max", brute_max, "largest N checked against brute force");
+  auto* scene_opt = app.add_option("--scene", scene_path, "a scene's surfaces instead of the sheet (with --state)");
+  app.add_option("--state", state_path, "a result file of that scene, whose --frame positions are used")
+      ->needs(scene_opt)
+      ->check(CLI::ExistingFile);
+  app.add_flag("--kernels-only", kernels_only, "time only the kernels' walk (no BVH pairs, hash or pair check)");
+  app.add_option("--frame", frame, "the frame of --state (0: the initial state)")->check(CLI::NonNegativeNumber);
+  scene_opt->needs("--state");
   CLI11_PARSE(app, argc, argv);
+  if (!scene_path.empty()) sizes = {0};  // one state: the scene's
 
   uptime("load before");
   bool ok = true;
   std::vector<std::string> rows, parts;
   for (int size : sizes) {
     Scene sc;
-    const model::Model m = crumpled_sheet(size);
+    const std::optional<model::Model> read = scene_path.empty() ? std::optional<model::Model>(crumpled_sheet(size))
+                                                                : state_model(scene_path, state_path, frame);
+    if (!read) return 2;
+    const model::Model& m = *read;
     auto start = Clock::now();
     sc.layout = solver::make_self_contact_layout(m);
     const double layout_ms = ms_since(start);
@@ -242,7 +306,7 @@ int main(int argc, char** argv) {
         tbb::enumerable_thread_specific<PairLists> lists;
         PairLists serial;
         const Runner run{thread_counts[ti], &arena, &lists, &serial};
-        for (int method = 0; method < methods; ++method) {
+        for (int method = kernels_only ? kLeaf : 0; method < (kernels_only ? kLeaf + 1 : methods); ++method) {
           Timing& t = timing[ti][method];
           if (method == 0) {
             bvh_step(sc, nodes, run, t);
@@ -260,7 +324,7 @@ int main(int argc, char** argv) {
     }
 
     const PairLists& bvh = found[0][0];
-    for (std::size_t ti = 0; ti < thread_counts.size(); ++ti) {
+    for (std::size_t ti = 0; ti < thread_counts.size() && !kernels_only; ++ti) {
       for (int method = 0; method < methods; ++method) {
         if (method == kLeaf) continue;
         if (!same_pairs(found[ti][method], bvh)) {
@@ -270,12 +334,12 @@ int main(int argc, char** argv) {
         }
       }
     }
-    if (!transposes_agree(bvh)) {
+    if (!kernels_only && !transposes_agree(bvh)) {
       std::printf("FAIL: %d x %d: per-triangle pairs are not the per-vertex pairs transposed\n", size, size);
       ok = false;
     }
-    std::string brute_note = "not checked";
-    if (size <= brute_max) {
+    std::string brute_note = kernels_only ? "not gathered (--kernels-only)" : "not checked";
+    if (!kernels_only && scene_path.empty() && size <= brute_max) {
       tbb::enumerable_thread_specific<PairLists> lists;
       const int count = std::max(sc.n(), sc.edges());
       tbb::parallel_for(tbb::blocked_range<int>(0, count, 64), [&](const tbb::blocked_range<int>& r) {
@@ -293,16 +357,22 @@ int main(int argc, char** argv) {
         brute_note = "DIFFER";
       }
     }
+    const std::string what =
+        scene_path.empty() ? fmt::format("{} x {}", size, size) : fmt::format("{} frame {}", state_path, frame);
     std::printf(
-        "%d x %d: %d triangles, %d edges, layout (BVH build, once) %.1f ms; pairs: %zu vertex-triangle "
+        "%s: %d triangles, %d edges, query radius %.4g, layout (BVH build, once) %.1f ms; pairs: %zu vertex-triangle "
         "(found twice), %zu edge-edge (both ways); brute force: %s\n",
-        size, size, sc.tris(), sc.edges(), layout_ms, bvh.vt.size(), bvh.ee.size() / 2, brute_note.c_str());
+        what.c_str(), sc.tris(), sc.edges(), double(sc.r), layout_ms, bvh.vt.size(), bvh.ee.size() / 2,
+        brute_note.c_str());
+    std::printf("the kernels' lists: %s\n", list_fill(leaf_lists).c_str());
     std::fflush(stdout);
 
     for (std::size_t ti = 0; ti < thread_counts.size(); ++ti) {
-      const double bvh_total = median(timing[ti][0].build) + median(timing[ti][0].query);
+      const double bvh_total =
+          kernels_only ? 0.0 : median(timing[ti][0].build) + median(timing[ti][0].query);  // 0: not run
       for (int method = 0; method < methods; ++method) {
         const Timing& t = timing[ti][method];
+        if (t.query.empty()) continue;  // not run (--kernels-only)
         std::vector<double> total(t.build.size());
         for (std::size_t k = 0; k < total.size(); ++k) total[k] = t.build[k] + t.query[k];
         const PairLists& f = found[ti][method];
@@ -311,9 +381,9 @@ int main(int argc, char** argv) {
                                                    : fmt::format("hash, cell {:g} r", cells[method - kFirstHash]);
         const double per_pair = method == kLeaf ? 0.0 : double(f.tested) / double(f.found());
         const double tot = median(total);
-        rows.push_back(fmt::format("| {} | {} | {} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {:.2f} |", sc.n(),
+        rows.push_back(fmt::format("| {} | {} | {} | {:.2f} | {:.2f} | {:.2f} | {:.2f} | {} |", sc.n(),
                                    thread_counts[ti], name, median(t.build), median(t.query), tot, per_pair,
-                                   tot / bvh_total));
+                                   bvh_total > 0.0 ? fmt::format("{:.2f}", tot / bvh_total) : "–"));
         parts.push_back(fmt::format("| {} | {} | {} | {:.2f} | {:.2f} | {:.2f} |", sc.n(), thread_counts[ti], name,
                                     median(t.part[0]), median(t.part[1]), median(t.part[2])));
       }

@@ -155,8 +155,9 @@ plan::BufferId buffer_named(const plan::SubstepPlan& p, const std::string& name)
 }
 
 // The device list of element e against the brute force distances of its
-// candidates (id, distance), nearest first.
-void check_list(const std::vector<int>& list, int e, std::vector<std::pair<double, int>> expected, float radius) {
+// candidates (id, distance), nearest first. Whether more than the list
+// holds were within the radius (it keeps the nearest).
+bool check_list(const std::vector<int>& list, int e, std::vector<std::pair<double, int>> expected, float radius) {
   std::sort(expected.begin(), expected.end());
   const int* l = list.data() + e * kStride;
   INFO("element " << e << ": " << expected.size() << " within the radius");
@@ -172,6 +173,7 @@ void check_list(const std::vector<int>& list, int e, std::vector<std::pair<doubl
     REQUIRE(it != expected.end());
     CHECK(it->first == Approx(expected[k].first).margin(2e-5));
   }
+  return int(expected.size()) > kCapacity;
 }
 
 // One detection (a frame's first substep, at contact.query_radius;
@@ -180,7 +182,7 @@ void check_list(const std::vector<int>& list, int e, std::vector<std::pair<doubl
 // radius: contact pairs, those of them joined by a triangle (folded), and
 // sheet neighbours (not contact pairs).
 struct PairCounts {
-  int pairs = 0, folded = 0, sheet = 0;
+  int pairs = 0, folded = 0, sheet = 0, overfull = 0;  // overfull: lists that kept only the nearest
 };
 
 PairCounts check_detection(const solver::SimLayout& layout) {
@@ -219,7 +221,7 @@ PairCounts check_detection(const solver::SimLayout& layout) {
       }
     }
     c.pairs += int(expected.size());
-    check_list(vt, v, expected, radius);
+    c.overfull += check_list(vt, v, expected, radius);
   }
   for (int t = 0; t < int(s.tris.size()); ++t) {
     const auto& f = s.tris[t];
@@ -229,7 +231,7 @@ PairCounts check_detection(const solver::SimLayout& layout) {
       const double d = pt_dist(at(x, v), at(x, f[0]), at(x, f[1]), at(x, f[2]));
       if (d < radius && !excluded.vertex_triangle(v, f)) expected.emplace_back(d, v);
     }
-    check_list(tv, t, expected, radius);
+    c.overfull += check_list(tv, t, expected, radius);
   }
   for (int e = 0; e < int(s.edges.size()); ++e) {
     const auto& a = s.edges[e];
@@ -240,7 +242,7 @@ PairCounts check_detection(const solver::SimLayout& layout) {
       const double d = ee_dist(at(x, a[0]), at(x, a[1]), at(x, b[0]), at(x, b[1]));
       if (d < radius && !excluded.edge_edge(a, b)) expected.emplace_back(d, f);
     }
-    check_list(ee, e, expected, radius);
+    c.overfull += check_list(ee, e, expected, radius);
   }
   return c;
 }
@@ -258,6 +260,29 @@ TEST_CASE("self-contact detection on the device finds the brute force's nearest 
     p.z += u(rng);
   }
   CHECK(check_detection(layout).pairs > 100);  // the two layers do face each other
+}
+
+TEST_CASE("where more primitives than a list holds are within the radius, the device keeps the brute force's nearest",
+          "[self]") {
+  // kScene with a query radius of 8 cm: a vertex of one layer has more
+  // than eight triangles of the other within it, so hundreds of lists
+  // overflow, and each must hold the brute force's nearest eight, in
+  // order, with the eighth's distance as its horizon (sc_list_insert's
+  // eviction, sc_list_store).
+  std::string scene = kScene;
+  const std::string contact = "contact: {self: true, thickness: 0.01}";
+  scene.replace(scene.find(contact), contact.size(), "contact: {self: true, thickness: 0.01, query_radius: 0.08}");
+  const model::Model m = model::build_model(scene::parse_scene(scene, "s.yaml", "."));
+  solver::SimLayout layout = solver::make_sim_layout(m);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-0.004f, 0.004f);
+  for (auto& p : layout.x) {
+    p.x += u(rng);
+    p.y += u(rng);
+    p.z += u(rng);
+  }
+  const PairCounts c = check_detection(layout);
+  CHECK(c.overfull > 100);
 }
 
 TEST_CASE("a sheet folded onto itself keeps its folded neighbours as contact pairs, not its flat ones", "[self]") {
