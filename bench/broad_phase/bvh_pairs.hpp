@@ -99,9 +99,9 @@ inline int bvh_group_count(const SelfContactLayout& s) {
 inline void bvh_group_lists(const SelfContactLayout& s, const std::vector<Float4>& x, const std::vector<Float4>& nodes,
                             float r, int begin, int end, KernelLists& out) {
   for (int g = begin; g < end; ++g)
-    sc_query_group(g, static_cast<int>(s.tris.size()), x.data(), s.incidence.data(), s.tris[0].data(),
-                   s.edges[0].data(), s.leaves[0].data(), nodes.data(), s.levels.data(), s.root(), r, out.vt.data(),
-                   out.tv.data(), out.ee.data());
+    sc_query_group(g, static_cast<int>(s.tris.size()), static_cast<int>(x.size()), x.data(), s.incidence.data(),
+                   s.tris[0].data(), s.edges[0].data(), s.leaves[0].data(), nodes.data(), s.levels.data(), s.root(), r,
+                   out.vt.data(), out.tv.data(), out.ee.data());
 }
 
 // One substep's detection, single-threaded: refit, then the three queries.

@@ -93,7 +93,7 @@ inline void test_vertex_triangle(const SelfContactLayout& s, const std::vector<a
   ++out.tested;
   const ats_pair_geometry g = ats_point_triangle(x[v], x[f[0]], x[f[1]], x[f[2]]);
   if (g.d < r &&
-      !sc_sheet_vertex_triangle(s.incidence.data(), s.tris[0].data(), v, f.data(), g.diff, x[f[0]], x[f[1]], x[f[2]]))
+      !sc_sheet_vertex_triangle(s.incidence.data(), int(x.size()), v, f.data(), g.diff, x[f[0]], x[f[1]], x[f[2]]))
     (per_vertex ? out.vt : out.tv).push_back(per_vertex ? std::array{v, t} : std::array{t, v});
 }
 
@@ -116,8 +116,8 @@ inline void test_edge_edge(const SelfContactLayout& s, const std::vector<ats_vec
   const ats_pair_geometry g = ats_edge_edge(x[a[0]], x[a[1]], x[b[0]], x[b[1]]);
   if (!(g.d < r)) return;
   const int* inc = s.incidence.data();
-  const int* tris = s.tris[0].data();
-  const bool sheet = (sc_joined(inc, tris, a[0], b[0], b[1], b[1]) || sc_joined(inc, tris, a[1], b[0], b[1], b[1])) &&
+  const int n = int(x.size());
+  const bool sheet = (sc_joined(inc, n, a[0], b[0], b[1], b[1]) || sc_joined(inc, n, a[1], b[0], b[1], b[1])) &&
                      edge_in_plane(s, x, a[0], a[1], g.diff) && edge_in_plane(s, x, b[0], b[1], g.diff);
   if (!sheet) out.ee.push_back({e, f});
 }

@@ -114,10 +114,15 @@ ATS_FN ats_pair_geometry ats_edge_edge(ats_vec3 p0, ats_vec3 p1, ats_vec3 q0, at
  * folded onto itself) is one. Whether D is within 30 degrees of the plane
  * of (a, b, c): (n . D)^2 < sin^2(30 deg) |n|^2 |D|^2, n = (b - a) x (c - a);
  * a degenerate triangle or D = 0 has no such angle: not in the plane. */
-ATS_FN int ats_pair_in_plane(ats_vec3 diff, ats_vec3 a, ats_vec3 b, ats_vec3 c) {
-  const ats_vec3 n = ats_v3_cross(ats_sub(b, a), ats_sub(c, a));
+ATS_FN ats_vec3 ats_plane_normal(ats_vec3 a, ats_vec3 b, ats_vec3 c) {
+  return ats_v3_cross(ats_sub(b, a), ats_sub(c, a));
+}
+ATS_FN int ats_in_plane_of(ats_vec3 diff, ats_vec3 n) {
   const ats_real dn = ats_dot(n, diff);
   return dn * dn < (ats_real)0.25 * ats_dot(n, n) * ats_dot(diff, diff);
+}
+ATS_FN int ats_pair_in_plane(ats_vec3 diff, ats_vec3 a, ats_vec3 b, ats_vec3 c) {
+  return ats_in_plane_of(diff, ats_plane_normal(a, b, c));
 }
 
 /* The pair's contact energy (see above). */

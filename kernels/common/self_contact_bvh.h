@@ -199,7 +199,8 @@ ATS_FN void sc_list_store(const sc_list* l, float radius, ATS_GLOBAL int* out) {
 }
 
 /* inc: [0, n]: offsets of each particle's incident triangles, [n + 1, 2n + 1]:
- * of its incident edges; then the lists. */
+ * of its incident edges, [2n + 2, 3n + 2]: of its joined vertices (the other
+ * corners of its triangles, each once; sc_joined); then the lists. */
 ATS_FN int sc_is_surface(ATS_GLOBAL const int* inc, int i) { return inc[i + 1] > inc[i]; }
 
 /* The three queries of leaf u: the triangle's own list (per triangle the
@@ -214,7 +215,8 @@ ATS_FN int sc_is_surface(ATS_GLOBAL const int* inc, int i) { return inc[i + 1] >
 typedef struct {
   int u;
   int f[3];
-  ats_vec3 a, b, c;
+  int n;                /* the particles (inc's sections) */
+  ats_vec3 a, b, c, nu; /* nu: the triangle's (unnormalised) normal */
   sc_box q;
   sc_list tri;
   int vid[3]; /* owned vertices: id (-1: none or not a query), point, widened box */
@@ -223,21 +225,25 @@ typedef struct {
   sc_list vl[3];
   int eid[3], e0[3], e1[3]; /* owned edges: id, ends, widened box */
   ats_vec3 ea[3], eb[3];
+  int enn[3]; /* the normals of the edge's triangles (sc_edge_in_plane's), how many; -1: more than 2 */
+  ats_vec3 en[3][2];
   sc_box eq[3];
   sc_list el[3];
 } sc_leaf_query;
 
-ATS_FN void sc_leaf_begin(sc_leaf_query* lq, int u, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* inc,
+ATS_FN void sc_leaf_begin(sc_leaf_query* lq, int u, int n, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* inc,
                           ATS_GLOBAL const int* tris, ATS_GLOBAL const int* edges, ATS_GLOBAL const int* leaves,
                           float radius) {
   ATS_GLOBAL const int* f = tris + 4 * u;
   ATS_GLOBAL const int* own = leaves + 8 * u;
   lq->u = u;
+  lq->n = n;
   for (int k = 0; k < 3; ++k) lq->f[k] = f[k];
   lq->a = sc_v(x[f[0]]);
   lq->b = sc_v(x[f[1]]);
   lq->c = sc_v(x[f[2]]);
   lq->q = sc_box_of_triangle(lq->a, lq->b, lq->c, radius);
+  lq->nu = ats_plane_normal(lq->a, lq->b, lq->c);
   sc_list_begin(&lq->tri);
   for (int k = 0; k < 3; ++k) {
     int v = own[k];
@@ -256,6 +262,16 @@ ATS_FN void sc_leaf_begin(sc_leaf_query* lq, int u, ATS_GLOBAL const ats_float4*
     lq->ea[k] = e >= 0 ? sc_v(x[lq->e0[k]]) : lq->a;
     lq->eb[k] = e >= 0 ? sc_v(x[lq->e1[k]]) : lq->a;
     lq->eq[k] = sc_box_of_edge(lq->ea[k], lq->eb[k], radius);
+    lq->enn[k] = 0;
+    for (int m = e >= 0 ? inc[lq->e0[k]] : 0; e >= 0 && m < inc[lq->e0[k] + 1]; ++m) {
+      ATS_GLOBAL const int* g = tris + 4 * inc[m];
+      if (g[0] != lq->e1[k] && g[1] != lq->e1[k] && g[2] != lq->e1[k]) continue;
+      if (lq->enn[k] == 2 || lq->enn[k] < 0) {
+        lq->enn[k] = -1;
+        continue;
+      }
+      lq->en[k][lq->enn[k]++] = ats_plane_normal(sc_v(x[g[0]]), sc_v(x[g[1]]), sc_v(x[g[2]]));
+    }
   }
 }
 
@@ -279,13 +295,14 @@ ATS_FN int sc_segments_apart(ats_vec3 a0, ats_vec3 a1, ats_vec3 b0, ats_vec3 b1,
 }
 
 /* Sheet neighbours (common/self_contact.h ats_pair_in_plane): whether
- * vertex v and a corner of (a, b, c) are corners of one triangle, from v's
- * incident triangles (inc). */
-ATS_FN int sc_joined(ATS_GLOBAL const int* inc, ATS_GLOBAL const int* tris, int v, int a, int b, int c) {
-  for (int k = inc[v]; k < inc[v + 1]; ++k) {
-    ATS_GLOBAL const int* f = tris + 4 * inc[k];
-    for (int j = 0; j < 3; ++j)
-      if (f[j] == a || f[j] == b || f[j] == c) return 1;
+ * vertex v and a corner of (a, b, c) are corners of one triangle: a, b or
+ * c is v (of a surface vertex) or among v's joined vertices (inc, n
+ * particles). */
+ATS_FN int sc_joined(ATS_GLOBAL const int* inc, int n, int v, int a, int b, int c) {
+  if (a == v || b == v || c == v) return inc[v + 1] > inc[v];
+  for (int k = inc[2 * n + 2 + v]; k < inc[2 * n + 3 + v]; ++k) {
+    const int w = inc[k];
+    if (w == a || w == b || w == c) return 1;
   }
   return 0;
 }
@@ -302,16 +319,30 @@ ATS_FN int sc_edge_in_plane(ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int
 }
 
 /* Vertex v and triangle f (corners a, b, c) at offset D: sheet neighbours. */
-ATS_FN int sc_sheet_vertex_triangle(ATS_GLOBAL const int* inc, ATS_GLOBAL const int* tris, int v, const int* f,
-                                    ats_vec3 diff, ats_vec3 a, ats_vec3 b, ats_vec3 c) {
-  return ats_pair_in_plane(diff, a, b, c) && sc_joined(inc, tris, v, f[0], f[1], f[2]);
+ATS_FN int sc_sheet_vertex_triangle(ATS_GLOBAL const int* inc, int n, int v, const int* f, ats_vec3 diff, ats_vec3 a,
+                                    ats_vec3 b, ats_vec3 c) {
+  return ats_pair_in_plane(diff, a, b, c) && sc_joined(inc, n, v, f[0], f[1], f[2]);
 }
 
 /* Edges (a0, a1) and (b0, b1) at offset D: sheet neighbours. */
-ATS_FN int sc_sheet_edge_edge(ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* inc, ATS_GLOBAL const int* tris,
-                              int a0, int a1, int b0, int b1, ats_vec3 diff) {
-  return (sc_joined(inc, tris, a0, b0, b1, b1) || sc_joined(inc, tris, a1, b0, b1, b1)) &&
+ATS_FN int sc_sheet_edge_edge(ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* inc, int n,
+                              ATS_GLOBAL const int* tris, int a0, int a1, int b0, int b1, ats_vec3 diff) {
+  return (sc_joined(inc, n, a0, b0, b1, b1) || sc_joined(inc, n, a1, b0, b1, b1)) &&
          sc_edge_in_plane(x, inc, tris, a0, a1, diff) && sc_edge_in_plane(x, inc, tris, b0, b1, diff);
+}
+
+/* u's edge k and edge (o0, o1) at offset D: sheet neighbours
+ * (sc_sheet_edge_edge), the normals of edge k's triangles gathered once. */
+ATS_FN int sc_leaf_sheet_edge(const sc_leaf_query* lq, int k, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* inc,
+                              ATS_GLOBAL const int* tris, int o0, int o1, ats_vec3 diff) {
+  if (!sc_joined(inc, lq->n, lq->e0[k], o0, o1, o1) && !sc_joined(inc, lq->n, lq->e1[k], o0, o1, o1)) return 0;
+  if (lq->enn[k] < 0) {
+    if (!sc_edge_in_plane(x, inc, tris, lq->e0[k], lq->e1[k], diff)) return 0;
+  } else {
+    for (int m = 0; m < lq->enn[k]; ++m)
+      if (!ats_in_plane_of(diff, lq->en[k][m])) return 0;
+  }
+  return sc_edge_in_plane(x, inc, tris, o0, o1, diff);
 }
 
 /* Candidate leaf o (its box overlaps q). */
@@ -328,7 +359,7 @@ ATS_FN void sc_leaf_candidate(sc_leaf_query* lq, int o, ATS_GLOBAL const ats_flo
     const ats_vec3 p = sc_v(x[v]);
     if (!sc_box_holds(lq->q, p)) continue;
     const ats_pair_geometry pg = ats_point_triangle(p, lq->a, lq->b, lq->c);
-    if (pg.d < radius && !sc_sheet_vertex_triangle(inc, tris, v, lq->f, pg.diff, lq->a, lq->b, lq->c))
+    if (pg.d < radius && !(ats_in_plane_of(pg.diff, lq->nu) && sc_joined(inc, lq->n, v, lq->f[0], lq->f[1], lq->f[2])))
       sc_list_insert(&lq->tri, v, pg.d);
   }
   /* per vertex the triangles: triangle o, near each vertex u owns (its
@@ -344,7 +375,7 @@ ATS_FN void sc_leaf_candidate(sc_leaf_query* lq, int o, ATS_GLOBAL const ats_flo
     for (int k = 0; k < 3; ++k) {
       if (!(near & (1 << k))) continue;
       const ats_pair_geometry pg = ats_point_triangle(lq->vp[k], ga, gb, gc);
-      if (pg.d < radius && !sc_sheet_vertex_triangle(inc, tris, lq->vid[k], gf, pg.diff, ga, gb, gc))
+      if (pg.d < radius && !sc_sheet_vertex_triangle(inc, lq->n, lq->vid[k], gf, pg.diff, ga, gb, gc))
         sc_list_insert(&lq->vl[k], o, pg.d);
     }
   }
@@ -366,7 +397,7 @@ ATS_FN void sc_leaf_candidate(sc_leaf_query* lq, int o, ATS_GLOBAL const ats_flo
         continue;
       if (sc_segments_apart(lq->ea[k], lq->eb[k], p0, p1, radius)) continue;
       const ats_pair_geometry pg = ats_edge_edge(lq->ea[k], lq->eb[k], p0, p1);
-      if (pg.d < radius && !sc_sheet_edge_edge(x, inc, tris, lq->e0[k], lq->e1[k], o0, o1, pg.diff))
+      if (pg.d < radius && !sc_leaf_sheet_edge(lq, k, x, inc, tris, o0, o1, pg.diff))
         sc_list_insert(&lq->el[k], h, pg.d);
     }
   }
@@ -383,12 +414,12 @@ ATS_FN void sc_leaf_end(const sc_leaf_query* lq, float radius, ATS_GLOBAL const 
 }
 
 /* Leaf u's lists by a walk of its own. */
-ATS_FN void sc_query_leaf(int u, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* inc, ATS_GLOBAL const int* tris,
-                          ATS_GLOBAL const int* edges, ATS_GLOBAL const int* leaves, ATS_GLOBAL const ats_float4* nodes,
-                          ATS_GLOBAL const int* levels, int root, float radius, ATS_GLOBAL int* vt, ATS_GLOBAL int* tv,
-                          ATS_GLOBAL int* ee) {
+ATS_FN void sc_query_leaf(int u, int n, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* inc,
+                          ATS_GLOBAL const int* tris, ATS_GLOBAL const int* edges, ATS_GLOBAL const int* leaves,
+                          ATS_GLOBAL const ats_float4* nodes, ATS_GLOBAL const int* levels, int root, float radius,
+                          ATS_GLOBAL int* vt, ATS_GLOBAL int* tv, ATS_GLOBAL int* ee) {
   sc_leaf_query lq;
-  sc_leaf_begin(&lq, u, x, inc, tris, edges, leaves, radius);
+  sc_leaf_begin(&lq, u, n, x, inc, tris, edges, leaves, radius);
   sc_walk w;
   sc_walk_begin(&w, nodes, levels, root, lq.q);
   int o;
@@ -405,7 +436,7 @@ ATS_FN void sc_query_leaf(int u, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL cons
  * outgrow ATS_SC_GROUP_CANDIDATES, each leaf walks on its own. */
 #define ATS_SC_GROUP 8
 #define ATS_SC_GROUP_CANDIDATES 192
-ATS_FN void sc_query_group(int g, int leaf_count, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* inc,
+ATS_FN void sc_query_group(int g, int leaf_count, int n, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* inc,
                            ATS_GLOBAL const int* tris, ATS_GLOBAL const int* edges, ATS_GLOBAL const int* leaves,
                            ATS_GLOBAL const ats_float4* nodes, ATS_GLOBAL const int* levels, int root, float radius,
                            ATS_GLOBAL int* vt, ATS_GLOBAL int* tv, ATS_GLOBAL int* ee) {
@@ -431,11 +462,11 @@ ATS_FN void sc_query_group(int g, int leaf_count, ATS_GLOBAL const ats_float4* x
   }
   for (int u = first; u < end; ++u) {
     if (overflow) {
-      sc_query_leaf(u, x, inc, tris, edges, leaves, nodes, levels, root, radius, vt, tv, ee);
+      sc_query_leaf(u, n, x, inc, tris, edges, leaves, nodes, levels, root, radius, vt, tv, ee);
       continue;
     }
     sc_leaf_query lq;
-    sc_leaf_begin(&lq, u, x, inc, tris, edges, leaves, radius);
+    sc_leaf_begin(&lq, u, n, x, inc, tris, edges, leaves, radius);
     for (int k = 0; k < count; ++k)
       if (sc_boxes_overlap(sc_node_box(nodes, cand[k]), lq.q))
         sc_leaf_candidate(&lq, cand[k], x, inc, tris, edges, leaves, nodes, radius);

@@ -87,13 +87,14 @@ ATS_TASK void sc_snap(int i, __global const float4* x_start, __global float4* x_
 
 /* The lists of the leaves of group g, one walk per group
  * (common/self_contact_bvh.h sc_query_group), where its block makes them. */
-ATS_TASK void sc_query_groups(int g, __global const float4* x, __global const int* inc, __global const int4* tris,
-                              __global const int2* edges, __global const int* leaves, __global const float4* nodes,
-                              __global const int* levels, int root, int leaf_count, __global const int* state,
-                              __global const int* make, __global int* vt, __global int* tv, __global int* ee) {
+ATS_TASK void sc_query_groups(int g, __global const float4* x, __global const int* inc, int n,
+                              __global const int4* tris, __global const int2* edges, __global const int* leaves,
+                              __global const float4* nodes, __global const int* levels, int root, int leaf_count,
+                              __global const int* state, __global const int* make, __global int* vt, __global int* tv,
+                              __global int* ee) {
   if (make[g * ATS_SC_GROUP / ATS_SC_BLOCK])
-    sc_query_group(g, leaf_count, x, inc, (__global const int*)tris, (__global const int*)edges, leaves, nodes, levels,
-                   root, as_float(state[2]), vt, tv, ee);
+    sc_query_group(g, leaf_count, n, x, inc, (__global const int*)tris, (__global const int*)edges, leaves, nodes,
+                   levels, root, as_float(state[2]), vt, tv, ee);
 }
 
 /* Once per substep, after the lists (common/self_contact_lists.h): every

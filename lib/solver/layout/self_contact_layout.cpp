@@ -99,9 +99,20 @@ SelfContactLayout make_self_contact_layout(const model::Model& model) {
     out.levels.push_back(out.levels.back() + count);
     if (count == 1) break;
   }
-  out.incidence.assign(2 * (n + 1), 0);
+  // Per particle the other corners of its triangles, each once: the
+  // vertices it is joined to (common/self_contact_bvh.h sc_joined).
+  std::vector<std::vector<int>> joined_of(n);
+  for (int v = 0; v < n; ++v) {
+    for (const int leaf : tris_of[v])
+      for (const int c : {out.tris[leaf][0], out.tris[leaf][1], out.tris[leaf][2]})
+        if (c != v) joined_of[v].push_back(c);
+    std::sort(joined_of[v].begin(), joined_of[v].end());
+    joined_of[v].erase(std::unique(joined_of[v].begin(), joined_of[v].end()), joined_of[v].end());
+  }
+  out.incidence.assign(3 * (n + 1), 0);
   append_lists(out.incidence, 0, tris_of);
   append_lists(out.incidence, n + 1, edges_of);
+  append_lists(out.incidence, 2 * (n + 1), joined_of);
   return out;
 }
 

@@ -32,7 +32,10 @@ struct SelfContactLayout {
   std::vector<std::array<int, 2>> edges;  // unique surface edges
   std::vector<std::array<int, 8>> leaves;  // per leaf: owned vertices [0..2], owned edges [4..6] (-1 = none)
   std::vector<int> levels;                 // node offset of each level, then the node count (level 0 = leaves)
-  std::vector<int> incidence;  // [0, n]: offsets of incident triangles, [n+1, 2n+1]: of incident edges; lists
+  // [0, n]: offsets of incident triangles, [n+1, 2n+1]: of incident edges,
+  // [2n+2, 3n+2]: of joined vertices (the other corners of its triangles,
+  // each once); then the lists
+  std::vector<int> incidence;
   int root() const { return static_cast<int>(levels.size()) - 2; }
   int node_count() const { return levels.empty() ? 0 : levels.back(); }
 };

@@ -1,6 +1,8 @@
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <string>
+#include <vector>
 
 #include "model/cloth_builder.hpp"
 #include "scene/scene_loader.hpp"
@@ -63,7 +65,10 @@ TEST_CASE("with contact every method detects once per substep before its iterati
   }
 }
 
-TEST_CASE("the surface layout: every triangle a leaf, every vertex and edge owned by one leaf", "[self]") {
+TEST_CASE(
+    "the surface layout: every triangle a leaf, every vertex and edge owned by one leaf, each vertex joined to the "
+    "other ends of its edges",
+    "[self]") {
   const scene::SceneDesc s = scene::parse_scene(test::hanging_cloth_yaml(9) + kContact, "scene.yaml", ".");
   const solver::SelfContactLayout l = solver::make_sim_layout(model::build_model(s)).self_contact;
   REQUIRE(l.enabled);
@@ -79,6 +84,21 @@ TEST_CASE("the surface layout: every triangle a leaf, every vertex and edge owne
   }
   for (int v : vertex_owned) CHECK(v == 1);
   for (int e : edge_owned) CHECK(e == 1);
+  // The joined vertices (incidence's third section, sc_joined): two corners
+  // of one triangle share one of its edges, so each vertex's are the other
+  // ends of its edges, every edge counted at both ends.
+  const auto joined = [&](int v) {
+    const int* at = l.incidence.data() + l.incidence[2 * (n + 1) + v];
+    return std::vector<int>(at, l.incidence.data() + l.incidence[2 * (n + 1) + v + 1]);
+  };
+  int listed = 0;
+  for (int v = 0; v < n; ++v) listed += int(joined(v).size());
+  CHECK(listed == 2 * edges);
+  for (const auto& e : l.edges) {
+    const std::vector<int> a = joined(e[0]), b = joined(e[1]);
+    CHECK(std::count(a.begin(), a.end(), e[1]) == 1);
+    CHECK(std::count(b.begin(), b.end(), e[0]) == 1);
+  }
   // Levels halve up to one root.
   CHECK(l.levels.front() == 0);
   CHECK(l.levels[1] == tris);
