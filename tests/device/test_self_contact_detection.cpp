@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 #include <random>
+#include <string>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -247,18 +248,24 @@ PairCounts check_detection(const solver::SimLayout& layout) {
   return c;
 }
 
-}  // namespace
-
-TEST_CASE("self-contact detection on the device finds the brute force's nearest pairs and bound", "[self]") {
-  const model::Model m = model::build_model(scene::parse_scene(kScene, "s.yaml", "."));
-  solver::SimLayout layout = solver::make_sim_layout(m);
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<float> u(-0.002f, 0.002f);
+// The layout of `scene` with every particle moved by up to `amplitude` along
+// each axis (uniform, from `seed`): no two layers exactly parallel.
+solver::SimLayout jittered_layout(const std::string& scene, unsigned seed, float amplitude) {
+  solver::SimLayout layout = solver::make_sim_layout(model::build_model(scene::parse_scene(scene, "s.yaml", ".")));
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(-amplitude, amplitude);
   for (auto& p : layout.x) {
     p.x += u(rng);
     p.y += u(rng);
     p.z += u(rng);
   }
+  return layout;
+}
+
+}  // namespace
+
+TEST_CASE("self-contact detection on the device finds the brute force's nearest pairs and bound", "[self]") {
+  const solver::SimLayout layout = jittered_layout(kScene, 3, 0.002f);
   CHECK(check_detection(layout).pairs > 100);  // the two layers do face each other
 }
 
@@ -272,16 +279,7 @@ TEST_CASE("where more primitives than a list holds are within the radius, the de
   std::string scene = kScene;
   const std::string contact = "contact: {self: true, thickness: 0.01}";
   scene.replace(scene.find(contact), contact.size(), "contact: {self: true, thickness: 0.01, query_radius: 0.08}");
-  const model::Model m = model::build_model(scene::parse_scene(scene, "s.yaml", "."));
-  solver::SimLayout layout = solver::make_sim_layout(m);
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<float> u(-0.004f, 0.004f);
-  for (auto& p : layout.x) {
-    p.x += u(rng);
-    p.y += u(rng);
-    p.z += u(rng);
-  }
-  const PairCounts c = check_detection(layout);
+  const PairCounts c = check_detection(jittered_layout(scene, 5, 0.004f));
   CHECK(c.overfull > 100);
 }
 
