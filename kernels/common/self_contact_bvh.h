@@ -203,6 +203,9 @@ ATS_FN void sc_list_store(const sc_list* l, float radius, ATS_GLOBAL int* out) {
  * corners of its triangles, each once; sc_joined); then the lists. */
 ATS_FN int sc_is_surface(ATS_GLOBAL const int* inc, int i) { return inc[i + 1] > inc[i]; }
 
+/* Whether triangle f (its corners) has corner v. */
+ATS_FN int sc_has_corner(ATS_GLOBAL const int* f, int v) { return f[0] == v || f[1] == v || f[2] == v; }
+
 /* The three queries of leaf u: the triangle's own list (per triangle the
  * vertices), the lists of the vertices it owns (per vertex the triangles)
  * and of the edges it owns (per edge the edges), each primitive owned by
@@ -265,10 +268,10 @@ ATS_FN void sc_leaf_begin(sc_leaf_query* lq, int u, int n, ATS_GLOBAL const ats_
     lq->enn[k] = 0;
     for (int m = e >= 0 ? inc[lq->e0[k]] : 0; e >= 0 && m < inc[lq->e0[k] + 1]; ++m) {
       ATS_GLOBAL const int* g = tris + 4 * inc[m];
-      if (g[0] != lq->e1[k] && g[1] != lq->e1[k] && g[2] != lq->e1[k]) continue;
-      if (lq->enn[k] == 2 || lq->enn[k] < 0) {
+      if (!sc_has_corner(g, lq->e1[k])) continue;
+      if (lq->enn[k] == 2) {  // a non-manifold edge: sc_edge_in_plane per candidate
         lq->enn[k] = -1;
-        continue;
+        break;
       }
       lq->en[k][lq->enn[k]++] = ats_plane_normal(sc_v(x[g[0]]), sc_v(x[g[1]]), sc_v(x[g[2]]));
     }
@@ -312,8 +315,7 @@ ATS_FN int sc_edge_in_plane(ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int
                             int e0, int e1, ats_vec3 diff) {
   for (int k = inc[e0]; k < inc[e0 + 1]; ++k) {
     ATS_GLOBAL const int* f = tris + 4 * inc[k];
-    if (f[0] != e1 && f[1] != e1 && f[2] != e1) continue;
-    if (!ats_pair_in_plane(diff, sc_v(x[f[0]]), sc_v(x[f[1]]), sc_v(x[f[2]]))) return 0;
+    if (sc_has_corner(f, e1) && !ats_pair_in_plane(diff, sc_v(x[f[0]]), sc_v(x[f[1]]), sc_v(x[f[2]]))) return 0;
   }
   return 1;
 }
