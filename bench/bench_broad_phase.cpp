@@ -36,6 +36,7 @@
 #include "io/result_reader.hpp"
 #include "model/cloth_builder.hpp"
 #include "scene/scene_loader.hpp"
+#include "util/error.hpp"
 
 using namespace atssim;
 using namespace atssim::bench;
@@ -197,10 +198,18 @@ void hash_step(const Scene& sc, SurfaceHash& h, const Runner& run, Timing& t) {
 }
 
 // The model of `scene` with the positions of frame `frame` of the result
-// file `state` (a run of that scene), or nullopt with a message.
+// file `state` (a run of that scene), or nullopt with a message (a scene or
+// file that cannot be read, a frame it does not hold, another scene's run).
 std::optional<model::Model> state_model(const std::string& scene, const std::string& state, int frame) {
-  model::Model m = model::build_model(scene::load_scene_file(scene));
-  const std::vector<float> p = io::read_frame_positions(state, static_cast<std::size_t>(frame));
+  model::Model m;
+  std::vector<float> p;
+  try {
+    m = model::build_model(scene::load_scene_file(scene));
+    p = io::read_frame_positions(state, static_cast<std::size_t>(frame));
+  } catch (const Error& e) {
+    std::printf("%s\n", e.what());
+    return std::nullopt;
+  }
   if (p.size() != 3 * m.particles.position.size()) {
     std::printf("%s: frame %d holds %zu particles, %s has %zu; give the result of a run of that scene\n", state.c_str(),
                 frame, p.size() / 3, scene.c_str(), m.particles.position.size());
@@ -219,12 +228,11 @@ std::optional<model::Model> state_model(const std::string& scene, const std::str
 std::string list_fill(const KernelLists& l) {
   std::string out;
   std::uint64_t hash = 14695981039346656037ull;
-  for (const std::vector<int>* v : {&l.vt, &l.tv, &l.ee})
-    for (const int i : *v) hash = (hash ^ static_cast<std::uint32_t>(i)) * 1099511628211ull;
   const char* names[3] = {"vertex", "triangle", "edge"};
   const std::vector<int>* lists[3] = {&l.vt, &l.tv, &l.ee};
   for (int k = 0; k < 3; ++k) {
-    const std::size_t count = lists[k]->size() / ATS_SC_STRIDE;
+    for (const int i : *lists[k]) hash = (hash ^ static_cast<std::uint32_t>(i)) * 1099511628211ull;
+    const std::size_t count = std::max<std::size_t>(lists[k]->size() / ATS_SC_STRIDE, 1);  // (none: 0 %)
     std::size_t used = 0, full = 0, entries = 0;
     for (std::size_t i = 0; i < count; ++i) {
       const int c = (*lists[k])[i * ATS_SC_STRIDE];
