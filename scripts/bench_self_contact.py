@@ -7,7 +7,9 @@ contact time per frame (on - off: detection, XPBD's projections, the
 contact energy inside VBD's and JPGD's vertex solves, which is no task of
 its own), and the share of the last recorded substep the contact tasks
 took; then the log-log slope of the contact time over the sizes (each
-round's own on - off, the median of those). The last
+round's own on - off, the median of those; with several rounds also the
+range of each round's own slope), beside the slope of the self-off frame
+time. The last
 substep is a frame's last, which often keeps the pair lists (detection
 rebuilds them when the motion since they were made outgrows them; they are
 kept across frames), so its breakdown by task shows a kept substep; a
@@ -108,6 +110,25 @@ def native_ms(tmp, n, method, args):
     return json.loads(out.stdout)["median_ms"]
 
 
+def slope_line(method, points):
+    """The log-log slope of the contact time between the first and last
+    size: of the medians, with the range of each round's own (round r's on -
+    off at both sizes), and beside it the slope of the self-off frame time,
+    the solve's own growth with size on this machine (cache effects included),
+    against which the contact time's can be read."""
+    (v0, c0, r0, off0), (v1, c1, r1, off1) = points[0], points[-1]
+    slope = lambda a, b: math.log(b / a) / math.log(v1 / v0)
+    off = f"; of the self-off frame time: {slope(off0, off1):.2f}"
+    if not (c0 > 0 and c1 > 0):
+        return (f"| {method} | no slope: a contact time (on - off) is not positive, the noise is larger "
+                f"than it; use more --rounds{off} | | | | | |")
+    per_round = [slope(a, b) for a, b in zip(r0, r1) if a > 0 and b > 0]
+    spread = (f" (rounds {min(per_round):.2f}–{max(per_round):.2f}, {len(per_round)} of {len(r0)} with both "
+              f"contact times positive)" if len(r0) > 1 else "")
+    return (f"| {method} | log-log slope of the contact time, {v0} → {v1} vertices: {slope(c0, c1):.2f}"
+            f"{spread}{off} | | | | | |")
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--sizes", default="128,256", help="vertices per side, comma separated")
@@ -160,7 +181,7 @@ def main() -> int:
                 # The contact time from each round's own pair (on - off),
                 # then the median: a sitting's drift cancels within a pair.
                 paired = med([p[True][0] - p[False][0] for p in rounds])
-                points.append((n * n, paired))
+                points.append((n * n, paired, [p[True][0] - p[False][0] for p in rounds], off))
                 spread = lambda xs: f" ({min(xs):.2f}–{max(xs):.2f})" if len(xs) > 1 else ""
                 print(f"| {method} | {n * n} | {off:.1f} | {on:.1f} | {med(ratios):.2f}{spread(ratios)} | "
                       f"{paired:.2f} | {100 * contact / substep:.0f} % | {host_off:.1f} | {host_on:.1f} | "
@@ -168,13 +189,8 @@ def main() -> int:
                 if method in ("xpbd", "vbd") and os.path.exists(NATIVE):
                     print(f"| native {method} (host reference{', color_batches' if method == 'vbd' else ''}, 2 threads, no contact) | {n * n} | "
                           f"{native_ms(tmp, n, method, args):.1f} | – | – | – | – | – | – | – |", flush=True)
-            if len(points) >= 2 and all(c > 0 for _, c in points):
-                (v0, c0), (v1, c1) = points[0], points[-1]
-                print(f"| {method} | log-log slope of the contact time, {v0} → {v1} vertices: "
-                      f"{math.log(c1 / c0) / math.log(v1 / v0):.2f} | | | | | |", flush=True)
-            elif len(points) >= 2:
-                print(f"| {method} | no slope: a contact time (on - off) is not positive, the noise is larger "
-                      f"than it; use more --rounds | | | | | |", flush=True)
+            if len(points) >= 2:
+                print(slope_line(method, points), flush=True)
     print("\nThe last substep's four largest contact tasks by name (ms, times the substeps):\n")
     print("| method | vertices | tasks |")
     print("|---|---|---|")

@@ -334,16 +334,18 @@ ATS_FN int sc_sheet_edge_edge(ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const i
 }
 
 /* u's edge k and edge (o0, o1) at offset D: sheet neighbours
- * (sc_sheet_edge_edge), the normals of edge k's triangles gathered once. */
+ * (sc_sheet_edge_edge), the normals of edge k's triangles gathered once.
+ * The same three tests, the cheapest first: D in the plane of edge k's
+ * triangles (a dot product with each gathered normal), then whether the
+ * edges are joined (a scan of the vertices' joined lists), then D in the
+ * plane of the candidate's triangles (read from memory). Edges of two
+ * layers pressed together, most pairs of a crowd, fail the first. */
 ATS_FN int sc_leaf_sheet_edge(const sc_leaf_query* lq, int k, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* inc,
                               ATS_GLOBAL const int* tris, int o0, int o1, ats_vec3 diff) {
+  for (int m = 0; m < lq->enn[k]; ++m)
+    if (!ats_in_plane_of(diff, lq->en[k][m])) return 0;
   if (!sc_joined(inc, lq->n, lq->e0[k], o0, o1, o1) && !sc_joined(inc, lq->n, lq->e1[k], o0, o1, o1)) return 0;
-  if (lq->enn[k] < 0) {
-    if (!sc_edge_in_plane(x, inc, tris, lq->e0[k], lq->e1[k], diff)) return 0;
-  } else {
-    for (int m = 0; m < lq->enn[k]; ++m)
-      if (!ats_in_plane_of(diff, lq->en[k][m])) return 0;
-  }
+  if (lq->enn[k] < 0 && !sc_edge_in_plane(x, inc, tris, lq->e0[k], lq->e1[k], diff)) return 0;
   return sc_edge_in_plane(x, inc, tris, o0, o1, diff);
 }
 
