@@ -123,8 +123,13 @@ def slope_line(method, points):
         return (f"| {method} | no slope: a contact time (on - off) is not positive, the noise is larger "
                 f"than it; use more --rounds{off} | | | | | |")
     per_round = [slope(a, b) for a, b in zip(r0, r1) if a > 0 and b > 0]
-    spread = (f" (rounds {min(per_round):.2f}–{max(per_round):.2f}, {len(per_round)} of {len(r0)} with both "
-              f"contact times positive)" if len(r0) > 1 else "")
+    if len(r0) < 2:
+        spread = ""
+    elif per_round:
+        spread = (f" (rounds {min(per_round):.2f}–{max(per_round):.2f}, {len(per_round)} of {len(r0)} with both "
+                  f"contact times positive)")
+    else:
+        spread = f" (no round of {len(r0)} has both contact times positive)"
     return (f"| {method} | log-log slope of the contact time, {v0} → {v1} vertices: {slope(c0, c1):.2f}"
             f"{spread}{off} | | | | | |")
 
