@@ -326,20 +326,15 @@ ATS_FN int sc_sheet_vertex_triangle(ATS_GLOBAL const int* inc, int n, int v, con
   return ats_pair_in_plane(diff, a, b, c) && sc_joined(inc, n, v, f[0], f[1], f[2]);
 }
 
-/* Edges (a0, a1) and (b0, b1) at offset D: sheet neighbours. */
-ATS_FN int sc_sheet_edge_edge(ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* inc, int n,
-                              ATS_GLOBAL const int* tris, int a0, int a1, int b0, int b1, ats_vec3 diff) {
-  return (sc_joined(inc, n, a0, b0, b1, b1) || sc_joined(inc, n, a1, b0, b1, b1)) &&
-         sc_edge_in_plane(x, inc, tris, a0, a1, diff) && sc_edge_in_plane(x, inc, tris, b0, b1, diff);
-}
-
-/* u's edge k and edge (o0, o1) at offset D: sheet neighbours
- * (sc_sheet_edge_edge), the normals of edge k's triangles gathered once.
- * The same three tests, the cheapest first: D in the plane of edge k's
- * triangles (a dot product with each gathered normal), then whether the
- * edges are joined (a scan of the vertices' joined lists), then D in the
- * plane of the candidate's triangles (read from memory). Edges of two
- * layers pressed together, most pairs of a crowd, fail the first. */
+/* u's edge k and edge (o0, o1) at offset D: sheet neighbours when the
+ * edges are joined (an end of one and an end of the other corners of one
+ * triangle, sc_joined) and D lies in the plane of every triangle of both
+ * edges. The three tests, the cheapest first: D in the plane of edge k's
+ * triangles (a dot product with each normal gathered in sc_leaf_begin; a
+ * non-manifold edge's are read in sc_edge_in_plane), then the joined scan,
+ * then D in the plane of the candidate's triangles (read from memory).
+ * Edges of two layers pressed together, most pairs of a crowd, fail the
+ * first. */
 ATS_FN int sc_leaf_sheet_edge(const sc_leaf_query* lq, int k, ATS_GLOBAL const ats_float4* x, ATS_GLOBAL const int* inc,
                               ATS_GLOBAL const int* tris, int o0, int o1, ats_vec3 diff) {
   for (int m = 0; m < lq->enn[k]; ++m)
