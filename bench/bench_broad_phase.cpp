@@ -198,7 +198,7 @@ void hash_step(const Scene& sc, SurfaceHash& h, const Runner& run, Timing& t) {
 }
 
 // The model of `scene` with the positions of frame `frame` of the result
-// file `state` (a run of that scene), or nullopt with a message (a scene or
+// file `state` (a run of that scene), or nullopt with a message on stderr (a scene or
 // file that cannot be read, a frame it does not hold, another scene's run).
 std::optional<model::Model> state_model(const std::string& scene, const std::string& state, int frame) {
   model::Model m;
@@ -207,12 +207,12 @@ std::optional<model::Model> state_model(const std::string& scene, const std::str
     m = model::build_model(scene::load_scene_file(scene));
     p = io::read_frame_positions(state, static_cast<std::size_t>(frame));
   } catch (const Error& e) {
-    std::printf("%s\n", e.what());
+    std::fprintf(stderr, "%s\n", e.what());
     return std::nullopt;
   }
   if (p.size() != 3 * m.particles.position.size()) {
-    std::printf("%s: frame %d holds %zu particles, %s has %zu; give the result of a run of that scene\n", state.c_str(),
-                frame, p.size() / 3, scene.c_str(), m.particles.position.size());
+    std::fprintf(stderr, "%s: frame %d holds %zu particles, %s has %zu; give the result of a run of that scene\n",
+                 state.c_str(), frame, p.size() / 3, scene.c_str(), m.particles.position.size());
     return std::nullopt;
   }
   for (std::size_t i = 0; i < m.particles.position.size(); ++i)
