@@ -49,14 +49,8 @@
  * probes) goes on with the lists it had, bit for bit.
  * state: [0] and [3] unused, [1] some block makes its lists in this
  * substep (so the BVH is refitted and x_det taken), [2] R_det (float bits),
- * [4] substeps that made lists, [5] blocks' lists made, in all.
- * A block is 64 leaves: its boxes of motion span a patch small enough that
- * a block at the edge of a moving region (layers sliding under a ball) is
- * not charged with the motion of surface a few centimetres away. On the
- * paper funnel, frames 33-40, blocks of 64 made 34 % fewer leaves' lists
- * than blocks of 256 and halved the substep's list making (128 and 32:
- * between; 16: more decision work than it saved; docs/benchmarks.md). */
-#define ATS_SC_BLOCK 64
+ * [4] substeps that made lists, [5] blocks' lists made, in all. */
+#define ATS_SC_BLOCK 256
 #define ATS_SC_BLOCK_FLOATS 18
 #define ATS_SC_CLUSTER 32
 #define ATS_SC_MOTION_BLOCK 256
@@ -130,8 +124,7 @@ ATS_FN void sc_block_motion(int b, ATS_GLOBAL const ats_float4* x_det, ATS_GLOBA
  * nearer (the union's gap is at most each member's, in floats too, as min,
  * max and a rounded difference are monotone), so the decision is that of
  * every block against every block, at about 1/ATS_SC_CLUSTER of its cost
- * (8,160 blocks of 64 leaves at 262K vertices: 67 M box pairs a
- * substep without the clusters). */
+ * (2,048 blocks at 262K vertices: 4 M box pairs a substep before). */
 ATS_FN void sc_cluster_box(int k, ATS_GLOBAL const float* motion, int blocks, ATS_GLOBAL float* clusters) {
   sc_box u = sc_box_empty();
   const int end = (k + 1) * ATS_SC_CLUSTER < blocks ? (k + 1) * ATS_SC_CLUSTER : blocks;
