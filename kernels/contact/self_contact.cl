@@ -481,15 +481,20 @@ ATS_TASK void sc_pair_lambdas_edges(int e, __global const float4* x, __global co
 }
 
 /* The corrections of a list's active entries (up to its end mark) to the
- * vertex in `slot` with inverse mass w, added to *sum; returns how many. */
-static inline int sc_add_corrections(__global const float4* e, int count, int slot, float w, ats_vec3* sum) {
+ * vertex in `slot` with inverse mass w, added to *sum, their lengths to
+ * *mag and the longest into *most; returns how many. */
+static inline int sc_add_corrections(__global const float4* e, int count, int slot, float w, ats_vec3* sum, float* mag,
+                                     float* most) {
   int m = 0;
   for (; m < count; ++m, e += 2) {
     const float4 nl = e[0];
     if (nl.w < 0.0f) break;
     const float4 ws = e[1];
     const float ws_slot = slot == 0 ? ws.x : (slot == 1 ? ws.y : (slot == 2 ? ws.z : ws.w));
-    *sum = ats_add(*sum, ats_scale(ats_v3(nl.x, nl.y, nl.z), nl.w * w * ws_slot));
+    const float c = nl.w * w * ws_slot;
+    *sum = ats_add(*sum, ats_scale(ats_v3(nl.x, nl.y, nl.z), c));
+    *mag += fabs(c);
+    *most = fmax(*most, fabs(c));
   }
   return m;
 }
@@ -505,23 +510,32 @@ ATS_TASK void sc_project(int i, __global float4* x, __global const int4* tris, _
   const float4 p = x[i];
   if (p.w == 0.0f || !sc_is_surface(inc, i)) return;
   ats_vec3 sum = ats_v3(0, 0, 0);
+  float mag = 0.0f, most = 0.0f;
   int active = 0;
-  if (vt_k[i] > 0) active += sc_add_corrections(vt_l + 2 * i * ATS_SC_CAPACITY, vt_k[i], 0, p.w, &sum);
+  if (vt_k[i] > 0) active += sc_add_corrections(vt_l + 2 * i * ATS_SC_CAPACITY, vt_k[i], 0, p.w, &sum, &mag, &most);
   for (int k = inc[i]; k < inc[i + 1]; ++k) {
     const int t = inc[k];
     if (tv_k[t] == 0) continue;
     const int4 f = tris[t];
     const int slot = f.x == i ? 1 : (f.y == i ? 2 : 3);
-    active += sc_add_corrections(tv_l + 2 * t * ATS_SC_CAPACITY, tv_k[t], slot, p.w, &sum);
+    active += sc_add_corrections(tv_l + 2 * t * ATS_SC_CAPACITY, tv_k[t], slot, p.w, &sum, &mag, &most);
   }
   for (int k = inc[n + 1 + i]; k < inc[n + 2 + i]; ++k) {
     const int e = inc[k];
     if (ee_k[e] == 0) continue;
     const int slot = edges[e].x == i ? 0 : 1;
-    active += sc_add_corrections(ee_l + 2 * e * ATS_SC_CAPACITY, ee_k[e], slot, p.w, &sum);
+    active += sc_add_corrections(ee_l + 2 * e * ATS_SC_CAPACITY, ee_k[e], slot, p.w, &sum, &mag, &most);
   }
   if (active == 0) return;
-  const float s = 1.0f / (float)active;
+  // The sum over the number of corrections that count: their lengths over
+  // the longest (equal corrections: their count, as a plain average; one
+  // deep pair among near-satisfied ones: about 1). A plain average let a
+  // vertex in many pairs barely move: a pillows_small cloth vertex pressed
+  // over a pillow's edge had 24-55 active corrections, summing to 42 mm and
+  // moving 1.7 mm an iteration, and stayed 3.15 mm from the pillow (thickness
+  // 10 mm) for six frames. The step is never longer than the longest
+  // correction (|sum| <= mag).
+  const float s = most > 0.0f ? 1.0f / fmax(1.0f, mag / most) : 0.0f;
   x[i] = (float4)(p.x + s * sum.x, p.y + s * sum.y, p.z + s * sum.z, p.w);
 }
 
