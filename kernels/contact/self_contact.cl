@@ -318,8 +318,9 @@ ATS_TASK void sc_bound(int i, __global const int* inc, int n, __global const flo
 
 /* XPBD (Macklin et al. 2016) inequality constraint C = d - r >= 0 of every
  * listed pair, zero compliance: the pair's correction of its vertex in slot
- * j, -C w_j m_j n / sum_k m_k w_k^2 (m: inverse masses), averaged over the
- * vertex's active pairs (Jacobi; every pair reads the same x). In two steps,
+ * j, -C w_j m_j n / sum_k m_k w_k^2 (m: inverse masses), summed over the
+ * vertex's active pairs and divided by the number that count (sc_project;
+ * Jacobi: every pair reads the same x). In two steps,
  * so that a pair's geometry is evaluated once per list that holds it rather
  * than once by each of its four vertices: per list entry (sc_pair_lambdas:
  * a vertex's triangles, a triangle's vertices, an edge's edges) the pair's
