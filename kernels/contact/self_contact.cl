@@ -483,11 +483,10 @@ ATS_TASK void sc_pair_lambdas_edges(int e, __global const float4* x, __global co
 
 /* The corrections of a list's active entries (up to its end mark) to the
  * vertex in `slot` with inverse mass w, added to *sum, their lengths to
- * *mag and the longest into *most; returns how many. */
-static inline int sc_add_corrections(__global const float4* e, int count, int slot, float w, ats_vec3* sum, float* mag,
-                                     float* most) {
-  int m = 0;
-  for (; m < count; ++m, e += 2) {
+ * *mag and the longest into *most. */
+static inline void sc_add_corrections(__global const float4* e, int count, int slot, float w, ats_vec3* sum, float* mag,
+                                      float* most) {
+  for (int m = 0; m < count; ++m, e += 2) {
     const float4 nl = e[0];
     if (nl.w < 0.0f) break;
     const float4 ws = e[1];
@@ -497,7 +496,6 @@ static inline int sc_add_corrections(__global const float4* e, int count, int sl
     *mag += fabs(c);
     *most = fmax(*most, fabs(c));
   }
-  return m;
 }
 
 /* vt_k, tv_k, ee_k: per list the count of its active entries (the
@@ -512,22 +510,21 @@ ATS_TASK void sc_project(int i, __global float4* x, __global const int4* tris, _
   if (p.w == 0.0f || !sc_is_surface(inc, i)) return;
   ats_vec3 sum = ats_v3(0, 0, 0);
   float mag = 0.0f, most = 0.0f;
-  int active = 0;
-  if (vt_k[i] > 0) active += sc_add_corrections(vt_l + 2 * i * ATS_SC_CAPACITY, vt_k[i], 0, p.w, &sum, &mag, &most);
+  if (vt_k[i] > 0) sc_add_corrections(vt_l + 2 * i * ATS_SC_CAPACITY, vt_k[i], 0, p.w, &sum, &mag, &most);
   for (int k = inc[i]; k < inc[i + 1]; ++k) {
     const int t = inc[k];
     if (tv_k[t] == 0) continue;
     const int4 f = tris[t];
     const int slot = f.x == i ? 1 : (f.y == i ? 2 : 3);
-    active += sc_add_corrections(tv_l + 2 * t * ATS_SC_CAPACITY, tv_k[t], slot, p.w, &sum, &mag, &most);
+    sc_add_corrections(tv_l + 2 * t * ATS_SC_CAPACITY, tv_k[t], slot, p.w, &sum, &mag, &most);
   }
   for (int k = inc[n + 1 + i]; k < inc[n + 2 + i]; ++k) {
     const int e = inc[k];
     if (ee_k[e] == 0) continue;
     const int slot = edges[e].x == i ? 0 : 1;
-    active += sc_add_corrections(ee_l + 2 * e * ATS_SC_CAPACITY, ee_k[e], slot, p.w, &sum, &mag, &most);
+    sc_add_corrections(ee_l + 2 * e * ATS_SC_CAPACITY, ee_k[e], slot, p.w, &sum, &mag, &most);
   }
-  if (active == 0) return;
+  if (!(most > 0.0f)) return;  // no active pair, or none that moves i
   // The sum over the number of corrections that count: their lengths over
   // the longest (equal corrections: their count, as a plain average; one
   // deep pair among near-satisfied ones: about 1). A plain average let a
@@ -536,7 +533,7 @@ ATS_TASK void sc_project(int i, __global float4* x, __global const int4* tris, _
   // moving 1.7 mm an iteration, and stayed 3.15 mm from the pillow (thickness
   // 10 mm) for six frames. The step is never longer than the longest
   // correction (|sum| <= mag).
-  const float s = most > 0.0f ? 1.0f / fmax(1.0f, mag / most) : 0.0f;
+  const float s = 1.0f / fmax(1.0f, mag / most);
   x[i] = (float4)(p.x + s * sum.x, p.y + s * sum.y, p.z + s * sum.z, p.w);
 }
 
