@@ -9,7 +9,9 @@ its own), and the share of the last recorded substep the contact tasks
 took; then the log-log slope of the contact time over the sizes (each
 round's own on - off, the median of those; with several rounds also the
 range of each round's own slope), beside the slope of the self-off frame
-time. The last
+time and that of the contact time from the fastest frames (the shortest
+frame after the skip over every round, on less off: noise only slows a
+frame, so these are the least disturbed). The last
 substep is a frame's last, which often keeps the pair lists (detection
 rebuilds them when the motion since they were made outgrows them; they are
 kept across frames), so its breakdown by task shows a kept substep; a
@@ -74,6 +76,7 @@ def run(tmp, n, method, self_on, args):
                     "--quiet"], check=True)
     with h5py.File(out, "r") as f:
         frame_ms = float(np.median(f["timing/frame_ms"][args.skip:]))
+        fastest_ms = float(np.min(f["timing/frame_ms"][args.skip:]))
         host_ms = float(np.median(f["timing/host_ms"][args.skip:]))
         names = [s.decode() if isinstance(s, bytes) else s for s in f["schedule/tasks/name"][:]]
         kinds = [s.decode() if isinstance(s, bytes) else s for s in f["schedule/tasks/kind"][:]]
@@ -91,7 +94,7 @@ def run(tmp, n, method, self_on, args):
                 base = names[t].split("[")[0]
                 by_name[base] = by_name.get(base, 0.0) + (b - a)
         substep = float(np.nanmax(finish) - np.nanmin(start))
-    return frame_ms, host_ms, contact, substep, by_name
+    return frame_ms, host_ms, contact, substep, by_name, fastest_ms
 
 
 def native_ms(tmp, n, method, args):
@@ -116,9 +119,12 @@ def slope_line(method, points):
     off at both sizes), and beside it the slope of the self-off frame time,
     the solve's own growth with size on this machine (cache effects included),
     against which the contact time's can be read."""
-    (v0, c0, r0, off0), (v1, c1, r1, off1) = points[0], points[-1]
+    (v0, c0, r0, off0, f0), (v1, c1, r1, off1, f1) = points[0], points[-1]
     slope = lambda a, b: math.log(b / a) / math.log(v1 / v0)
     off = f"; of the self-off frame time: {slope(off0, off1):.2f}"
+    fast = ", ".join(f"{p[4]:.1f}" for p in points)
+    off += (f"; of the fastest frames' contact time ({fast} ms): "
+            + (f"{slope(f0, f1):.2f}" if f0 > 0 and f1 > 0 else "none (not positive)"))
     if not (c0 > 0 and c1 > 0):
         return (f"| {method} | no slope: a contact time (on - off) is not positive, the noise is larger "
                 f"than it; use more --rounds{off} | | | | | |")
@@ -181,12 +187,17 @@ def main() -> int:
                 host_on = med([p[True][1] for p in rounds])
                 ratios = [p[True][0] / p[False][0] for p in rounds]
                 ratios_host = [(p[True][0] + p[True][1]) / (p[False][0] + p[False][1]) for p in rounds]
-                _, _, contact, substep, by_name = rounds[-1][True]
+                _, _, contact, substep, by_name, _ = rounds[-1][True]
                 breakdown.append((method, n * n, by_name))
                 # The contact time from each round's own pair (on - off),
                 # then the median: a sitting's drift cancels within a pair.
                 paired = med([p[True][0] - p[False][0] for p in rounds])
-                points.append((n * n, paired, [p[True][0] - p[False][0] for p in rounds], off))
+                # And from the fastest frames: the shortest frame after the
+                # skip over every round, on less off. A VM's noise only ever
+                # slows a frame, so the fastest frames are the least
+                # disturbed (the "fastest of N" of scripts/bench_devices.py).
+                fastest = min(p[True][5] for p in rounds) - min(p[False][5] for p in rounds)
+                points.append((n * n, paired, [p[True][0] - p[False][0] for p in rounds], off, fastest))
                 spread = lambda xs: f" ({min(xs):.2f}–{max(xs):.2f})" if len(xs) > 1 else ""
                 print(f"| {method} | {n * n} | {off:.1f} | {on:.1f} | {med(ratios):.2f}{spread(ratios)} | "
                       f"{paired:.2f} | {100 * contact / substep:.0f} % | {host_off:.1f} | {host_on:.1f} | "
