@@ -9,9 +9,12 @@ its own), and the share of the last recorded substep the contact tasks
 took; then the log-log slope of the contact time over the sizes (each
 round's own on - off, the median of those; with several rounds also the
 range of each round's own slope), beside the slope of the self-off frame
-time and that of the contact time from the fastest frames (the shortest
+time, that of the contact time from the fastest frames (the shortest
 frame after the skip over every round, on less off: noise only slows a
-frame, so these are the least disturbed). The last
+frame, so these are the least disturbed) and that of the contact tasks'
+own time, measured task by task (each frame's recorded substep times the
+substeps, the median over frames and rounds; without the contact terms
+inside VBD's and JPGD's vertex solve, which are no task). The last
 substep is a frame's last, which often keeps the pair lists (detection
 rebuilds them when the motion since they were made outgrows them; they are
 kept across frames), so its breakdown by task shows a kept substep; a
@@ -94,7 +97,18 @@ def run(tmp, n, method, self_on, args):
                 base = names[t].split("[")[0]
                 by_name[base] = by_name.get(base, 0.0) + (b - a)
         substep = float(np.nanmax(finish) - np.nanmin(start))
-    return frame_ms, host_ms, contact, substep, by_name, fastest_ms
+        # The contact tasks' own time, measured task by task rather than as
+        # a difference of two runs: each frame's recorded substep (its
+        # last) times the substeps, the median over the frames after the
+        # skip. The contact work inside the vertex solves is not in it.
+        every_task = s["task"][:]
+        every_start, every_finish = s["measured_start_ms"][:], s["measured_finish_ms"][:]
+        is_contact = np.array([kinds[t] in CONTACT_KINDS or any(k in names[t] for k in CONTACT_NAMES)
+                               for t in every_task])
+        per_frame = [float(np.sum((every_finish - every_start)[(frames == fr) & is_contact])) * args.substeps
+                     for fr in np.unique(frames) if fr > args.skip]
+        tasks_ms = float(np.median(per_frame)) if per_frame else float("nan")
+    return frame_ms, host_ms, contact, substep, by_name, fastest_ms, tasks_ms
 
 
 def native_ms(tmp, n, method, args):
@@ -119,12 +133,15 @@ def slope_line(method, points):
     off at both sizes), and beside it the slope of the self-off frame time,
     the solve's own growth with size on this machine (cache effects included),
     against which the contact time's can be read."""
-    (v0, c0, r0, off0, f0), (v1, c1, r1, off1, f1) = points[0], points[-1]
+    (v0, c0, r0, off0, f0, t0), (v1, c1, r1, off1, f1, t1) = points[0], points[-1]
     slope = lambda a, b: math.log(b / a) / math.log(v1 / v0)
     off = f"; of the self-off frame time: {slope(off0, off1):.2f}"
     fast = ", ".join(f"{p[4]:.1f}" for p in points)
     off += (f"; of the fastest frames' contact time ({fast} ms): "
             + (f"{slope(f0, f1):.2f}" if f0 > 0 and f1 > 0 else "none (not positive)"))
+    tasks = ", ".join(f"{p[5]:.1f}" for p in points)
+    off += (f"; of the contact tasks' own time ({tasks} ms a frame, each frame's recorded substep times the "
+            f"substeps): " + (f"{slope(t0, t1):.2f}" if t0 > 0 and t1 > 0 else "none"))
     if not (c0 > 0 and c1 > 0):
         return (f"| {method} | no slope: a contact time (on - off) is not positive, the noise is larger "
                 f"than it; use more --rounds{off} | | | | | |")
@@ -187,7 +204,7 @@ def main() -> int:
                 host_on = med([p[True][1] for p in rounds])
                 ratios = [p[True][0] / p[False][0] for p in rounds]
                 ratios_host = [(p[True][0] + p[True][1]) / (p[False][0] + p[False][1]) for p in rounds]
-                _, _, contact, substep, by_name, _ = rounds[-1][True]
+                _, _, contact, substep, by_name, _, _ = rounds[-1][True]
                 breakdown.append((method, n * n, by_name))
                 # The contact time from each round's own pair (on - off),
                 # then the median: a sitting's drift cancels within a pair.
@@ -197,7 +214,8 @@ def main() -> int:
                 # slows a frame, so the fastest frames are the least
                 # disturbed (the "fastest of N" of scripts/bench_devices.py).
                 fastest = min(p[True][5] for p in rounds) - min(p[False][5] for p in rounds)
-                points.append((n * n, paired, [p[True][0] - p[False][0] for p in rounds], off, fastest))
+                tasks = med([p[True][6] for p in rounds])
+                points.append((n * n, paired, [p[True][0] - p[False][0] for p in rounds], off, fastest, tasks))
                 spread = lambda xs: f" ({min(xs):.2f}–{max(xs):.2f})" if len(xs) > 1 else ""
                 print(f"| {method} | {n * n} | {off:.1f} | {on:.1f} | {med(ratios):.2f}{spread(ratios)} | "
                       f"{paired:.2f} | {100 * contact / substep:.0f} % | {host_off:.1f} | {host_on:.1f} | "
