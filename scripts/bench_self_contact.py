@@ -31,6 +31,7 @@ usage: scripts/bench_self_contact.py [--sizes 128,256] [--frames 4] [--skip 2] [
 Build first (cmake --build --preset release). Prints one Markdown table.
 """
 import argparse
+import collections
 import json
 import math
 import os
@@ -69,7 +70,14 @@ def query(n, args):
 CONTACT_NAMES = ("collision/bound", "collision/surface", "contact/first_guess")
 
 
+Run = collections.namedtuple("Run", "frame_ms host_ms contact substep by_name fastest_ms tasks_ms")
+Point = collections.namedtuple("Point", "vertices paired rounds off fastest tasks")
+
+
 def run(tmp, n, method, self_on, args):
+    """One run's frame time (median and fastest after the skip), host time,
+    and its contact tasks: their time in the last recorded substep (with that
+    substep's length and their time by name) and their own time per frame."""
     scene = os.path.join(tmp, f"s{n}{method}{int(self_on)}.yaml")
     out = os.path.join(tmp, f"o{n}{method}{int(self_on)}.h5")
     with open(scene, "w") as f:
@@ -83,32 +91,28 @@ def run(tmp, n, method, self_on, args):
         host_ms = float(np.median(f["timing/host_ms"][args.skip:]))
         names = [s.decode() if isinstance(s, bytes) else s for s in f["schedule/tasks/name"][:]]
         kinds = [s.decode() if isinstance(s, bytes) else s for s in f["schedule/tasks/kind"][:]]
+        is_contact_task = np.array([kind in CONTACT_KINDS or any(k in name for k in CONTACT_NAMES)
+                                    for name, kind in zip(names, kinds)], dtype=bool)
         s = f["schedule"]
-        frames = s["frame"][:]
-        last = frames == frames.max()
-        task = s["task"][:][last]
-        start = s["measured_start_ms"][:][last]
-        finish = s["measured_finish_ms"][:][last]
-        contact = 0.0
-        by_name = {}
-        for t, a, b in zip(task, start, finish):
-            if kinds[t] in CONTACT_KINDS or any(k in names[t] for k in CONTACT_NAMES):
-                contact += b - a
-                base = names[t].split("[")[0]
-                by_name[base] = by_name.get(base, 0.0) + (b - a)
-        substep = float(np.nanmax(finish) - np.nanmin(start))
-        # The contact tasks' own time, measured task by task rather than as
-        # a difference of two runs: each frame's recorded substep (its
-        # last) times the substeps, the median over the frames after the
-        # skip. The contact work inside the vertex solves is not in it.
-        every_task = s["task"][:]
-        every_start, every_finish = s["measured_start_ms"][:], s["measured_finish_ms"][:]
-        is_contact = np.array([kinds[t] in CONTACT_KINDS or any(k in names[t] for k in CONTACT_NAMES)
-                               for t in every_task])
-        per_frame = [float(np.sum((every_finish - every_start)[(frames == fr) & is_contact])) * args.substeps
-                     for fr in np.unique(frames) if fr > args.skip]
-        tasks_ms = float(np.median(per_frame)) if per_frame else float("nan")
-    return frame_ms, host_ms, contact, substep, by_name, fastest_ms, tasks_ms
+        frames, task = s["frame"][:], s["task"][:]
+        start, finish = s["measured_start_ms"][:], s["measured_finish_ms"][:]
+    took = finish - start
+    is_contact = is_contact_task[task]
+    last = frames == frames.max()
+    contact = float(np.sum(took[last & is_contact]))
+    by_name = {}
+    for t, ms in zip(task[last & is_contact], took[last & is_contact]):
+        base = names[t].split("[")[0]
+        by_name[base] = by_name.get(base, 0.0) + float(ms)
+    substep = float(np.nanmax(finish[last]) - np.nanmin(start[last]))
+    # The contact tasks' own time, measured task by task rather than as a
+    # difference of two runs: each frame's recorded substep (its last) times
+    # the substeps, the median over the frames after the skip. The contact
+    # work inside the vertex solves is not in it.
+    per_frame = [float(np.sum(took[(frames == fr) & is_contact])) * args.substeps
+                 for fr in np.unique(frames) if fr > args.skip]
+    tasks_ms = float(np.median(per_frame)) if per_frame else float("nan")
+    return Run(frame_ms, host_ms, contact, substep, by_name, fastest_ms, tasks_ms)
 
 
 def native_ms(tmp, n, method, args):
@@ -133,13 +137,13 @@ def slope_line(method, points):
     off at both sizes), and beside it the slope of the self-off frame time,
     the solve's own growth with size on this machine (cache effects included),
     against which the contact time's can be read."""
-    (v0, c0, r0, off0, f0, t0), (v1, c1, r1, off1, f1, t1) = points[0], points[-1]
+    (v0, c0, r0, off0, f0, t0), (v1, c1, r1, off1, f1, t1) = points[0], points[-1]  # Point
     slope = lambda a, b: math.log(b / a) / math.log(v1 / v0)
     off = f"; of the self-off frame time: {slope(off0, off1):.2f}"
-    fast = ", ".join(f"{p[4]:.1f}" for p in points)
+    fast = ", ".join(f"{p.fastest:.1f}" for p in points)
     off += (f"; of the fastest frames' contact time ({fast} ms): "
             + (f"{slope(f0, f1):.2f}" if f0 > 0 and f1 > 0 else "none (not positive)"))
-    tasks = ", ".join(f"{p[5]:.1f}" for p in points)
+    tasks = ", ".join(f"{p.tasks:.1f}" for p in points)
     off += (f"; of the contact tasks' own time ({tasks} ms a frame, each frame's recorded substep times the "
             f"substeps): " + (f"{slope(t0, t1):.2f}" if t0 > 0 and t1 > 0 else "none"))
     if not (c0 > 0 and c1 > 0):
@@ -198,24 +202,26 @@ def main() -> int:
                         pair[self_on] = run(tmp, n, method, self_on, args)
                     rounds.append(pair)
                 med = lambda xs: float(np.median(xs))
-                off = med([p[False][0] for p in rounds])
-                host_off = med([p[False][1] for p in rounds])
-                on = med([p[True][0] for p in rounds])
-                host_on = med([p[True][1] for p in rounds])
-                ratios = [p[True][0] / p[False][0] for p in rounds]
-                ratios_host = [(p[True][0] + p[True][1]) / (p[False][0] + p[False][1]) for p in rounds]
-                _, _, contact, substep, by_name, _, _ = rounds[-1][True]
-                breakdown.append((method, n * n, by_name))
+                off = med([p[False].frame_ms for p in rounds])
+                host_off = med([p[False].host_ms for p in rounds])
+                on = med([p[True].frame_ms for p in rounds])
+                host_on = med([p[True].host_ms for p in rounds])
+                ratios = [p[True].frame_ms / p[False].frame_ms for p in rounds]
+                ratios_host = [(p[True].frame_ms + p[True].host_ms) / (p[False].frame_ms + p[False].host_ms)
+                               for p in rounds]
+                last = rounds[-1][True]
+                contact, substep = last.contact, last.substep
+                breakdown.append((method, n * n, last.by_name))
                 # The contact time from each round's own pair (on - off),
                 # then the median: a sitting's drift cancels within a pair.
-                paired = med([p[True][0] - p[False][0] for p in rounds])
+                own = [p[True].frame_ms - p[False].frame_ms for p in rounds]
                 # And from the fastest frames: the shortest frame after the
                 # skip over every round, on less off. A VM's noise only ever
                 # slows a frame, so the fastest frames are the least
                 # disturbed (the "fastest of N" of scripts/bench_devices.py).
-                fastest = min(p[True][5] for p in rounds) - min(p[False][5] for p in rounds)
-                tasks = med([p[True][6] for p in rounds])
-                points.append((n * n, paired, [p[True][0] - p[False][0] for p in rounds], off, fastest, tasks))
+                fastest = min(p[True].fastest_ms for p in rounds) - min(p[False].fastest_ms for p in rounds)
+                paired = med(own)
+                points.append(Point(n * n, paired, own, off, fastest, med([p[True].tasks_ms for p in rounds])))
                 spread = lambda xs: f" ({min(xs):.2f}–{max(xs):.2f})" if len(xs) > 1 else ""
                 print(f"| {method} | {n * n} | {off:.1f} | {on:.1f} | {med(ratios):.2f}{spread(ratios)} | "
                       f"{paired:.2f} | {100 * contact / substep:.0f} % | {host_off:.1f} | {host_on:.1f} | "
